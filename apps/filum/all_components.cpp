@@ -1,0 +1,15 @@
+#include "filum/all_components.hpp"
+
+#include "filum/constraints/register_components.hpp"
+#include "filum/mechanics/register_components.hpp"
+
+namespace filum::app {
+
+Factory makeFactory() {
+  Factory factory;
+  mechanics::register_components(factory);
+  constraints::register_components(factory);
+  return factory;
+}
+
+}  // namespace filum::app

@@ -1,0 +1,25 @@
+// `filum run`: loads a scene, simulates it headless and writes its data and timing summary.
+#pragma once
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+namespace filum::app {
+
+struct RunOptions {
+  std::string scene;                 // scene file
+  std::optional<double> duration;    // s; default: the scene's "duration"
+  std::string out;                   // output folder; default: out/<scene file stem>
+  std::optional<double> interval;    // s between frames; default: scene "output.interval" or 0.01
+  std::optional<int> curve_samples;  // points per curve in curve.csv / .vtp; default 64
+  bool progress = true;              // a progress line on stderr for runs longer than 3 s
+};
+
+/// Exit codes of `filum run`.
+enum RunStatus { kRunOk = 0, kRunSceneError = 2, kRunDiverged = 3, kRunIoError = 4 };
+
+/// Runs the scene; messages go to `log` (stdout) and progress to `progress` (stderr).
+int runScene(const RunOptions& options, std::ostream& log, std::ostream& progress);
+
+}  // namespace filum::app

@@ -1,0 +1,73 @@
+#include "filum/run_output.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "filum/mechanics/dynamic_spline.hpp"
+#include "filum/mechanics/spline_point_mapping.hpp"
+
+namespace filum::app {
+
+namespace {
+
+std::string exact(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x);
+  return buffer;
+}
+
+std::ofstream openCsv(const std::string& path, const char* header) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot open for writing");
+  out << header << '\n';
+  return out;
+}
+
+}  // namespace
+
+RunOutput::RunOutput(const std::string& directory, int curve_samples)
+    : directory_(directory), curve_samples_(curve_samples), series_(directory + "/curve.pvd") {
+  std::filesystem::create_directories(directory_ + "/vtk");
+  control_points_ = openCsv(directory_ + "/control_points.csv", "time,body,index,x,y,z");
+  curve_ = openCsv(directory_ + "/curve.csv", "time,body,sample,s,x,y,z");
+  energy_ = openCsv(directory_ + "/energy.csv", "time,kinetic,potential,total,max_violation");
+}
+
+void RunOutput::writeFrame(const Scene& scene) {
+  const SceneState& s = scene.state();
+  if (!s.allFinite()) throw std::runtime_error("refusing to write a non-finite state at t = " + exact(s.time));
+  const std::string t = exact(s.time);
+  std::vector<visual::PolyLine> lines;
+  const std::vector<double> abscissas = mechanics::uniformAbscissas(curve_samples_);
+  for (const MechanicalState* body : scene.bodies()) {
+    const std::string name = body->node()->path();
+    const ConstPointsMap q = body->block(s.q);
+    for (int i = 0; i < q.rows(); ++i)
+      control_points_ << t << ',' << name << ',' << i << ',' << exact(q(i, 0)) << ',' << exact(q(i, 1)) << ','
+                      << exact(q(i, 2)) << '\n';
+    const auto* spline = dynamic_cast<const mechanics::DynamicSpline*>(body);
+    if (!spline) continue;
+    visual::PolyLine line{name, Points(curve_samples_, 3), abscissas};
+    mechanics::SplinePointMapping(spline->basis(), abscissas).apply(q, line.points);
+    for (int k = 0; k < curve_samples_; ++k)
+      curve_ << t << ',' << name << ',' << k << ',' << exact(abscissas[k]) << ',' << exact(line.points(k, 0)) << ','
+             << exact(line.points(k, 1)) << ',' << exact(line.points(k, 2)) << '\n';
+    lines.push_back(std::move(line));
+  }
+  const Energy e = scene.energy(s);
+  const VecX g = scene.constraintViolation(s);
+  energy_ << t << ',' << exact(e.kinetic) << ',' << exact(e.potential) << ',' << exact(e.total()) << ','
+          << exact(g.size() ? g.cwiseAbs().maxCoeff() : 0.0) << '\n';
+
+  char file[64];
+  std::snprintf(file, sizeof file, "vtk/curve_%06d.vtp", frame_);
+  visual::writeVtp(directory_ + "/" + file, lines, "abscissa");
+  series_.add(s.time, file);
+  control_points_.flush();
+  curve_.flush();
+  energy_.flush();
+  ++frame_;
+}
+
+}  // namespace filum::app

@@ -1,0 +1,36 @@
+// RunOutput: what `filum run` writes into its output folder, frame by frame:
+//   control_points.csv  time, body, index, x, y, z            (the DOFs)
+//   curve.csv           time, body, sample, s, x, y, z         (P(s) at equal parametric spacing)
+//   energy.csv          time, kinetic, potential, total, max_violation
+//   vtk/curve_NNNNNN.vtp + curve.pvd                           (ParaView plays the run)
+// Every file is flushed after each frame, so a run that stops early leaves complete frames.
+// Numbers are written with 17 significant digits (exact, comparable bit for bit).
+#pragma once
+
+#include <fstream>
+#include <string>
+
+#include "filum/core/scene.hpp"
+#include "filum/visual/vtp_writer.hpp"
+
+namespace filum::app {
+
+class RunOutput {
+ public:
+  /// Creates `directory` (and vtk/ inside). curve_samples >= 2.
+  RunOutput(const std::string& directory, int curve_samples);
+
+  /// Writes one frame of the scene's current state. Throws if a value is not finite.
+  void writeFrame(const Scene& scene);
+  int frames() const { return frame_; }
+  const std::string& directory() const { return directory_; }
+
+ private:
+  std::string directory_;
+  int curve_samples_;
+  int frame_ = 0;
+  std::ofstream control_points_, curve_, energy_;
+  visual::PvdSeries series_;
+};
+
+}  // namespace filum::app

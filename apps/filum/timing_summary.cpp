@@ -1,0 +1,52 @@
+#include "filum/timing_summary.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <numeric>
+
+namespace filum::app {
+
+TimingSummary TimingSummary::fromStepTimes(const std::vector<double>& step_seconds, double dt, double wall) {
+  TimingSummary t;
+  t.steps = static_cast<long>(step_seconds.size());
+  t.dt = dt;
+  t.simulated = t.steps * dt;
+  t.wall = wall;
+  if (step_seconds.empty()) return t;
+  std::vector<double> sorted = step_seconds;
+  std::sort(sorted.begin(), sorted.end());
+  t.step_wall = std::accumulate(sorted.begin(), sorted.end(), 0.0);
+  // One step covers dt seconds = 1000 dt simulated ms; wall ms per simulated ms = wall / dt.
+  const double scale = 1.0 / dt;
+  const std::size_t n = sorted.size();
+  const double median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  t.per_sim_ms_min = sorted.front() * scale;
+  t.per_sim_ms_median = median * scale;
+  t.per_sim_ms_max = sorted.back() * scale;
+  t.per_sim_ms_mean = t.step_wall / t.simulated;
+  return t;
+}
+
+std::string TimingSummary::text() const {
+  char buffer[512];
+  std::snprintf(buffer, sizeof buffer,
+                "steps: %ld of dt = %g s, simulated %.6g s in %.3f s wall (%.3f s stepping)\n"
+                "wall time per simulated ms: median %.4g ms, min %.4g ms, max %.4g ms, mean %.4g ms "
+                "(real time needs <= 1)\n",
+                steps, dt, simulated, wall, step_wall, per_sim_ms_median, per_sim_ms_min, per_sim_ms_max,
+                per_sim_ms_mean);
+  return buffer;
+}
+
+std::string TimingSummary::json() const {
+  char buffer[512];
+  std::snprintf(buffer, sizeof buffer,
+                "{\n  \"steps\": %ld,\n  \"dt_s\": %.17g,\n  \"simulated_s\": %.17g,\n  \"wall_s\": %.6f,\n"
+                "  \"step_wall_s\": %.6f,\n  \"wall_ms_per_simulated_ms\": {\"median\": %.6g, \"min\": %.6g, "
+                "\"max\": %.6g, \"mean\": %.6g}\n}\n",
+                steps, dt, simulated, wall, step_wall, per_sim_ms_median, per_sim_ms_min, per_sim_ms_max,
+                per_sim_ms_mean);
+  return buffer;
+}
+
+}  // namespace filum::app

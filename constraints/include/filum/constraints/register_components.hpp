@@ -1,0 +1,11 @@
+// Registers the constraints library's components: FixedPointConstraint and
+// LagrangeMultiplierSolver (the default constraint solver).
+#pragma once
+
+#include "filum/core/factory.hpp"
+
+namespace filum::constraints {
+
+void register_components(Factory& factory);
+
+}  // namespace filum::constraints

@@ -1,0 +1,37 @@
+// Evaluation of a spline curve P(s) = Σ b_i(s) q_i and its derivatives (paper eq. 1) from a
+// basis row and the control points (n × 3).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "filum/core/types.hpp"
+#include "filum/geometry/spline_basis.hpp"
+
+namespace filum::geometry {
+
+/// Σ_j row.value[j] q_{first+j}
+inline Vec3 curvePoint(const BasisRow& row, ConstPointsRef q) {
+  Vec3 p = Vec3::Zero();
+  for (int j = 0; j < row.count; ++j) p += row.value[j] * q.row(row.first + j).transpose();
+  return p;
+}
+/// P'(s) = Σ_j b'_j q_j
+inline Vec3 curveTangent(const BasisRow& row, ConstPointsRef q) {
+  Vec3 p = Vec3::Zero();
+  for (int j = 0; j < row.count; ++j) p += row.d1[j] * q.row(row.first + j).transpose();
+  return p;
+}
+/// P''(s) = Σ_j b''_j q_j
+inline Vec3 curveSecondDerivative(const BasisRow& row, ConstPointsRef q) {
+  Vec3 p = Vec3::Zero();
+  for (int j = 0; j < row.count; ++j) p += row.d2[j] * q.row(row.first + j).transpose();
+  return p;
+}
+
+/// P(s) for one abscissa (evaluates the basis).
+Vec3 curvePoint(const SplineBasis& basis, ConstPointsRef q, double s);
+
+/// Points at `count` abscissas equally spaced in s (count >= 2), one per row.
+Points sampleCurve(const SplineBasis& basis, ConstPointsRef q, int count);
+
+}  // namespace filum::geometry

@@ -1,0 +1,21 @@
+#include "filum/geometry/spline_curve.hpp"
+
+namespace filum::geometry {
+
+Vec3 curvePoint(const SplineBasis& basis, ConstPointsRef q, double s) {
+  BasisRow row;
+  basis.evaluate(s, row);
+  return curvePoint(row, q);
+}
+
+Points sampleCurve(const SplineBasis& basis, ConstPointsRef q, int count) {
+  Points out(count, 3);
+  BasisRow row;
+  for (int k = 0; k < count; ++k) {
+    basis.evaluate(static_cast<double>(k) / (count - 1), row);
+    out.row(k) = curvePoint(row, q).transpose();
+  }
+  return out;
+}
+
+}  // namespace filum::geometry

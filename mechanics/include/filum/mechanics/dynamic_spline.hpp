@@ -1,0 +1,65 @@
+// DynamicSpline: the dynamic Lagrangian spline of the paper (§3, after Rémion et al.). Its
+// degrees of freedom are the control points q_i(t) of P(s, t) = Σ b_i(s) q_i(t) (eq. 1); the
+// Lagrange equations (eq. 2) give M A = B (eq. 3) with the constant banded mass matrix
+// M_ij = m ∫ b_i b_j ds, factored once here so that each step's solve is O(n).
+//
+// Model data only: the control point values live in the scene's SceneState.
+#pragma once
+
+#include <memory>
+
+#include "filum/core/mechanical_state.hpp"
+#include "filum/core/params.hpp"
+#include "filum/geometry/spline_basis.hpp"
+#include "filum/mechanics/banded_cholesky.hpp"
+
+namespace filum::mechanics {
+
+class DynamicSpline final : public MechanicalState {
+ public:
+  /// initial: n × 3 control points (m); mass: total mass (kg) > 0; radius: cross-section
+  /// radius (m) > 0, used by collision and skinning.
+  DynamicSpline(std::unique_ptr<geometry::SplineBasis> basis, Points initial, double mass, double radius);
+
+  /// From scene parameters:
+  ///   "basis": "uniform_cubic_bspline" (default),
+  ///   "control_points": [[x,y,z], ...]  or  {"from": [..], "to": [..], "count": n} — a straight
+  ///      thread whose curve runs from `from` to `to`,
+  ///   "mass": kg  or  "density": kg/m³ (with the radius and the initial arc length),
+  ///   "radius": m (default 1e-4, a 3-0 suture is 1e-4 m).
+  static std::unique_ptr<DynamicSpline> fromParams(const Params& p);
+
+  std::string typeName() const override { return "DynamicSpline"; }
+  int pointCount() const override { return static_cast<int>(initial_.rows()); }
+  const Points& initialPositions() const override { return initial_; }
+  void solveMass(PointsRef B) const override { factor_.solve(B); }
+  void multiplyMass(ConstPointsRef x, PointsRef out) const override { out.noalias() = mass_matrix_ * x; }
+  void addGravity(const Vec3& g, PointsRef B) const override;
+  double gravityPotential(const Vec3& g, ConstPointsRef q) const override;
+
+  const geometry::SplineBasis& basis() const { return *basis_; }
+  double mass() const { return mass_; }
+  double radius() const { return radius_; }
+  /// Arc length of the initial curve (m).
+  double restLength() const { return rest_length_; }
+  const SparseMatrix& massMatrix() const { return mass_matrix_; }
+
+ private:
+  std::unique_ptr<geometry::SplineBasis> basis_;
+  Points initial_;            // control points at t = 0 (n × 3, m)
+  double mass_;               // total mass m (kg)
+  double radius_;             // cross-section radius (m)
+  double rest_length_;        // arc length of the initial curve (m)
+  SparseMatrix mass_matrix_;  // M (n × n)
+  BandedCholesky factor_;     // M = L Lᵀ, computed once
+  VecX basis_integrals_;      // w_i = ∫ b_i ds (n)
+};
+
+/// Arc length ∫_0^1 |P'(s)| ds by Gauss-Legendre on each polynomial piece.
+double arcLength(const geometry::SplineBasis& basis, ConstPointsRef q, int nodes_per_piece = 8);
+
+/// A basis by name for n control points; throws SceneError at p.where(key) if unknown or n
+/// is too small for it.
+std::unique_ptr<geometry::SplineBasis> makeBasis(const Params& p, const std::string& key, int control_points);
+
+}  // namespace filum::mechanics

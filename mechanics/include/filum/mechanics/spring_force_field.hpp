@@ -1,0 +1,46 @@
+// SpringForceField: the paper's discrete deformation energy (§3 "Deformation Energy", Fig. 1,
+// after Provot): K points x_k = P(s_k) sampled at equal parametric spacing, stretch springs
+// between neighbours (k, k+1) and bend springs between next neighbours (k, k+2), rest lengths
+// taken from the initial curve. Spring force on the pair (a, b), u = (x_b − x_a)/l:
+//   f = [k (l − l0) + c (v_b − v_a)·u] u,  F_a += f, F_b −= f,
+// mapped to the control points by Q_i += Σ_k b_i(s_k) F_k (SplinePointMapping::applyJT).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "filum/core/force_field.hpp"
+#include "filum/core/params.hpp"
+#include "filum/mechanics/spline_point_mapping.hpp"
+
+namespace filum::mechanics {
+
+class SpringForceField final : public ForceField {
+ public:
+  /// stretch_stiffness (N/m) > 0, bend_stiffness (N/m) >= 0, damping (N·s/m) >= 0,
+  /// samples >= 3 points along the curve (0: twice the control points).
+  SpringForceField(double stretch_stiffness, double bend_stiffness, double damping, int samples);
+  static std::unique_ptr<SpringForceField> fromParams(const Params& p);
+
+  std::string typeName() const override { return "SpringForceField"; }
+  void addForce(const SceneState& s, VecX& B) const override;
+  double potentialEnergy(const SceneState& s) const override;
+
+  int sampleCount() const { return samples_; }
+
+ private:
+  struct Spring {
+    int a, b;          // sample indices
+    double stiffness;  // N/m
+    double rest;       // m
+  };
+  void init(const Scene& scene) override;
+
+  double stretch_stiffness_, bend_stiffness_, damping_;
+  int samples_;
+  std::unique_ptr<SplinePointMapping> mapping_;
+  std::vector<Spring> springs_;
+  mutable Points x_, v_, f_;  // workspace: sample positions, velocities, forces
+};
+
+}  // namespace filum::mechanics

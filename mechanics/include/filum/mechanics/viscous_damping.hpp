@@ -1,0 +1,33 @@
+// ViscousDamping: a drag proportional to the velocity of every point of the curve,
+// f(s) = −γ m Ṗ(s) per unit of parameter, whose generalized force is
+//   Q_i = −γ m ∫ b_i Σ_j b_j q̇_j ds = −γ (M q̇)_i,
+// i.e. mass-proportional damping (the "high viscosity" of the intestine model, talk 002).
+// It only removes energy: dE/dt = −γ q̇ᵀ M q̇ <= 0.
+#pragma once
+
+#include <memory>
+
+#include "filum/core/force_field.hpp"
+#include "filum/core/params.hpp"
+
+namespace filum::mechanics {
+
+class ViscousDamping final : public ForceField {
+ public:
+  /// coefficient γ (1/s) >= 0: a free body's velocity decays as e^{−γ t}.
+  explicit ViscousDamping(double coefficient) : coefficient_(coefficient) {}
+  static std::unique_ptr<ViscousDamping> fromParams(const Params& p) {
+    return std::make_unique<ViscousDamping>(p.nonNegative("coefficient", 0.0));
+  }
+
+  std::string typeName() const override { return "ViscousDamping"; }
+  void addForce(const SceneState& s, VecX& B) const override;
+
+ private:
+  void init(const Scene& scene) override;
+
+  double coefficient_;
+  mutable Points mv_;  // workspace M q̇
+};
+
+}  // namespace filum::mechanics

@@ -1,0 +1,102 @@
+#include "filum/mechanics/dynamic_spline.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "filum/core/scene_error.hpp"
+#include "filum/geometry/gauss_legendre.hpp"
+#include "filum/geometry/spline_curve.hpp"
+#include "filum/geometry/uniform_cubic_bspline.hpp"
+#include "filum/mechanics/mass_matrix.hpp"
+
+namespace filum::mechanics {
+
+DynamicSpline::DynamicSpline(std::unique_ptr<geometry::SplineBasis> basis, Points initial, double mass,
+                             double radius)
+    : basis_(std::move(basis)),
+      initial_(std::move(initial)),
+      mass_(mass),
+      radius_(radius),
+      rest_length_(arcLength(*basis_, initial_)),
+      mass_matrix_(mechanics::massMatrix(*basis_, mass)),
+      factor_(mass_matrix_, basis_->degree()),
+      basis_integrals_(basisIntegrals(*basis_)) {}
+
+void DynamicSpline::addGravity(const Vec3& g, PointsRef B) const {
+  // Q_i = ∫ b_i(s) m g ds = m w_i g  (right-hand side of paper eq. 2).
+  for (int i = 0; i < pointCount(); ++i) B.row(i) += (mass_ * basis_integrals_[i]) * g.transpose();
+}
+
+double DynamicSpline::gravityPotential(const Vec3& g, ConstPointsRef q) const {
+  // V = −∫ m g·P(s) ds = −Σ_i m w_i g·q_i
+  double v = 0.0;
+  for (int i = 0; i < pointCount(); ++i) v -= mass_ * basis_integrals_[i] * g.dot(q.row(i).transpose());
+  return v;
+}
+
+double arcLength(const geometry::SplineBasis& basis, ConstPointsRef q, int nodes_per_piece) {
+  const geometry::QuadratureRule rule = geometry::gaussLegendre(nodes_per_piece);
+  const std::vector<double> pieces = basis.breakpoints();
+  geometry::BasisRow row;
+  double length = 0.0;
+  for (std::size_t k = 0; k + 1 < pieces.size(); ++k)
+    length += geometry::integrate(rule, pieces[k], pieces[k + 1], [&](double s) {
+      basis.evaluate(s, row);
+      return geometry::curveTangent(row, q).norm();
+    });
+  return length;
+}
+
+std::unique_ptr<geometry::SplineBasis> makeBasis(const Params& p, const std::string& key, int control_points) {
+  const std::string name = p.string(key, "uniform_cubic_bspline");
+  if (name == "uniform_cubic_bspline") {
+    if (control_points < geometry::UniformCubicBSpline::kMinimumControlPoints)
+      p.fail("control_points", "at least 4 control points for a uniform cubic B-spline",
+             std::to_string(control_points));
+    return std::make_unique<geometry::UniformCubicBSpline>(control_points);
+  }
+  p.fail(key, "a known basis (uniform_cubic_bspline)");
+}
+
+namespace {
+
+Points straightThread(const Params& line) {
+  // Collinear, equally spaced control points q_i = from + (i − 1) h, h = (to − from)/(n − 3):
+  // the uniform cubic B-spline then runs exactly from P(0) = q_1 = from to P(1) = q_{n−2} = to.
+  const Vec3 from = line.vec3("from");
+  const Vec3 to = line.vec3("to");
+  const int n = line.integer("count", 4);
+  if ((to - from).norm() == 0.0) line.fail("to", "a point different from 'from' (a thread of non-zero length)");
+  line.finish();
+  const Vec3 h = (to - from) / (n - 3);
+  Points q(n, 3);
+  for (int i = 0; i < n; ++i) q.row(i) = (from + (i - 1.0) * h).transpose();
+  return q;
+}
+
+}  // namespace
+
+std::unique_ptr<DynamicSpline> DynamicSpline::fromParams(const Params& p) {
+  Points q;
+  if (p.has("control_points") && p.raw("control_points").is_object()) {
+    q = straightThread(p.object("control_points"));
+  } else {
+    q = p.points("control_points", 1);
+  }
+  auto basis = makeBasis(p, "basis", static_cast<int>(q.rows()));
+  const double radius = p.positive("radius", 1e-4);
+  const double length = arcLength(*basis, q);
+  if (!(length > 0.0)) p.fail("control_points", "control points that span a curve of non-zero length", "length 0");
+  double mass = 0.0;
+  if (p.has("mass") && p.has("density")) p.fail("density", "either 'mass' or 'density', not both");
+  if (p.has("mass")) {
+    mass = p.positive("mass");
+  } else if (p.has("density")) {
+    mass = p.positive("density") * std::numbers::pi * radius * radius * length;
+  } else {
+    p.fail("mass", "the thread's 'mass' (kg) or its 'density' (kg/m³)");
+  }
+  return std::make_unique<DynamicSpline>(std::move(basis), std::move(q), mass, radius);
+}
+
+}  // namespace filum::mechanics

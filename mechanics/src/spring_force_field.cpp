@@ -1,0 +1,63 @@
+#include "filum/mechanics/spring_force_field.hpp"
+
+#include "filum/core/scene.hpp"
+#include "filum/core/scene_error.hpp"
+#include "filum/mechanics/dynamic_spline.hpp"
+
+namespace filum::mechanics {
+
+SpringForceField::SpringForceField(double stretch_stiffness, double bend_stiffness, double damping, int samples)
+    : stretch_stiffness_(stretch_stiffness), bend_stiffness_(bend_stiffness), damping_(damping), samples_(samples) {}
+
+std::unique_ptr<SpringForceField> SpringForceField::fromParams(const Params& p) {
+  return std::make_unique<SpringForceField>(p.positive("stretch_stiffness"), p.nonNegative("bend_stiffness", 0.0),
+                                            p.nonNegative("damping", 0.0), p.has("samples") ? p.integer("samples", 3) : 0);
+}
+
+void SpringForceField::init(const Scene&) {
+  const auto* spline = dynamic_cast<const DynamicSpline*>(&body());
+  if (!spline) throw SceneError(origin(), "a DynamicSpline body for " + describe(), body().describe());
+  if (samples_ == 0) samples_ = 2 * spline->pointCount();
+  mapping_ = std::make_unique<SplinePointMapping>(spline->basis(), uniformAbscissas(samples_));
+  x_.resize(samples_, 3);
+  v_.resize(samples_, 3);
+  f_.resize(samples_, 3);
+  mapping_->apply(spline->initialPositions(), x_);
+  springs_.clear();
+  for (int gap = 1; gap <= 2; ++gap) {
+    const double k = gap == 1 ? stretch_stiffness_ : bend_stiffness_;
+    if (k == 0.0) continue;
+    for (int a = 0; a + gap < samples_; ++a)
+      springs_.push_back({a, a + gap, k, (x_.row(a + gap) - x_.row(a)).norm()});
+  }
+}
+
+void SpringForceField::addForce(const SceneState& s, VecX& B) const {
+  const ConstPointsMap q = body().block(s.q);
+  mapping_->apply(q, x_);
+  mapping_->applyJ(q, body().block(s.v), v_);
+  f_.setZero();
+  for (const Spring& spring : springs_) {
+    const Eigen::RowVector3d d = x_.row(spring.b) - x_.row(spring.a);
+    const double l = d.norm();
+    if (l == 0.0) continue;  // coincident samples: direction undefined, no force
+    const Eigen::RowVector3d u = d / l;
+    const double rate = (v_.row(spring.b) - v_.row(spring.a)).dot(u);
+    const Eigen::RowVector3d f = (spring.stiffness * (l - spring.rest) + damping_ * rate) * u;
+    f_.row(spring.a) += f;
+    f_.row(spring.b) -= f;
+  }
+  mapping_->applyJT(q, f_, body().block(B));
+}
+
+double SpringForceField::potentialEnergy(const SceneState& s) const {
+  mapping_->apply(body().block(s.q), x_);
+  double e = 0.0;
+  for (const Spring& spring : springs_) {
+    const double stretch = (x_.row(spring.b) - x_.row(spring.a)).norm() - spring.rest;
+    e += 0.5 * spring.stiffness * stretch * stretch;
+  }
+  return e;
+}
+
+}  // namespace filum::mechanics

@@ -1,0 +1,20 @@
+// Integrator: advances the scene state by one time step using the scene's accelerations
+// A = f(q, v, t) (Scene::computeAcceleration).
+#pragma once
+
+#include "filum/core/component.hpp"
+#include "filum/core/scene_state.hpp"
+
+namespace filum {
+
+class Scene;
+
+class Integrator : public Component {
+ public:
+  /// Advances s from t to t + dt (s.time included).
+  virtual void step(Scene& scene, SceneState& s, double dt) = 0;
+  /// Global order of accuracy in dt (for convergence tests and reports).
+  virtual int order() const = 0;
+};
+
+}  // namespace filum

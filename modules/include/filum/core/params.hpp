@@ -1,0 +1,86 @@
+// Params: typed, checked access to one JSON object of a scene file. Every failure throws a
+// SceneError naming the file, the JSON path (RFC 6901 pointer), what was expected and what was
+// found. finish() refuses parameters that nobody read (typos such as "stifness").
+#pragma once
+
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "filum/core/types.hpp"
+
+namespace filum {
+
+class Params {
+ public:
+  /// obj must outlive the Params. file is for messages only; path is obj's JSON pointer.
+  Params(const nlohmann::json& obj, std::string file, std::string path, std::string owner = "");
+
+  bool has(const std::string& key) const;
+
+  /// Any finite number (units are the caller's; say them in `what`).
+  double number(const std::string& key) const;
+  double number(const std::string& key, double fallback) const;
+  /// A number > 0.
+  double positive(const std::string& key) const;
+  double positive(const std::string& key, double fallback) const;
+  /// A number >= 0.
+  double nonNegative(const std::string& key, double fallback) const;
+  /// A curve abscissa in [0, 1].
+  double abscissa(const std::string& key) const;
+  /// An integer >= minimum.
+  int integer(const std::string& key, int minimum) const;
+  int integer(const std::string& key, int minimum, int fallback) const;
+  std::string string(const std::string& key) const;
+  std::string string(const std::string& key, const std::string& fallback) const;
+  bool boolean(const std::string& key, bool fallback) const;
+  /// [x, y, z] of finite numbers.
+  Vec3 vec3(const std::string& key) const;
+  Vec3 vec3(const std::string& key, const Vec3& fallback) const;
+  /// A list of [x, y, z] with at least `minimum` entries.
+  Points points(const std::string& key, int minimum) const;
+
+  /// A nested object as Params (the key must hold an object).
+  Params object(const std::string& key) const;
+  /// A nested array of objects.
+  std::vector<Params> objects(const std::string& key) const;
+  /// The raw value (marks the key as read).
+  const nlohmann::json& raw(const std::string& key) const;
+
+  /// Throws if the object holds a key that no accessor asked for.
+  void finish() const;
+
+  /// "file: /json/path/key" of a key (or of this object if key is empty).
+  std::string where(const std::string& key = "") const;
+  /// Throws SceneError(where(key), expected, found-value).
+  [[noreturn]] void fail(const std::string& key, const std::string& expected) const;
+  [[noreturn]] void fail(const std::string& key, const std::string& expected, const std::string& found) const;
+
+  /// A copy whose messages say which component the parameters belong to ("for DynamicSpline").
+  Params withOwner(const std::string& owner) const {
+    Params copy = *this;
+    copy.owner_ = owner;
+    return copy;
+  }
+
+  const std::string& file() const { return file_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  const nlohmann::json& require(const std::string& key) const;
+  Vec3 toVec3(const nlohmann::json& value, const std::string& key, const std::string& what) const;
+
+  const nlohmann::json& obj_;
+  std::string file_;
+  std::string path_;
+  std::string owner_;
+  mutable std::set<std::string> known_;  // every key asked for, present or not
+};
+
+/// A short rendering of a JSON value for messages ("-1", "\"abc\"", "an object").
+std::string describeJson(const nlohmann::json& value);
+
+}  // namespace filum

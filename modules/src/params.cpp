@@ -1,0 +1,199 @@
+#include "filum/core/params.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "filum/core/scene_error.hpp"
+
+namespace filum {
+
+using nlohmann::json;
+
+namespace {
+
+std::string escapePointer(const std::string& key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~') out += "~0";
+    else if (c == '/') out += "~1";
+    else out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string describeJson(const json& value) {
+  switch (value.type()) {
+    case json::value_t::object: return "an object";
+    case json::value_t::array: return "an array of " + std::to_string(value.size());
+    case json::value_t::null: return "null";
+    case json::value_t::number_float: {
+      const double d = value.get<double>();
+      if (!std::isfinite(d)) return "a non-finite number";
+      return value.dump();
+    }
+    default: {
+      std::string text = value.dump();
+      if (text.size() > 60) text = text.substr(0, 57) + "...";
+      return text;
+    }
+  }
+}
+
+Params::Params(const json& obj, std::string file, std::string path, std::string owner)
+    : obj_(obj), file_(std::move(file)), path_(std::move(path)), owner_(std::move(owner)) {}
+
+bool Params::has(const std::string& key) const {
+  known_.insert(key);
+  return obj_.is_object() && obj_.contains(key);
+}
+
+std::string Params::where(const std::string& key) const {
+  std::string pointer = path_;
+  if (!key.empty()) pointer += "/" + escapePointer(key);
+  if (pointer.empty()) pointer = "/";
+  return file_ + ": " + pointer;
+}
+
+void Params::fail(const std::string& key, const std::string& expected) const {
+  if (has(key)) fail(key, expected, describeJson(obj_.at(key)));
+  fail(key, expected, "nothing (the parameter is missing)");
+}
+
+void Params::fail(const std::string& key, const std::string& expected, const std::string& found) const {
+  const std::string what = owner_.empty() ? expected : expected + " for " + owner_;
+  throw SceneError(where(key), what, found);
+}
+
+const json& Params::require(const std::string& key) const {
+  if (!has(key)) fail(key, "parameter '" + key + "'", "nothing (the parameter is missing)");
+  return obj_.at(key);
+}
+
+double Params::number(const std::string& key) const {
+  const json& value = require(key);
+  if (!value.is_number()) fail(key, "a number");
+  const double d = value.get<double>();
+  if (!std::isfinite(d)) fail(key, "a finite number");
+  return d;
+}
+
+double Params::number(const std::string& key, double fallback) const {
+  return has(key) ? number(key) : fallback;
+}
+
+double Params::positive(const std::string& key) const {
+  const double d = number(key);
+  if (!(d > 0.0)) fail(key, "a positive number");
+  return d;
+}
+
+double Params::positive(const std::string& key, double fallback) const {
+  return has(key) ? positive(key) : fallback;
+}
+
+double Params::nonNegative(const std::string& key, double fallback) const {
+  if (!has(key)) return fallback;
+  const double d = number(key);
+  if (d < 0.0) fail(key, "a number >= 0");
+  return d;
+}
+
+double Params::abscissa(const std::string& key) const {
+  const double d = number(key);
+  if (d < 0.0 || d > 1.0) fail(key, "a curve abscissa in [0, 1]");
+  return d;
+}
+
+int Params::integer(const std::string& key, int minimum) const {
+  const json& value = require(key);
+  if (!value.is_number_integer()) fail(key, "an integer >= " + std::to_string(minimum));
+  const long long i = value.get<long long>();
+  if (i < minimum || i > 100000000) fail(key, "an integer >= " + std::to_string(minimum));
+  return static_cast<int>(i);
+}
+
+int Params::integer(const std::string& key, int minimum, int fallback) const {
+  return has(key) ? integer(key, minimum) : fallback;
+}
+
+std::string Params::string(const std::string& key) const {
+  const json& value = require(key);
+  if (!value.is_string()) fail(key, "a string");
+  return value.get<std::string>();
+}
+
+std::string Params::string(const std::string& key, const std::string& fallback) const {
+  return has(key) ? string(key) : fallback;
+}
+
+bool Params::boolean(const std::string& key, bool fallback) const {
+  if (!has(key)) return fallback;
+  const json& value = require(key);
+  if (!value.is_boolean()) fail(key, "true or false");
+  return value.get<bool>();
+}
+
+Vec3 Params::toVec3(const json& value, const std::string& key, const std::string& what) const {
+  if (!value.is_array() || value.size() != 3) fail(key, what, describeJson(value));
+  Vec3 out;
+  for (int k = 0; k < 3; ++k) {
+    if (!value[k].is_number() || !std::isfinite(value[k].get<double>()))
+      fail(key, what + " of finite numbers", describeJson(value));
+    out[k] = value[k].get<double>();
+  }
+  return out;
+}
+
+Vec3 Params::vec3(const std::string& key) const {
+  return toVec3(require(key), key, "a 3-vector [x, y, z]");
+}
+
+Vec3 Params::vec3(const std::string& key, const Vec3& fallback) const {
+  return has(key) ? vec3(key) : fallback;
+}
+
+Points Params::points(const std::string& key, int minimum) const {
+  const json& value = require(key);
+  const std::string what = "a list of at least " + std::to_string(minimum) + " points [x, y, z]";
+  if (!value.is_array() || static_cast<int>(value.size()) < minimum) fail(key, what);
+  Points out(value.size(), 3);
+  for (std::size_t i = 0; i < value.size(); ++i)
+    out.row(i) = toVec3(value[i], key + "/" + std::to_string(i), "a point [x, y, z]").transpose();
+  return out;
+}
+
+Params Params::object(const std::string& key) const {
+  const json& value = require(key);
+  if (!value.is_object()) fail(key, "an object");
+  return Params(value, file_, path_ + "/" + escapePointer(key), owner_);
+}
+
+std::vector<Params> Params::objects(const std::string& key) const {
+  const json& value = require(key);
+  if (!value.is_array()) fail(key, "an array of objects");
+  std::vector<Params> out;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    const std::string sub = path_ + "/" + escapePointer(key) + "/" + std::to_string(i);
+    if (!value[i].is_object()) throw SceneError(file_ + ": " + sub, "an object", describeJson(value[i]));
+    out.emplace_back(value[i], file_, sub, owner_);
+  }
+  return out;
+}
+
+const json& Params::raw(const std::string& key) const { return require(key); }
+
+void Params::finish() const {
+  if (!obj_.is_object()) return;
+  for (const auto& item : obj_.items()) {
+    if (known_.count(item.key())) continue;
+    std::ostringstream known;
+    for (const auto& k : known_) known << (known.tellp() > 0 ? ", " : "") << k;
+    throw SceneError(where(item.key()),
+                     "unknown parameter '" + item.key() + "'" + (owner_.empty() ? "" : " of " + owner_) +
+                         " (known parameters: " + (known.str().empty() ? "none" : known.str()) + ")");
+  }
+}
+
+}  // namespace filum
