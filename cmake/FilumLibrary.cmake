@@ -9,16 +9,22 @@ function(filum_add_library name)
   target_link_libraries(filum_${name} PUBLIC ${ARG_DEPS})
 endfunction()
 
-# filum_add_test(<module> <source.cpp> [LIBS ...]) — one GoogleTest executable per source,
-# registered with ctest under the label <module> so `ctest -L <module>` runs one module.
-function(filum_add_test module source)
+# filum_add_module_tests(<module> LIBS ...) — every tests/<module>/*.cpp into one GoogleTest
+# executable test_<module>, each test registered with ctest under the label <module>, so that
+# `ctest -L <module>` runs one module. Test data sit in tests/<module>/data/.
+function(filum_add_module_tests module)
   cmake_parse_arguments(ARG "" "" "LIBS" ${ARGN})
-  get_filename_component(stem ${source} NAME_WE)
-  set(target test_${module}_${stem})
-  add_executable(${target} ${source})
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${module}/*.cpp)
+  if(NOT sources)
+    return()
+  endif()
+  set(target test_${module})
+  add_executable(${target} ${sources})
   target_link_libraries(${target} PRIVATE ${ARG_LIBS} GTest::gtest_main)
+  target_include_directories(${target} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   target_compile_definitions(${target} PRIVATE
     FILUM_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    FILUM_TEST_DATA_DIR="${CMAKE_CURRENT_SOURCE_DIR}/data")
-  gtest_discover_tests(${target} PROPERTIES LABELS ${module} DISCOVERY_TIMEOUT 60)
+    FILUM_TEST_DATA_DIR="${CMAKE_CURRENT_SOURCE_DIR}/${module}/data"
+    FILUM_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  gtest_discover_tests(${target} PROPERTIES LABELS ${module} DISCOVERY_TIMEOUT 120)
 endfunction()

@@ -31,9 +31,13 @@ SparseMatrix massMatrix(const geometry::SplineBasis& basis, double mass) {
   const int n = basis.controlPointCount();
   std::vector<Eigen::Triplet<double>> entries;
   forEachNode(basis, basis.degree() + 1, [&](double w, const geometry::BasisRow& row) {
+    // Each product once, mirrored, so that M is symmetric to the last bit.
     for (int a = 0; a < row.count; ++a)
-      for (int b = 0; b < row.count; ++b)
-        entries.emplace_back(row.first + a, row.first + b, mass * w * row.value[a] * row.value[b]);
+      for (int b = a; b < row.count; ++b) {
+        const double value = mass * w * row.value[a] * row.value[b];
+        entries.emplace_back(row.first + a, row.first + b, value);
+        if (b != a) entries.emplace_back(row.first + b, row.first + a, value);
+      }
   });
   SparseMatrix M(n, n);
   M.setFromTriplets(entries.begin(), entries.end());

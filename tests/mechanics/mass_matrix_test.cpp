@@ -1,0 +1,87 @@
+// The constant mass matrix of the dynamic spline (paper eq. 3) and the O(n) band solve.
+#include <gtest/gtest.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+#include "filum/geometry/uniform_cubic_bspline.hpp"
+#include "filum/mechanics/banded_cholesky.hpp"
+#include "filum/mechanics/mass_matrix.hpp"
+#include "support/finite_difference.hpp"
+
+namespace filum::mechanics {
+namespace {
+
+TEST(MassMatrix, EntriesSumToTheThreadMass) {
+  // Σ_ij M_ij = m ∫ (Σ_i b_i)(Σ_j b_j) ds = m ∫ 1 ds = m (partition of unity). The quadrature is
+  // exact, so only round-off of ~16 n² additions remains: 1e-12 relative is far above it.
+  for (int n : {4, 5, 13, 30, 165}) {
+    const double mass = 2.86e-6;
+    const SparseMatrix M = massMatrix(geometry::UniformCubicBSpline(n), mass);
+    EXPECT_NEAR(M.sum(), mass, 1e-12 * mass) << "n = " << n;
+  }
+}
+
+TEST(MassMatrix, IsSymmetricPositiveDefiniteAndBandedWithBandwidthSeven) {
+  const int n = 30;
+  const SparseMatrix M = massMatrix(geometry::UniformCubicBSpline(n), 1.0);
+  const MatX dense = MatX(M);
+  EXPECT_EQ((dense - dense.transpose()).cwiseAbs().maxCoeff(), 0.0);
+  Eigen::SelfAdjointEigenSolver<MatX> eig(dense);
+  EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
+  // Bandwidth w = 2l − 1 = 7 for locality l = 4 (paper §3): |i − j| <= 3 and the outermost
+  // diagonal is really occupied.
+  int widest = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      if (dense(i, j) != 0.0) widest = std::max(widest, std::abs(i - j));
+  EXPECT_EQ(2 * widest + 1, 7);
+}
+
+TEST(MassMatrix, InteriorEntriesMatchTheClosedForm) {
+  // For the uniform cubic B-spline with N segments the interior rows of ∫ b_i b_j ds are
+  // (1/N)·(1/5040)·[1, 120, 1191, 2416, 1191, 120, 1] (integrals of products of cubic B-splines).
+  const int n = 20, N = n - 3;
+  const MatX M = MatX(massMatrix(geometry::UniformCubicBSpline(n), 1.0));
+  const double expected[4] = {2416.0, 1191.0, 120.0, 1.0};
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(M(10, 10 + k), expected[k] / 5040.0 / N, 1e-15);
+}
+
+TEST(BandedCholesky, SolvesLikeADenseCholesky) {
+  // Backward-stable Cholesky: relative residual ~ κ(M) ε; κ(M) < 20 for the B-spline mass
+  // matrix, so 1e-13 leaves a wide margin.
+  const int n = 50;
+  const SparseMatrix M = massMatrix(geometry::UniformCubicBSpline(n), 0.3);
+  const BandedCholesky band(M, 3);
+  const Points B = test::randomPoints(n, 1.0, 7);
+  Points X = B;
+  band.solve(X);
+  const Points reference = MatX(M).llt().solve(MatX(B));
+  EXPECT_LE((X - reference).norm(), 1e-13 * reference.norm());
+  EXPECT_LE((M * X - B).norm(), 1e-13 * B.norm());
+}
+
+TEST(BandedCholesky, RefusesAnIndefiniteMatrix) {
+  SparseMatrix A(2, 2);
+  A.insert(0, 0) = 1.0;
+  A.insert(1, 1) = -1.0;
+  EXPECT_THROW(BandedCholesky(A, 1), std::runtime_error);
+}
+
+TEST(GravityForce, AFreeThreadFallsAtExactlyG) {
+  // M A = Q with Q_i = m g ∫ b_i ds: A = g 1 solves it exactly since Σ_j M_ij = m ∫ b_i ds, so
+  // every control point accelerates at g up to the solve's round-off (κ ε ≈ 1e-15 g).
+  const int n = 30;
+  const double mass = 1e-3;
+  const geometry::UniformCubicBSpline basis(n);
+  const SparseMatrix M = massMatrix(basis, mass);
+  const VecX w = basisIntegrals(basis);
+  const Vec3 g(0.0, 0.0, -9.81);
+  Points B(n, 3);
+  for (int i = 0; i < n; ++i) B.row(i) = mass * w[i] * g.transpose();
+  BandedCholesky(M, 3).solve(B);
+  for (int i = 0; i < n; ++i) EXPECT_LE((B.row(i).transpose() - g).norm(), 1e-10) << "control point " << i;
+}
+
+}  // namespace
+}  // namespace filum::mechanics
