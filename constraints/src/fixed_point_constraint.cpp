@@ -8,7 +8,7 @@
 namespace filum::constraints {
 
 FixedPointConstraint::FixedPointConstraint(double abscissa, std::optional<Vec3> target, ScriptedPath path,
-                                           double stabilization)
+                                           std::optional<double> stabilization)
     : abscissa_(abscissa), target_(target), path_(std::move(path)), omega_(stabilization) {}
 
 std::unique_ptr<FixedPointConstraint> FixedPointConstraint::fromParams(const Params& p) {
@@ -18,7 +18,9 @@ std::unique_ptr<FixedPointConstraint> FixedPointConstraint::fromParams(const Par
   ScriptedPath path;
   if (p.has("path")) path = ScriptedPath::fromParams(p, "path");
   if (target && !path.empty()) p.fail("path", "either 'target' or 'path', not both");
-  return std::make_unique<FixedPointConstraint>(s, target, std::move(path), p.nonNegative("stabilization", 0.0));
+  std::optional<double> omega;
+  if (p.has("stabilization")) omega = p.nonNegative("stabilization", 0.0);
+  return std::make_unique<FixedPointConstraint>(s, target, std::move(path), omega);
 }
 
 void FixedPointConstraint::init(const Scene& scene) {
@@ -26,7 +28,7 @@ void FixedPointConstraint::init(const Scene& scene) {
   if (!spline) throw SceneError(origin(), "a DynamicSpline body for " + describe(), body().describe());
   spline->basis().evaluate(abscissa_, row_);
   if (!target_ && path_.empty()) target_ = geometry::curvePoint(row_, spline->initialPositions());
-  if (omega_ == 0.0) omega_ = 0.1 / scene.settings().dt;
+  if (!omega_) omega_ = 0.1 / scene.settings().dt;
 }
 
 void FixedPointConstraint::buildRows(const SceneState& s, ConstraintRows& rows) const {
@@ -35,7 +37,8 @@ void FixedPointConstraint::buildRows(const SceneState& s, ConstraintRows& rows) 
   const Vec3 g = geometry::curvePoint(row_, q) - targetAt(s.time);
   const Vec3 target_velocity = path_.empty() ? Vec3::Zero() : path_.velocity(s.time);
   const Vec3 dg = geometry::curvePoint(row_, v) - target_velocity;
-  const Vec3 rhs = -2.0 * omega_ * dg - omega_ * omega_ * g;  // Ẍ = 0 on a scripted segment
+  const double omega = *omega_;
+  const Vec3 rhs = -2.0 * omega * dg - omega * omega * g;  // Ẍ = 0 on a scripted segment
   for (int axis = 0; axis < 3; ++axis) {
     for (int j = 0; j < row_.count; ++j)
       rows.addTerm(body().offset() + row_.first + j, row_.value[j] * Vec3::Unit(axis));

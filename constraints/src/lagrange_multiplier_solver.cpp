@@ -6,38 +6,28 @@
 
 namespace filum::constraints {
 
-namespace {
-
-/// Index of the body whose block holds global point p (bodies are laid out by offset).
-int bodyOf(const std::vector<MechanicalState*>& bodies, int p) {
-  int k = static_cast<int>(bodies.size()) - 1;
-  while (k > 0 && bodies[k]->offset() > p) --k;
-  return k;
-}
-
-}  // namespace
-
-void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& rows, VecX& a) {
+void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse,
+                                     VecX& a) {
   const int c = rows.rows();
   const auto& bodies = scene.bodies();
   y_.resize(a.size(), c);
   w_.resize(c, c);
   rhs_.resize(c);
 
-  // Columns of M⁻¹ Lᵀ: scatter row r, then band-solve only the bodies it touches.
+  // Columns of M⁻¹ Lᵀ: scatter row r, then solve only the bodies it touches.
   for (int r = 0; r < c; ++r) {
     auto column = y_.col(r);
     column.setZero();
     touched_.clear();
     for (int t = rows.begin(r); t < rows.end(r); ++t) {
       column.segment<3>(3 * rows.point(t)) += rows.coeff(t);
-      touched_.push_back(bodyOf(bodies, rows.point(t)));
+      touched_.push_back(scene.bodyOfPoint(rows.point(t)));
     }
     std::sort(touched_.begin(), touched_.end());
     touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
     for (int b : touched_) {
       const MechanicalState& body = *bodies[b];
-      body.solveMass(PointsMap(column.data() + 3 * body.offset(), body.pointCount(), 3));
+      inverse.solveBlock(b, column.segment(3 * body.offset(), 3 * body.pointCount()));
     }
   }
 

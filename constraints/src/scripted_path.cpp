@@ -18,7 +18,7 @@ ScriptedPath ScriptedPath::fromParams(const Params& p, const std::string& key) {
     const double time = item.number("time");
     if (time < 0.0) item.fail("time", "a time >= 0 (s)");
     if (!keyframes.empty() && !(time > keyframes.back().time))
-      item.fail("time", "a time later than the previous keyframe's (" + std::to_string(keyframes.back().time) + " s)");
+      item.fail("time", "a time later than the previous keyframe's (" + describeJson(keyframes.back().time) + " s)");
     keyframes.push_back({time, item.vec3("position")});
     item.finish();
   }

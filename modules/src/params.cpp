@@ -1,7 +1,9 @@
 #include "filum/core/params.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "filum/core/scene_error.hpp"
 
@@ -10,6 +12,29 @@ namespace filum {
 using nlohmann::json;
 
 namespace {
+
+// Levenshtein distance between two keys (insertions, deletions, substitutions).
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// A typo of `key`: at most two edits away, and the key is long enough for that to mean something.
+bool looksLikeMisspelling(const std::string& candidate, const std::string& key) {
+  return key.size() > 3 && candidate != key && editDistance(candidate, key) <= 2;
+}
+
+}  // namespace
 
 std::string escapePointer(const std::string& key) {
   std::string out;
@@ -21,16 +46,24 @@ std::string escapePointer(const std::string& key) {
   return out;
 }
 
-}  // namespace
-
 std::string describeJson(const json& value) {
   switch (value.type()) {
     case json::value_t::object: return "an object";
-    case json::value_t::array: return "an array of " + std::to_string(value.size());
+    case json::value_t::array: {
+      // Short arrays in full, so that a wrong point shows its coordinates: "[0.1, 0, 0]".
+      if (value.size() <= 4) {
+        std::string text = "[";
+        for (std::size_t i = 0; i < value.size(); ++i) text += (i > 0 ? ", " : "") + describeJson(value[i]);
+        text += "]";
+        if (text.size() <= 60) return text;
+      }
+      return "an array of " + std::to_string(value.size());
+    }
     case json::value_t::null: return "null";
     case json::value_t::number_float: {
       const double d = value.get<double>();
-      if (!std::isfinite(d)) return "a non-finite number";
+      if (std::isnan(d)) return "NaN";
+      if (std::isinf(d)) return d > 0.0 ? "infinity" : "-infinity";
       return value.dump();
     }
     default: {
@@ -49,25 +82,41 @@ bool Params::has(const std::string& key) const {
   return obj_.is_object() && obj_.contains(key);
 }
 
+std::string Params::pointer(const std::string& key) const {
+  return key.empty() ? path_ : path_ + "/" + escapePointer(key);
+}
+
 std::string Params::where(const std::string& key) const {
-  std::string pointer = path_;
-  if (!key.empty()) pointer += "/" + escapePointer(key);
-  if (pointer.empty()) pointer = "/";
-  return file_ + ": " + pointer;
+  const std::string at = pointer(key);
+  return file_ + ": " + (at.empty() ? "/" : at);
 }
 
 void Params::fail(const std::string& key, const std::string& expected) const {
   if (has(key)) fail(key, expected, describeJson(obj_.at(key)));
-  fail(key, expected, "nothing (the parameter is missing)");
+  fail(key, expected, missing(key));
 }
 
 void Params::fail(const std::string& key, const std::string& expected, const std::string& found) const {
-  const std::string what = owner_.empty() ? expected : expected + " for " + owner_;
-  throw SceneError(where(key), what, found);
+  failAt(pointer(key), expected, found);
+}
+
+void Params::failAt(const std::string& at, const std::string& expected, const std::string& found) const {
+  // The owner goes with the place, so that `expected` reads on its own:
+  // "f.json: /nodes/0/components/0/mass (DynamicSpline): expected a positive number, found -1".
+  const std::string owner = owner_.empty() ? "" : " (" + owner_ + ")";
+  throw SceneError(file_ + ": " + (at.empty() ? "/" : at) + owner, expected, found);
+}
+
+std::string Params::missing(const std::string& key) const {
+  if (obj_.is_object())
+    for (const auto& item : obj_.items())
+      if (!known_.count(item.key()) && looksLikeMisspelling(item.key(), key))
+        return "nothing (the parameter is missing; is '" + item.key() + "' a misspelling of '" + key + "'?)";
+  return "nothing (the parameter is missing)";
 }
 
 const json& Params::require(const std::string& key) const {
-  if (!has(key)) fail(key, "parameter '" + key + "'", "nothing (the parameter is missing)");
+  if (!has(key)) fail(key, "parameter '" + key + "'", missing(key));
   return obj_.at(key);
 }
 
@@ -135,19 +184,23 @@ bool Params::boolean(const std::string& key, bool fallback) const {
   return value.get<bool>();
 }
 
-Vec3 Params::toVec3(const json& value, const std::string& key, const std::string& what) const {
-  if (!value.is_array() || value.size() != 3) fail(key, what, describeJson(value));
+Vec3 Params::toVec3(const json& value, const std::string& at, const std::string& what) const {
+  if (!value.is_array() || value.size() != 3) failAt(at, what, describeJson(value));
   Vec3 out;
   for (int k = 0; k < 3; ++k) {
-    if (!value[k].is_number() || !std::isfinite(value[k].get<double>()))
-      fail(key, what + " of finite numbers", describeJson(value));
+    // A bad coordinate is reported at its own pointer (".../gravity/2"), with its own value.
+    const std::string element = at + "/" + std::to_string(k);
+    const std::string coordinate = std::string(1, "xyz"[k]) + " of " + what;
+    if (!value[k].is_number()) failAt(element, "a number (" + coordinate + ")", describeJson(value[k]));
+    if (!std::isfinite(value[k].get<double>()))
+      failAt(element, "a finite number (" + coordinate + ")", describeJson(value[k]));
     out[k] = value[k].get<double>();
   }
   return out;
 }
 
 Vec3 Params::vec3(const std::string& key) const {
-  return toVec3(require(key), key, "a 3-vector [x, y, z]");
+  return toVec3(require(key), pointer(key), "a 3-vector [x, y, z]");
 }
 
 Vec3 Params::vec3(const std::string& key, const Vec3& fallback) const {
@@ -160,14 +213,14 @@ Points Params::points(const std::string& key, int minimum) const {
   if (!value.is_array() || static_cast<int>(value.size()) < minimum) fail(key, what);
   Points out(value.size(), 3);
   for (std::size_t i = 0; i < value.size(); ++i)
-    out.row(i) = toVec3(value[i], key + "/" + std::to_string(i), "a point [x, y, z]").transpose();
+    out.row(i) = toVec3(value[i], pointer(key) + "/" + std::to_string(i), "a point [x, y, z]").transpose();
   return out;
 }
 
 Params Params::object(const std::string& key) const {
   const json& value = require(key);
   if (!value.is_object()) fail(key, "an object");
-  return Params(value, file_, path_ + "/" + escapePointer(key), owner_);
+  return Params(value, file_, pointer(key), owner_);
 }
 
 std::vector<Params> Params::objects(const std::string& key) const {
@@ -175,8 +228,8 @@ std::vector<Params> Params::objects(const std::string& key) const {
   if (!value.is_array()) fail(key, "an array of objects");
   std::vector<Params> out;
   for (std::size_t i = 0; i < value.size(); ++i) {
-    const std::string sub = path_ + "/" + escapePointer(key) + "/" + std::to_string(i);
-    if (!value[i].is_object()) throw SceneError(file_ + ": " + sub, "an object", describeJson(value[i]));
+    const std::string sub = pointer(key) + "/" + std::to_string(i);
+    if (!value[i].is_object()) failAt(sub, "an object", describeJson(value[i]));
     out.emplace_back(value[i], file_, sub, owner_);
   }
   return out;
@@ -189,10 +242,14 @@ void Params::finish() const {
   for (const auto& item : obj_.items()) {
     if (known_.count(item.key())) continue;
     std::ostringstream known;
-    for (const auto& k : known_) known << (known.tellp() > 0 ? ", " : "") << k;
+    std::string guess;
+    for (const auto& k : known_) {
+      known << (known.tellp() > 0 ? ", " : "") << k;
+      if (guess.empty() && looksLikeMisspelling(item.key(), k)) guess = "did you mean '" + k + "'? ";
+    }
     throw SceneError(where(item.key()),
-                     "unknown parameter '" + item.key() + "'" + (owner_.empty() ? "" : " of " + owner_) +
-                         " (known parameters: " + (known.str().empty() ? "none" : known.str()) + ")");
+                     "unknown parameter '" + item.key() + "'" + (owner_.empty() ? "" : " of " + owner_) + " (" + guess +
+                         "known parameters: " + (known.str().empty() ? "none" : known.str()) + ")");
   }
 }
 

@@ -28,10 +28,13 @@ void Scene::bindBodyComponent(BodyComponent& component) {
     }
   }
   MechanicalState* body = node->mechanicalState();
-  if (!body)
-    throw SceneError(component.origin(), component.typeName() + " '" + component.name() +
-                                             "' needs a body, but node '" + node->path() +
-                                             "' holds no mechanical state (e.g. a DynamicSpline)");
+  if (!body) {
+    // Point at "object" when the scene named the node, and never print the root as "node ''".
+    const std::string where = component.objectPath().empty() ? component.origin() : component.origin() + "/object";
+    const std::string place = node->path().empty() ? "the root node" : "node '" + node->path() + "'";
+    throw SceneError(where, component.typeName() + " '" + component.name() + "' needs a body, but " + place +
+                                " holds no mechanical state (e.g. a DynamicSpline)");
+  }
   component.bind(*body, *this);
 }
 
@@ -65,6 +68,7 @@ void Scene::init() {
     point_count_ += body->pointCount();
   }
   state_.time = 0.0;
+  state_.steps = 0;
   state_.q.resize(3 * point_count_);
   state_.v.setZero(3 * point_count_);
   for (MechanicalState* body : bodies_) body->block(state_.q) = body->initialPositions();
@@ -75,8 +79,6 @@ void Scene::init() {
   force_.setZero(3 * point_count_);
   last_good_ = state_;
   step_count_ = 0;
-  time_origin_ = 0.0;
-  steps_since_origin_ = 0;
   initialized_ = true;
 }
 
@@ -104,7 +106,7 @@ void Scene::computeAcceleration(const SceneState& s, VecX& a) {
     rows_.clear();
     for (const Constraint* c : constraints_)
       if (c->active()) c->buildRows(s, rows_);
-    if (rows_.rows() > 0) constraint_solver_->solve(*this, rows_, a);
+    if (rows_.rows() > 0) constraint_solver_->solve(*this, rows_, mass_inverse_, a);
     if (fault_.empty() && !a.allFinite())
       fault_ = constraint_solver_->describe() + " produced non-finite accelerations";
   }
@@ -143,8 +145,19 @@ StepReport Scene::step() {
     return report;
   }
   ++step_count_;
-  state_.time = time_origin_ + static_cast<double>(++steps_since_origin_) * settings_.dt;
+  state_.time = static_cast<double>(++state_.steps) * settings_.dt;
   return report;
+}
+
+void Scene::MassInverse::solveBlock(int body, Eigen::Ref<VecX> x) const {
+  const MechanicalState& b = *scene_.bodies_[body];
+  b.solveMass(PointsMap(x.data(), b.pointCount(), 3));
+}
+
+int Scene::bodyOfPoint(int p) const {
+  int k = static_cast<int>(bodies_.size()) - 1;
+  while (k > 0 && bodies_[k]->offset() > p) --k;
+  return k;
 }
 
 Energy Scene::energy(const SceneState& s) const {

@@ -17,11 +17,13 @@ namespace filum::constraints {
 class FixedPointConstraint final : public Constraint {
  public:
   /// abscissa in [0, 1]; target: fixed position (nullopt: where P(s) starts); path: scripted
-  /// motion (overrides target when not empty); stabilization ω (1/s), 0: one tenth of 1/dt.
-  FixedPointConstraint(double abscissa, std::optional<Vec3> target, ScriptedPath path, double stabilization);
+  /// motion (overrides target when not empty); stabilization ω (1/s) >= 0, 0 disables it
+  /// (acceleration-level constraint only, which drifts), nullopt: one tenth of 1/dt.
+  FixedPointConstraint(double abscissa, std::optional<Vec3> target, ScriptedPath path,
+                       std::optional<double> stabilization);
 
   /// "abscissa": s, "target": [x,y,z] (default: initial P(s)), "path": keyframes,
-  /// "stabilization": ω (1/s).
+  /// "stabilization": ω (1/s, default 0.1/dt).
   static std::unique_ptr<FixedPointConstraint> fromParams(const Params& p);
 
   std::string typeName() const override { return "FixedPointConstraint"; }
@@ -30,7 +32,7 @@ class FixedPointConstraint final : public Constraint {
   void violation(const SceneState& s, VecX& g, int first) const override;
 
   double abscissa() const { return abscissa_; }
-  double stabilization() const { return omega_; }
+  double stabilization() const { return omega_.value_or(0.0); }
   /// X(t)
   Vec3 targetAt(double t) const { return path_.empty() ? *target_ : path_.position(t); }
 
@@ -40,7 +42,7 @@ class FixedPointConstraint final : public Constraint {
   double abscissa_;
   std::optional<Vec3> target_;
   ScriptedPath path_;
-  double omega_;
+  std::optional<double> omega_;
   geometry::BasisRow row_;  // basis at the abscissa (constant)
 };
 

@@ -5,7 +5,8 @@
 //   A = A_t + M⁻¹ Lᵀ λ
 // Each row of L touches only the d + 1 control points whose basis is non-zero at its abscissa,
 // and M⁻¹ Lᵀ is computed column by column with the body's O(n) band solve, so a step costs
-// O(c n + c² d + c³) instead of the paper's O(c n² + c² n + c³).
+// O(c n + c² d + c³) instead of the paper's O(c n² + c² n + c³). M may be any block-diagonal
+// system matrix given as a BlockInverse (implicit steps use M − h D − h² K).
 #pragma once
 
 #include <memory>
@@ -24,7 +25,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     return std::make_unique<LagrangeMultiplierSolver>();
   }
   std::string typeName() const override { return "LagrangeMultiplierSolver"; }
-  void solve(const Scene& scene, const ConstraintRows& rows, VecX& a) override;
+  void solve(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a) override;
 
   /// Multipliers of the last solve (N for a fixed point: the force holding it).
   const VecX& multipliers() const { return lambda_; }

@@ -2,6 +2,7 @@
 // accelerations that satisfy L A = E (paper §4; talk 002 "acceleration decomposition").
 #pragma once
 
+#include "filum/core/block_inverse.hpp"
 #include "filum/core/component.hpp"
 #include "filum/core/constraint_rows.hpp"
 #include "filum/core/scene_state.hpp"
@@ -12,8 +13,9 @@ class Scene;
 
 class ConstraintSolver : public Component {
  public:
-  /// a holds A_t on entry and the constrained A on exit.
-  virtual void solve(const Scene& scene, const ConstraintRows& rows, VecX& a) = 0;
+  /// Solves  A a = b,  L a = E  for a, given a_t = A⁻¹ b in `a` on entry (the constrained
+  /// result on exit). `inverse` applies A⁻¹ body by body (the mass matrix for explicit steps).
+  virtual void solve(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a) = 0;
 };
 
 }  // namespace filum

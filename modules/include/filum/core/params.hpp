@@ -55,7 +55,7 @@ class Params {
 
   /// "file: /json/path/key" of a key (or of this object if key is empty).
   std::string where(const std::string& key = "") const;
-  /// Throws SceneError(where(key), expected, found-value).
+  /// Throws SceneError(where(key) + " (owner)", expected, found-value).
   [[noreturn]] void fail(const std::string& key, const std::string& expected) const;
   [[noreturn]] void fail(const std::string& key, const std::string& expected, const std::string& found) const;
 
@@ -71,7 +71,13 @@ class Params {
 
  private:
   const nlohmann::json& require(const std::string& key) const;
-  Vec3 toVec3(const nlohmann::json& value, const std::string& key, const std::string& what) const;
+  /// "nothing (the parameter is missing)", naming an unread key that looks like a misspelling.
+  std::string missing(const std::string& key) const;
+  /// The JSON pointer of a key of this object.
+  std::string pointer(const std::string& key) const;
+  /// Throws SceneError for the value at a full JSON pointer (an element of a list or vector).
+  [[noreturn]] void failAt(const std::string& pointer, const std::string& expected, const std::string& found) const;
+  Vec3 toVec3(const nlohmann::json& value, const std::string& pointer, const std::string& what) const;
 
   const nlohmann::json& obj_;
   std::string file_;
@@ -80,7 +86,10 @@ class Params {
   mutable std::set<std::string> known_;  // every key asked for, present or not
 };
 
-/// A short rendering of a JSON value for messages ("-1", "\"abc\"", "an object").
+/// A short rendering of a JSON value for messages ("-1", "\"abc\"", "[0, 0, 1]", "an object").
 std::string describeJson(const nlohmann::json& value);
+
+/// A key escaped as one RFC 6901 pointer token ("a/b" -> "a~1b").
+std::string escapePointer(const std::string& key);
 
 }  // namespace filum

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "filum/core/block_inverse.hpp"
 #include "filum/core/constraint.hpp"
 #include "filum/core/constraint_rows.hpp"
 #include "filum/core/constraint_solver.hpp"
@@ -72,12 +73,8 @@ class Scene {
   VecX constraintViolation(const SceneState& s) const;
 
   const SceneState& state() const { return state_; }
-  /// Replaces the state (restore a saved one); time then counts on from s.time.
-  void setState(const SceneState& s) {
-    state_ = s;
-    time_origin_ = s.time;
-    steps_since_origin_ = 0;
-  }
+  /// Replaces the state (e.g. restores a saved one).
+  void setState(const SceneState& s) { state_ = s; }
   long stepCount() const { return step_count_; }
   int dofPointCount() const { return point_count_; }
 
@@ -85,6 +82,11 @@ class Scene {
   const std::vector<ForceField*>& forceFields() const { return force_fields_; }
   const std::vector<Constraint*>& constraints() const { return constraints_; }
   Integrator& integrator() const { return *integrator_; }
+  ConstraintSolver* constraintSolver() const { return constraint_solver_; }
+  /// M⁻¹ body by body (each body's factored mass matrix).
+  const BlockInverse& massInverse() const { return mass_inverse_; }
+  /// Index in bodies() of the body holding global point p.
+  int bodyOfPoint(int p) const;
   /// The body held by the node at path (relative to the root), or nullptr.
   MechanicalState* bodyAt(const std::string& path);
 
@@ -93,19 +95,27 @@ class Scene {
   /// Names the first non-finite block of v (per body) or returns "".
   std::string findNonFinite(const VecX& v) const;
 
+  class MassInverse final : public BlockInverse {
+   public:
+    explicit MassInverse(const Scene& scene) : scene_(scene) {}
+    void solveBlock(int body, Eigen::Ref<VecX> x) const override;
+
+   private:
+    const Scene& scene_;
+  };
+
   std::unique_ptr<Node> root_;
   SceneSettings settings_;
   SceneState state_;
   SceneState last_good_;
   long step_count_ = 0;
-  double time_origin_ = 0.0;     // time = time_origin_ + steps_since_origin_ dt, without
-  long steps_since_origin_ = 0;  // the round-off a running sum of dt would accumulate
   int point_count_ = 0;
   bool initialized_ = false;
 
   std::vector<MechanicalState*> bodies_;
   std::vector<ForceField*> force_fields_;
   std::vector<Constraint*> constraints_;
+  MassInverse mass_inverse_{*this};
   Integrator* integrator_ = nullptr;
   ConstraintSolver* constraint_solver_ = nullptr;
 

@@ -8,7 +8,8 @@
 namespace filum {
 
 struct SceneState {
-  double time = 0.0;  // simulated time (s)
+  double time = 0.0;  // simulated time (s), steps × dt: no running-sum round-off
+  long steps = 0;     // steps taken since t = 0
   VecX q;             // positions of every point DOF of every body, x0 y0 z0 x1 ... (3N, m)
   VecX v;             // velocities (3N, m/s)
 

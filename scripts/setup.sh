@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs the Debian packages filum needs (only those missing), configures and builds it.
+# Used by the two quick-start commands (scripts/demo.sh and scripts/test.sh); run as root or
+# with sudo on Debian 12.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+
+packages=(
+  build-essential cmake          # compiler and build system
+  libeigen3-dev                  # vectors, sparse matrices, dense solvers
+  nlohmann-json3-dev             # scene files
+  libcli11-dev                   # the filum command line
+  libgtest-dev libgmock-dev      # tests
+  libbenchmark-dev               # apps/bench
+  python3 python3-matplotlib     # pictures of runs (apps/tools/plot_run.py)
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  echo "installing: ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release
+cmake --build "$root/build" -j"$(nproc)"

@@ -1,0 +1,6 @@
+#!/usr/bin/env bash
+# Quick start 2: install what is missing, build, and run every test (ctest, 2 jobs).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+"$root/scripts/setup.sh"
+ctest --test-dir "$root/build" -j2 --output-on-failure
