@@ -14,8 +14,8 @@ QuadratureRule gaussLegendre(int k) {
   for (int i = 0; i < (k + 1) / 2; ++i) {
     // Initial guess (Tricomi), then Newton on P_k(x) with the three-term recurrence.
     double x = std::cos(std::numbers::pi * (i + 0.75) / (k + 0.5));
-    double dp = 1.0;
-    for (int iter = 0; iter < 100; ++iter) {
+    // P_k(x) and P_k'(x) by the recurrence (m P_m = (2m − 1) x P_{m−1} − (m − 1) P_{m−2}).
+    auto legendre = [k](double x, double& dp) {
       double p0 = 1.0, p1 = x;
       for (int m = 2; m <= k; ++m) {
         const double p2 = ((2.0 * m - 1.0) * x * p1 - (m - 1.0) * p0) / m;
@@ -23,11 +23,16 @@ QuadratureRule gaussLegendre(int k) {
         p1 = p2;
       }
       dp = k * (x * p1 - p0) / (x * x - 1.0);  // P_k'(x)
-      const double dx = p1 / dp;
+      return p1;
+    };
+    double dp = 1.0;
+    for (int iter = 0; iter < 100; ++iter) {
+      const double dx = legendre(x, dp) / dp;
       x -= dx;
       if (std::abs(dx) < 1e-16) break;
     }
-    const double w = 2.0 / ((1.0 - x * x) * dp * dp);
+    legendre(x, dp);  // P_k' at the final node, for the weight
+    const double w = 2.0 / ((1.0 - x * x) * dp * dp);  // w_i = 2 / ((1 − x_i²) P_k'(x_i)²)
     rule.nodes[i] = -x;
     rule.nodes[k - 1 - i] = x;
     rule.weights[i] = rule.weights[k - 1 - i] = w;

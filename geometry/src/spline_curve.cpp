@@ -1,5 +1,8 @@
 #include "filum/geometry/spline_curve.hpp"
 
+#include <stdexcept>
+#include <string>
+
 namespace filum::geometry {
 
 Vec3 curvePoint(const SplineBasis& basis, ConstPointsRef q, double s) {
@@ -8,7 +11,14 @@ Vec3 curvePoint(const SplineBasis& basis, ConstPointsRef q, double s) {
   return curvePoint(row, q);
 }
 
+CurveDerivatives curveDerivatives(const SplineBasis& basis, ConstPointsRef q, double s) {
+  BasisRow row;
+  basis.evaluate(s, row);
+  return curveDerivatives(row, q);
+}
+
 Points sampleCurve(const SplineBasis& basis, ConstPointsRef q, int count) {
+  if (count < 2) throw std::invalid_argument("sampleCurve: count must be >= 2, got " + std::to_string(count));
   Points out(count, 3);
   BasisRow row;
   for (int k = 0; k < count; ++k) {

@@ -1,0 +1,62 @@
+#include "filum/geometry/convolution_surface.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "filum/geometry/arc_length.hpp"
+
+namespace filum::geometry {
+
+ConvolutionSurface::ConvolutionSurface(double radius, double sharpness, double reference_segment_length)
+    : radius_(radius), sharpness_(sharpness == 0.0 ? 1.0 / radius : sharpness) {
+  if (!(radius > 0.0) || !std::isfinite(radius))
+    throw std::invalid_argument("ConvolutionSurface: radius must be positive and finite, got " + std::to_string(radius));
+  if (!(sharpness_ > 0.0) || !std::isfinite(sharpness_))
+    throw std::invalid_argument("ConvolutionSurface: sharpness must be positive and finite (or 0 for 1/radius), got " +
+                                std::to_string(sharpness));
+  if (!(reference_segment_length > 0.0))
+    throw std::invalid_argument("ConvolutionSurface: reference_segment_length must be positive, got " +
+                                std::to_string(reference_segment_length));
+  iso_value_ = cauchySegmentMidplaneField(radius_, reference_segment_length, sharpness_);
+}
+
+void ConvolutionSurface::addSegment(const Vec3& a, const Vec3& b) {
+  if (!a.allFinite() || !b.allFinite()) throw std::invalid_argument("ConvolutionSurface::addSegment: non-finite end");
+  segments_.push_back({a, b});
+}
+
+void ConvolutionSurface::addPolyline(ConstPointsRef points) {
+  if (points.rows() < 2)
+    throw std::invalid_argument("ConvolutionSurface::addPolyline: need at least 2 points, got " +
+                                std::to_string(points.rows()));
+  for (Eigen::Index i = 0; i + 1 < points.rows(); ++i)
+    addSegment(points.row(i).transpose(), points.row(i + 1).transpose());
+}
+
+void ConvolutionSurface::addCurve(const SplineBasis& basis, ConstPointsRef q, int segments) {
+  if (segments < 1)
+    throw std::invalid_argument("ConvolutionSurface::addCurve: segments must be >= 1, got " + std::to_string(segments));
+  const ArcLengthParameterization arc(basis, q, 1e-10);
+  addPolyline(arc.equallySpacedPoints(segments + 1));
+}
+
+SegmentField ConvolutionSurface::fieldAndGradient(const Vec3& x) const {
+  SegmentField total;
+  for (const Segment& segment : segments_) {
+    const SegmentField f = cauchySegmentField(segment.a, segment.b, x, sharpness_);
+    total.value += f.value;
+    total.gradient += f.gradient;
+  }
+  return total;
+}
+
+double ConvolutionSurface::field(const Vec3& x) const {
+  double total = 0.0;
+  for (const Segment& segment : segments_) total += cauchySegmentIntegral(segment.a, segment.b, x, sharpness_);
+  return total;
+}
+
+Vec3 ConvolutionSurface::fieldGradient(const Vec3& x) const { return fieldAndGradient(x).gradient; }
+
+}  // namespace filum::geometry
