@@ -8,8 +8,13 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 packages=(
   build-essential cmake          # compiler and build system
   libeigen3-dev                  # vectors, sparse matrices, dense solvers
+  libsuitesparse-dev             # CHOLMOD for sparse implicit steps (CMake option FILUM_WITH_SUITESPARSE)
   nlohmann-json3-dev             # scene files
+  libcgal-dev                    # triangle-mesh obstacles: AABB tree, inside test, mesh readers (FILUM_WITH_CGAL)
   libcli11-dev                   # the filum command line
+  libopencv-viz-dev libopencv-imgcodecs-dev libopencv-videoio-dev libopencv-imgproc-dev
+                                 # off-screen 3D pictures, PNG, video, text overlay (FILUM_WITH_OPENCV)
+  libx11-dev xvfb xauth          # the interactive window; a virtual X display for headless rendering
   libgtest-dev libgmock-dev      # tests
   libbenchmark-dev               # apps/bench
   python3 python3-matplotlib     # pictures of runs (apps/tools/plot_run.py)

@@ -7,6 +7,7 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/run_command.hpp"
+#include "filum/view_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"filum: real-time simulation of threads, tubes and catheters as dynamic splines"};
@@ -26,9 +27,33 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(2, 100000));
   bool quiet = false;
   run_cmd->add_flag("--quiet,-q", quiet, "no progress line");
+  run_cmd->add_flag("--meshes", run.meshes,
+                    "also write the visual meshes: meshes.pvd with meshes/*.vtp (ParaView), meshes/final.obj and "
+                    "meshes/final_*.ply (Blender)");
+  run_cmd->add_flag("--render", run.render,
+                    "also render pictures from the scene's camera: frames/*.png, video.avi, contact_sheet.png "
+                    "(needs FILUM_WITH_OPENCV; starts Xvfb when DISPLAY is unset)");
+  bool no_png = false;
+  run_cmd->add_flag("--no-png", no_png, "with --render: only the video and the contact sheet, no PNG per frame");
   run_cmd->footer(
       "Writes control_points.csv, curve.csv, energy.csv, vtk/*.vtp with curve.pvd (open in ParaView) and "
-      "timing.json.\nExit status: 0 done, 2 bad scene, 3 diverged (state rolled back, frames kept), 4 output error.");
+      "timing.json; with --meshes and --render also the meshes, frames, video and contact sheet.\nExit status: 0 done, 2 bad scene, 3 diverged (state rolled back, frames kept), 4 output error.");
+
+  filum::app::ViewOptions view;
+  CLI::App* view_cmd = app.add_subcommand("view", "play a scene in a window in real time; the mouse is a probe");
+  view_cmd->add_option("scene", view.scene, "scene file")->required()->check(CLI::ExistingFile);
+  view_cmd->add_option("--frames", view.frames, "stop after this many frames (default: until the window is closed)")
+      ->check(CLI::NonNegativeNumber);
+  view_cmd->add_option("--speed", view.speed, "simulated seconds per wall second (default 1: real time)")
+      ->check(CLI::PositiveNumber);
+  view_cmd->add_option("--probe-radius", view.probe_radius, "radius of the mouse probe in m (default: 2 % of the "
+                                                             "camera distance)")
+      ->check(CLI::PositiveNumber);
+  view_cmd->add_option("--screenshot", view.screenshot, "write the last frame to this PNG file");
+  view_cmd->footer(
+      "Mouse: left drag pushes the thread with a sphere; Shift+left drag (or g, then left drag) grabs the nearest "
+      "point and pulls it; right drag orbits the camera; the wheel zooms.\nKeys: space pause, r restart, g grab "
+      "mode, q or Escape quit. Needs a display (or Xvfb) and FILUM_WITH_OPENCV.");
 
   std::string check_scene;
   CLI::App* check_cmd = app.add_subcommand("check", "load and check a scene file without simulating it");
@@ -40,8 +65,10 @@ int main(int argc, char** argv) {
 
   if (*run_cmd) {
     run.progress = !quiet;
+    run.png_frames = !no_png;
     return filum::app::runScene(run, std::cout, std::cerr);
   }
+  if (*view_cmd) return filum::app::viewScene(view, std::cerr);
   if (*check_cmd) {
     try {
       auto scene = filum::loadScene(check_scene, filum::app::makeFactory());

@@ -12,6 +12,7 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/run_output.hpp"
+#include "filum/run_visual.hpp"
 #include "filum/timing_summary.hpp"
 
 namespace filum::app {
@@ -50,8 +51,9 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   const auto start = Clock::now();
   std::unique_ptr<Scene> scene;
   OutputSettings output;
+  nlohmann::json document;
   try {
-    const nlohmann::json document = readJsonFile(options.scene);
+    document = readJsonFile(options.scene);
     output = readOutputSettings(document, options.scene);
     scene = loadScene(document, options.scene, makeFactory());
   } catch (const SceneError& e) {
@@ -69,8 +71,25 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   const std::string directory =
       options.out.empty() ? "out/" + std::filesystem::path(options.scene).stem().string() : options.out;
 
+  // Visual outputs (on request): bind the visual models, open the renderer.
+  std::unique_ptr<RunVisual> visuals;
+  if (options.meshes || options.render) {
+    try {
+      visuals = std::make_unique<RunVisual>(*scene, document, directory,
+                                            RunVisualOptions{options.meshes, options.render, options.png_frames}, duration);
+    } catch (const SceneError& e) {
+      log << "error: " << e.what() << '\n';
+      return kRunSceneError;
+    } catch (const std::exception& e) {
+      log << "error: " << (options.render ? "--render: " : "--meshes: ") << e.what() << '\n';
+      return kRunIoError;
+    }
+  }
+
   const long steps = std::lround(duration / dt);
   const long frame_every = std::max(1L, std::lround(interval / dt));
+  const long render_every = visuals ? std::max(1L, std::lround(visuals->renderInterval() / dt)) : 0;
+  double render_wall = 0.0;  // step wall time since the last rendered frame (s)
   std::vector<double> step_seconds;
   step_seconds.reserve(steps);
   log << "scene '" << scene->settings().name << "': " << scene->bodies().size() << " bodies, "
@@ -80,6 +99,10 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   try {
     RunOutput out(directory, samples);
     out.writeFrame(*scene);
+    if (visuals) {
+      visuals->writeMeshes(*scene);
+      visuals->render(*scene, -1.0);
+    }
     auto last_progress = start;
     for (long k = 1; k <= steps; ++k) {
       const auto before = Clock::now();
@@ -88,11 +111,21 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
       if (!report.ok) {
         log << "error: " << report.message << '\n'
             << "the " << out.frames() << " frames written so far in " << directory << " are intact\n";
+        if (visuals) visuals->finish(*scene);
         writeSummary(directory, TimingSummary::fromStepTimes(step_seconds, dt, seconds(after - start)), log);
         return kRunDiverged;
       }
       step_seconds.push_back(seconds(after - before));
-      if (k % frame_every == 0 || k == steps) out.writeFrame(*scene);
+      render_wall += seconds(after - before);
+      if (k % frame_every == 0 || k == steps) {
+        out.writeFrame(*scene);
+        if (visuals) visuals->writeMeshes(*scene);
+      }
+      if (visuals && (k % render_every == 0 || k == steps)) {
+        const long since = k % render_every == 0 ? render_every : k % render_every;
+        visuals->render(*scene, render_wall / (since * dt));  // wall ms per simulated ms
+        render_wall = 0.0;
+      }
       if (options.progress && seconds(after - start) > 3.0 && seconds(after - last_progress) >= 1.0) {
         last_progress = after;
         const double done = static_cast<double>(k) / steps;
@@ -102,8 +135,10 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
                  << " s left\n";
       }
     }
+    if (visuals) visuals->finish(*scene);
     log << "wrote " << out.frames() << " frames to " << directory
-        << " (control_points.csv, curve.csv, energy.csv, curve.pvd, timing.json)\n";
+        << " (control_points.csv, curve.csv, energy.csv, curve.pvd, timing.json" << (visuals ? visuals->summary() : "")
+        << ")\n";
   } catch (const std::exception& e) {
     log << "error: " << e.what() << '\n';
     return kRunIoError;

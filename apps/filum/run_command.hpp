@@ -14,6 +14,9 @@ struct RunOptions {
   std::optional<double> interval;    // s between frames; default: scene "output.interval" or 0.01
   std::optional<int> curve_samples;  // points per curve in curve.csv / .vtp; default 64
   bool progress = true;              // a progress line on stderr for runs longer than 3 s
+  bool meshes = false;               // meshes.pvd + meshes/*.vtp, final OBJ and PLY (run_visual.hpp)
+  bool render = false;               // frames/*.png, video.avi, contact_sheet.png (run_visual.hpp)
+  bool png_frames = true;            // with render: every frame as a PNG too
 };
 
 /// Exit codes of `filum run`.

@@ -1,55 +1,502 @@
 #include "filum/constraints/lagrange_multiplier_solver.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <Eigen/SparseCholesky>
+
+#ifdef FILUM_WITH_SUITESPARSE
+#include <Eigen/CholmodSupport>
+#endif
 
 #include "filum/core/scene.hpp"
 
 namespace filum::constraints {
 
+namespace {
+
+/// FNV-1a over the bytes of an anchor's points and weights (equality is checked on a match).
+std::uint64_t hashAnchor(const std::vector<int>& points, const std::vector<double>& weights) {
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](const void* data, std::size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  };
+  mix(points.data(), points.size() * sizeof(int));
+  mix(weights.data(), weights.size() * sizeof(double));
+  return h;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// The sparse factorization of W (lower triangle, column major), its pattern kept between calls.
+
+struct LagrangeMultiplierSolver::SparseFactor {
+  using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+  explicit SparseFactor(SparseBackend backend) : backend(backend) {}
+
+  SparseBackend backend;
+  std::vector<Eigen::Triplet<double>> triplets;  // lower triangle, in assembly order
+  std::vector<int> rows, cols;                   // pattern of the last matrix, assembly order
+  std::vector<int> slot;                         // assembly order -> index in valuePtr()
+  Matrix matrix;
+  VecX factored_values;  // values of the current factorization
+  bool analyzed = false, factored = false;
+  Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> simplicial;
+#ifdef FILUM_WITH_SUITESPARSE
+  Eigen::CholmodSimplicialLDLT<Matrix, Eigen::Lower> cholmod;
+#endif
+
+  /// Builds the matrix from `triplets`; returns true when the pattern changed.
+  bool assemble(int c) {
+    bool same = static_cast<int>(matrix.rows()) == c && rows.size() == triplets.size();
+    for (std::size_t t = 0; same && t < triplets.size(); ++t)
+      same = rows[t] == triplets[t].row() && cols[t] == triplets[t].col();
+    if (same) {
+      double* values = matrix.valuePtr();
+      for (std::size_t t = 0; t < triplets.size(); ++t) values[slot[t]] = triplets[t].value();
+      return false;
+    }
+    matrix.resize(c, c);
+    matrix.setFromTriplets(triplets.begin(), triplets.end());
+    matrix.makeCompressed();
+    rows.resize(triplets.size());
+    cols.resize(triplets.size());
+    slot.resize(triplets.size());
+    for (std::size_t t = 0; t < triplets.size(); ++t) {
+      rows[t] = triplets[t].row();
+      cols[t] = triplets[t].col();
+      const int* begin = matrix.innerIndexPtr() + matrix.outerIndexPtr()[cols[t]];
+      const int* end = matrix.innerIndexPtr() + matrix.outerIndexPtr()[cols[t] + 1];
+      slot[t] = static_cast<int>(std::lower_bound(begin, end, rows[t]) - matrix.innerIndexPtr());
+    }
+    analyzed = factored = false;
+    return true;
+  }
+
+  /// Factors (analysing the pattern first if it is new) unless the values are unchanged.
+  /// Returns false if the factorization failed.
+  bool factor(bool& refactored) {
+    const Eigen::Map<const VecX> values(matrix.valuePtr(), matrix.nonZeros());
+    refactored = false;
+    if (factored && factored_values.size() == values.size() &&
+        std::memcmp(factored_values.data(), values.data(), sizeof(double) * values.size()) == 0)
+      return true;
+    refactored = true;
+    bool ok = false;
+#ifdef FILUM_WITH_SUITESPARSE
+    if (backend == SparseBackend::kCholmod) {
+      if (!analyzed) cholmod.analyzePattern(matrix);
+      cholmod.factorize(matrix);
+      ok = cholmod.info() == Eigen::Success;
+    }
+#endif
+    if (backend == SparseBackend::kSimplicialLdlt) {
+      if (!analyzed) simplicial.analyzePattern(matrix);
+      simplicial.factorize(matrix);
+      ok = simplicial.info() == Eigen::Success;
+    }
+    analyzed = true;
+    factored = ok;
+    factored_values = values;
+    return ok;
+  }
+
+  void solve(const VecX& rhs, VecX& x) {
+#ifdef FILUM_WITH_SUITESPARSE
+    if (backend == SparseBackend::kCholmod) {
+      x = cholmod.solve(rhs);
+      return;
+    }
+#endif
+    x = simplicial.solve(rhs);
+  }
+};
+
+// ---------------------------------------------------------------------------------------------
+
+bool LagrangeMultiplierSolver::cholmodAvailable() {
+#ifdef FILUM_WITH_SUITESPARSE
+  return true;
+#else
+  return false;
+#endif
+}
+
+LagrangeMultiplierSolver::LagrangeMultiplierSolver() : LagrangeMultiplierSolver(Options()) {}
+
+LagrangeMultiplierSolver::LagrangeMultiplierSolver(Options options)
+    : options_(options), sparse_(std::make_unique<SparseFactor>(options.backend)) {}
+
+LagrangeMultiplierSolver::~LagrangeMultiplierSolver() = default;
+
+std::unique_ptr<LagrangeMultiplierSolver> LagrangeMultiplierSolver::fromParams(const Params& p) {
+  Options o;
+  o.sparse_above = p.integer("sparse_above", 0, o.sparse_above);
+  o.drop_tolerance = p.nonNegative("drop_tolerance", o.drop_tolerance);
+  if (o.drop_tolerance > 1e-6)
+    p.fail("drop_tolerance", "a relative tolerance in [0, 1e-6] (entries of W below round-off, see "
+                             "lagrange_multiplier_solver.hpp; larger values change the solution)");
+  o.reuse = p.boolean("reuse", o.reuse);
+  if (p.has("sparse_solver")) {
+    const std::string name = p.string("sparse_solver");
+    if (name == "cholmod") {
+      if (!cholmodAvailable())
+        p.fail("sparse_solver", "\"simplicial_ldlt\" (\"cholmod\" needs a build with -DFILUM_WITH_SUITESPARSE=ON)");
+      o.backend = SparseBackend::kCholmod;
+    } else if (name == "simplicial_ldlt") {
+      o.backend = SparseBackend::kSimplicialLdlt;
+    } else {
+      p.fail("sparse_solver", "\"cholmod\" or \"simplicial_ldlt\"");
+    }
+  }
+  return std::make_unique<LagrangeMultiplierSolver>(o);
+}
+
+void LagrangeMultiplierSolver::layoutColumn(const Scene& scene, Column& column, int width) const {
+  // Segments of the bodies the column touches, in body order (bodies were collected already).
+  std::sort(column.bodies.begin(), column.bodies.end());
+  column.bodies.erase(std::unique(column.bodies.begin(), column.bodies.end()), column.bodies.end());
+  column.starts.resize(column.bodies.size());
+  int size = 0;
+  for (std::size_t i = 0; i < column.bodies.size(); ++i) {
+    column.starts[i] = size;
+    size += width * scene.bodies()[column.bodies[i]]->pointCount();
+  }
+  if (column.y.size() != size) column.y.resize(size);
+}
+
+void LagrangeMultiplierSolver::prepareColumns(const Scene& scene, const ConstraintRows& rows,
+                                              const BlockInverse& inverse, bool separable) {
+  const auto& bodies = scene.bodies();
+  const int body_count = static_cast<int>(bodies.size());
+  const int count = separable ? rows.anchors() : rows.rows();
+  const int width = separable ? 1 : 3;
+  const bool coupled = inverse.coupled();
+  const bool reuse = separable && options_.reuse && inverse.revision() >= 0 && &inverse == cached_inverse_ &&
+                     inverse.revision() == cached_revision_ && cached_size_ == scene.state().q.size();
+  if (current_.size() < static_cast<std::size_t>(count)) current_.resize(count);
+  body_touched_.assign(body_count, 0);
+
+  for (int i = 0; i < count; ++i) {
+    Column& col = current_[i];
+    col.ready = false;
+    col.from = -1;
+    col.bodies.clear();
+    if (coupled) {
+      // The operator couples bodies: every column lives on the whole scene.
+      for (int b = 0; b < body_count; ++b) col.bodies.push_back(b);
+    } else if (separable) {
+      col.points.clear();
+      col.weights.clear();
+      for (int k = rows.anchorBegin(i); k < rows.anchorEnd(i); ++k) {
+        col.points.push_back(rows.anchorPoint(k));
+        col.weights.push_back(rows.anchorWeight(k));
+        col.bodies.push_back(scene.bodyOfPoint(rows.anchorPoint(k)));
+      }
+      col.hash = hashAnchor(col.points, col.weights);
+    } else {
+      for (int t = rows.begin(i); t < rows.end(i); ++t) col.bodies.push_back(scene.bodyOfPoint(rows.point(t)));
+    }
+    layoutColumn(scene, col, width);
+    for (int b : col.bodies) body_touched_[b] = 1;
+
+    // Take over y from the previous call if the same anchor was solved there.
+    if (!reuse) continue;
+    auto it = std::lower_bound(previous_index_.begin(), previous_index_.end(), std::make_pair(col.hash, -1));
+    for (; it != previous_index_.end() && it->first == col.hash; ++it) {
+      Column& old = previous_[it->second];
+      if (old.taken || old.points != col.points || old.weights != col.weights) continue;
+      std::swap(col.y, old.y);
+      old.taken = true;
+      col.ready = true;
+      col.from = it->second;
+      ++stats_.reused_columns;
+      break;
+    }
+  }
+
+  // Solve the columns that are not ready.
+  if (coupled) {
+    for (int i = 0; i < count; ++i) {
+      Column& col = current_[i];
+      if (col.ready) continue;
+      col.y.setZero();
+      for (int t = rows.begin(i); t < rows.end(i); ++t) col.y.segment<3>(3 * rows.point(t)) += rows.coeff(t);
+      inverse.solveAll(col.y);
+      col.ready = true;
+      ++stats_.solved_columns;
+    }
+    return;
+  }
+  // Group (column, body) jobs by body.
+  bucket_start_.assign(body_count + 1, 0);
+  for (int i = 0; i < count; ++i)
+    if (!current_[i].ready)
+      for (int b : current_[i].bodies) ++bucket_start_[b + 1];
+  for (int b = 0; b < body_count; ++b) bucket_start_[b + 1] += bucket_start_[b];
+  bucket_.resize(bucket_start_[body_count]);
+  cursor_.assign(bucket_start_.begin(), bucket_start_.end() - 1);
+  for (int i = 0; i < count; ++i)
+    if (!current_[i].ready)
+      for (int b : current_[i].bodies) bucket_[cursor_[b]++] = i;
+
+  for (int b = 0; b < body_count; ++b) {
+    const MechanicalState& body = *bodies[b];
+    const int n = body.pointCount();
+    const int offset = body.offset();
+    const int first = bucket_start_[b], last = bucket_start_[b + 1];
+    if (separable) {
+      // Three anchors per 3-column solve: anchor k of the chunk in coordinate column k.
+      for (int chunk = first; chunk < last; chunk += 3) {
+        const int m = std::min(3, last - chunk);
+        block_.setZero(3 * n);
+        for (int k = 0; k < m; ++k) {
+          const Column& col = current_[bucket_[chunk + k]];
+          for (std::size_t j = 0; j < col.points.size(); ++j) {
+            const int p = col.points[j] - offset;
+            if (p >= 0 && p < n) block_[3 * p + k] += col.weights[j];
+          }
+        }
+        inverse.solveBlock(b, block_);
+        for (int k = 0; k < m; ++k) {
+          Column& col = current_[bucket_[chunk + k]];
+          const int seg = static_cast<int>(std::find(col.bodies.begin(), col.bodies.end(), b) - col.bodies.begin());
+          double* y = col.y.data() + col.starts[seg];
+          for (int p = 0; p < n; ++p) y[p] = block_[3 * p + k];
+        }
+      }
+    } else {
+      // One 3-column solve per row and body: the operator may mix x, y and z.
+      for (int job = first; job < last; ++job) {
+        const int r = bucket_[job];
+        Column& col = current_[r];
+        const int seg = static_cast<int>(std::find(col.bodies.begin(), col.bodies.end(), b) - col.bodies.begin());
+        auto y = col.y.segment(col.starts[seg], 3 * n);
+        y.setZero();
+        for (int t = rows.begin(r); t < rows.end(r); ++t) {
+          const int p = rows.point(t) - offset;
+          if (p >= 0 && p < n) y.segment<3>(3 * p) += rows.coeff(t);
+        }
+        inverse.solveBlock(b, y);
+      }
+    }
+  }
+  for (int i = 0; i < count; ++i)
+    if (!current_[i].ready) {
+      current_[i].ready = true;
+      ++stats_.solved_columns;
+    }
+}
+
+void LagrangeMultiplierSolver::storeEntry(int r, int k, double value) {
+  // Lower triangle (k <= r). Dense: every entry. Sparse: drop what is below round-off.
+  if (!stats_.sparse) {
+    w_(r, k) = value;
+    ++stats_.nonzeros;
+    return;
+  }
+  if (r != k && !(std::abs(value) > options_.drop_tolerance * std::sqrt(diagonal_[r] * diagonal_[k]))) return;
+  sparse_->triplets.emplace_back(r, k, value);
+  ++stats_.nonzeros;
+}
+
+void LagrangeMultiplierSolver::assembleSeparable(const Scene& scene, const ConstraintRows& rows) {
+  const int anchors = rows.anchors();
+  const int c = rows.rows();
+  const auto& bodies = scene.bodies();
+
+  // G_ab = w_aᵀ y_b = Σ_j w_{a,j} y_b(p_j) for a >= b (0 when they share no body).
+  g_.resize(anchors, anchors);
+  for (int a = 0; a < anchors; ++a) {
+    const Column& ca = current_[a];
+    for (int b = 0; b <= a; ++b) {
+      const Column& cb = current_[b];
+      double sum = 0.0;
+      for (std::size_t j = 0; j < ca.points.size(); ++j) {
+        const int p = ca.points[j];
+        const int body = scene.bodyOfPoint(p);
+        for (std::size_t seg = 0; seg < cb.bodies.size(); ++seg)
+          if (cb.bodies[seg] == body) sum += ca.weights[j] * cb.y[cb.starts[seg] + p - bodies[body]->offset()];
+      }
+      g_(a, b) = sum;
+      g_(b, a) = sum;
+    }
+  }
+
+  // W_rk = Σ_{f ∈ r} Σ_{f' ∈ k} G(a_f, a_f') (e_f · e_f').
+  auto entry = [&](int r, int k) {
+    double sum = 0.0;
+    for (int f = rows.factorBegin(r); f < rows.factorEnd(r); ++f)
+      for (int h = rows.factorBegin(k); h < rows.factorEnd(k); ++h) {
+        const double gab = g_(rows.factorAnchor(f), rows.factorAnchor(h));
+        if (gab != 0.0) sum += gab * rows.factorDirection(f).dot(rows.factorDirection(h));
+      }
+    return sum;
+  };
+  diagonal_.resize(c);
+  for (int r = 0; r < c; ++r) diagonal_[r] = entry(r, r);
+  for (int r = 0; r < c; ++r)
+    for (int k = 0; k <= r; ++k) storeEntry(r, k, k == r ? diagonal_[r] : entry(r, k));
+}
+
+void LagrangeMultiplierSolver::assembleGeneral(const Scene& scene, const ConstraintRows& rows) {
+  const int c = rows.rows();
+  const auto& bodies = scene.bodies();
+  // W_rk = L_r · y_k = Σ_{t ∈ r} c_t · y_k(p_t).
+  auto entry = [&](int r, int k) {
+    const Column& col = current_[k];
+    double sum = 0.0;
+    for (int t = rows.begin(r); t < rows.end(r); ++t) {
+      const int p = rows.point(t);
+      const int body = scene.bodyOfPoint(p);
+      for (std::size_t seg = 0; seg < col.bodies.size(); ++seg)
+        if (col.bodies[seg] == body)
+          sum += rows.coeff(t).dot(col.y.segment<3>(col.starts[seg] + 3 * (p - bodies[body]->offset())));
+    }
+    return sum;
+  };
+  diagonal_.resize(c);
+  for (int r = 0; r < c; ++r) diagonal_[r] = entry(r, r);
+  for (int r = 0; r < c; ++r)
+    for (int k = 0; k <= r; ++k) storeEntry(r, k, k == r ? diagonal_[r] : entry(r, k));
+}
+
+void LagrangeMultiplierSolver::factorAndSolve() {
+  const int c = static_cast<int>(rhs_.size());
+  if (!stats_.sparse) {
+    // Dense LDLᵀ of the lower triangle, kept while W is unchanged.
+    bool same = w_factored_.rows() == c;
+    for (int k = 0; k < c && same; ++k)
+      for (int r = k; r < c && same; ++r) same = w_factored_(r, k) == w_(r, k);
+    if (!same) {
+      ldlt_.compute(w_);
+      w_factored_ = w_;
+      stats_.refactored = true;
+    }
+    if (ldlt_.info() != Eigen::Success) {
+      lambda_.setConstant(c, std::numeric_limits<double>::quiet_NaN());  // reported by the scene
+      return;
+    }
+    lambda_ = ldlt_.solve(rhs_);
+    return;
+  }
+  sparse_->assemble(c);
+  bool refactored = false;
+  if (!sparse_->factor(refactored)) {
+    lambda_.setConstant(c, std::numeric_limits<double>::quiet_NaN());
+    stats_.refactored = refactored;
+    return;
+  }
+  stats_.refactored = refactored;
+  sparse_->solve(rhs_, lambda_);
+}
+
 void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse,
                                      VecX& a) {
   const int c = rows.rows();
-  const auto& bodies = scene.bodies();
-  y_.resize(a.size(), c);
-  w_.resize(c, c);
+  const int n3 = 3 * scene.dofPointCount();
+  const bool separable = inverse.sameOnEveryAxis() && !inverse.coupled();
+  stats_ = Statistics();
+  stats_.rows = c;
+  stats_.columns = separable ? rows.anchors() : c;
+  stats_.sparse = c > options_.sparse_above;
+
+  // 1. Columns of M⁻¹ Lᵀ (per anchor or per row), kept or solved.
+  prepareColumns(scene, rows, inverse, separable);
+
+  // 2. W = L M⁻¹ Lᵀ (lower triangle), dense or with the entries below round-off dropped —
+  // unless every column was taken over from the same place and every row has the same factors
+  // (anchor and direction) as in the last call: W is then the same matrix, already factored.
+  bool unchanged = separable && have_factorization_ && stats_.reused_columns == stats_.columns &&
+                   stats_.sparse == last_sparse_ && c + 1 == static_cast<int>(last_factor_start_.size());
+  for (int i = 0; unchanged && i < stats_.columns; ++i) unchanged = current_[i].from == i;
+  for (int r = 0; unchanged && r <= c; ++r) unchanged = last_factor_start_[r] == (r < c ? rows.factorBegin(r) : rows.factorEnd(c - 1));
+  const int factors = c > 0 ? rows.factorEnd(c - 1) : 0;
+  for (int f = 0; unchanged && f < factors; ++f)
+    unchanged = last_factor_anchor_[f] == rows.factorAnchor(f) && last_factor_direction_[f] == rows.factorDirection(f);
+  if (!unchanged) {
+    if (stats_.sparse) {
+      sparse_->triplets.clear();
+    } else {
+      w_.resize(c, c);
+    }
+    if (separable) {
+      assembleSeparable(scene, rows);
+    } else {
+      assembleGeneral(scene, rows);
+    }
+    stats_.reassembled = true;
+    last_nonzeros_ = stats_.nonzeros;
+  } else {
+    stats_.nonzeros = last_nonzeros_;
+  }
+
+  // 3. E − L A_t.
   rhs_.resize(c);
+  for (int r = 0; r < c; ++r) rhs_[r] = rows.rhs(r) - rows.dot(r, a);
 
-  // Columns of M⁻¹ Lᵀ: scatter row r, then solve only the bodies it touches.
-  for (int r = 0; r < c; ++r) {
-    auto column = y_.col(r);
-    column.setZero();
-    touched_.clear();
-    for (int t = rows.begin(r); t < rows.end(r); ++t) {
-      column.segment<3>(3 * rows.point(t)) += rows.coeff(t);
-      touched_.push_back(scene.bodyOfPoint(rows.point(t)));
+  // 4. λ = W⁻¹ (E − L A_t).
+  if (unchanged) {
+    if (stats_.sparse) {
+      sparse_->solve(rhs_, lambda_);
+    } else {
+      lambda_ = ldlt_.solve(rhs_);
     }
-    std::sort(touched_.begin(), touched_.end());
-    touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
-    for (int b : touched_) {
-      const MechanicalState& body = *bodies[b];
-      inverse.solveBlock(b, column.segment(3 * body.offset(), 3 * body.pointCount()));
+  } else {
+    factorAndSolve();
+  }
+  // Remember the structure W was built from (mass operator only: nothing else is kept).
+  have_factorization_ = separable && lambda_.allFinite();
+  last_sparse_ = stats_.sparse;
+  last_factor_start_.resize(c + 1);
+  for (int r = 0; r < c; ++r) last_factor_start_[r] = rows.factorBegin(r);
+  last_factor_start_[c] = factors;
+  last_factor_anchor_.resize(factors);
+  last_factor_direction_.resize(factors);
+  for (int f = 0; f < factors; ++f) {
+    last_factor_anchor_[f] = rows.factorAnchor(f);
+    last_factor_direction_[f] = rows.factorDirection(f);
+  }
+
+  // 5. A = A_t + M⁻¹ (Lᵀ λ): scatter the generalized constraint forces, one solve per body.
+  force_.setZero(n3);
+  for (int r = 0; r < c; ++r) rows.addTransposed(r, lambda_[r], force_);
+  if (inverse.coupled()) {
+    inverse.solveAll(force_);
+    a.head(n3) += force_;
+  } else {
+    const auto& bodies = scene.bodies();
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      if (!body_touched_[b]) continue;
+      const int offset = 3 * bodies[b]->offset(), size = 3 * bodies[b]->pointCount();
+      inverse.solveBlock(static_cast<int>(b), force_.segment(offset, size));
+      a.segment(offset, size) += force_.segment(offset, size);
     }
   }
 
-  // W = L M⁻¹ Lᵀ (sparse rows of L: O(c² d)) and E − L A_t.
-  for (int r = 0; r < c; ++r) {
-    rhs_[r] = rows.rhs(r);
-    for (int t = rows.begin(r); t < rows.end(r); ++t) {
-      const int p = rows.point(t);
-      rhs_[r] -= rows.coeff(t).dot(a.segment<3>(3 * p));
+  // Keep this call's columns for the next one (mass operator only).
+  if (separable) {
+    std::swap(current_, previous_);
+    const int count = rows.anchors();
+    previous_index_.clear();
+    for (int i = 0; i < count; ++i) {
+      previous_[i].taken = false;
+      previous_index_.emplace_back(previous_[i].hash, i);
     }
+    for (std::size_t i = count; i < previous_.size(); ++i) previous_[i].taken = true;  // stale
+    std::sort(previous_index_.begin(), previous_index_.end());
+    cached_inverse_ = &inverse;
+    cached_revision_ = inverse.revision();
+    cached_size_ = scene.state().q.size();
+  } else {
+    previous_index_.clear();
+    cached_inverse_ = nullptr;
   }
-  for (int r = 0; r < c; ++r)
-    for (int k = 0; k < c; ++k) {
-      double sum = 0.0;
-      for (int t = rows.begin(r); t < rows.end(r); ++t) sum += rows.coeff(t).dot(y_.col(k).segment<3>(3 * rows.point(t)));
-      w_(r, k) = sum;
-    }
-
-  // λ = W⁻¹ (E − L A_t), A = A_t + M⁻¹ Lᵀ λ.
-  ldlt_.compute(w_);
-  lambda_ = ldlt_.solve(rhs_);
-  a.noalias() += y_ * lambda_;
 }
 
 }  // namespace filum::constraints

@@ -60,4 +60,39 @@ double SpringForceField::potentialEnergy(const SceneState& s) const {
   return e;
 }
 
+void SpringForceField::addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const {
+  const ConstPointsMap q = body().block(s.q);
+  mapping_->apply(q, x_);
+  mapping_->applyJ(q, body().block(s.v), v_);
+  const SparseMatrix& W = mapping_->weights();
+  const int base = 3 * body().offset();
+  for (const Spring& spring : springs_) {
+    const Vec3 d = (x_.row(spring.b) - x_.row(spring.a)).transpose();
+    const double l = d.norm();
+    if (l == 0.0) continue;  // no force, no Jacobian (as in addForce)
+    const Vec3 u = d / l;
+    const Vec3 dv = (v_.row(spring.b) - v_.row(spring.a)).transpose();
+    const double rate = dv.dot(u);
+    const Eigen::Matrix3d uu = u * u.transpose();
+    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - uu;
+    // G = ∂f/∂d (stiffness, geometric and dashpot-rotation terms), G_v = ∂f/∂Δv.
+    const Eigen::Matrix3d G = spring.stiffness * uu + ((spring.stiffness * (l - spring.rest) + damping_ * rate) / l) * P +
+                              (damping_ / l) * u * (dv.transpose() * P);
+    const Eigen::Matrix3d block = k_factor * G + d_factor * damping_ * uu;
+    // ∂F_k/∂x_m = ±block for k, m ∈ {a, b}: + when k ≠ m.
+    const int ends[2] = {spring.a, spring.b};
+    for (int kk = 0; kk < 2; ++kk)
+      for (int mm = 0; mm < 2; ++mm) {
+        const double sign = kk == mm ? -1.0 : 1.0;
+        for (SparseMatrix::InnerIterator wi(W, ends[kk]); wi; ++wi)
+          for (SparseMatrix::InnerIterator wj(W, ends[mm]); wj; ++wj) {
+            const double w = sign * wi.value() * wj.value();
+            const int row = base + 3 * static_cast<int>(wi.col()), col = base + 3 * static_cast<int>(wj.col());
+            for (int r = 0; r < 3; ++r)
+              for (int c = 0; c < 3; ++c) out.emplace_back(row + r, col + c, w * block(r, c));
+          }
+      }
+  }
+}
+
 }  // namespace filum::mechanics

@@ -12,4 +12,8 @@ void ViscousDamping::addForce(const SceneState& s, VecX& B) const {
   body().block(B) -= coefficient_ * mv_;
 }
 
+void ViscousDamping::addJacobian(const SceneState&, double, double d_factor, Triplets& out) const {
+  if (d_factor != 0.0 && coefficient_ != 0.0) body().addMassMatrix(-coefficient_ * d_factor, out);
+}
+
 }  // namespace filum::mechanics

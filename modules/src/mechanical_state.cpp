@@ -9,4 +9,19 @@ double MechanicalState::kineticEnergy(ConstPointsRef v) const {
   return 0.5 * v.cwiseProduct(mv).sum();
 }
 
+void MechanicalState::addMassMatrix(double factor, Triplets& out) const {
+  // Generic fallback: column j of M is M e_j; M ⊗ I₃ puts M_ij on every axis (paper eq. 3).
+  const int n = pointCount();
+  Points unit = Points::Zero(n, 3), column(n, 3);
+  for (int j = 0; j < n; ++j) {
+    unit(j, 0) = 1.0;
+    multiplyMass(unit, column);
+    unit(j, 0) = 0.0;
+    for (int i = 0; i < n; ++i)
+      if (column(i, 0) != 0.0)
+        for (int axis = 0; axis < 3; ++axis)
+          out.emplace_back(3 * (offset_ + i) + axis, 3 * (offset_ + j) + axis, factor * column(i, 0));
+  }
+}
+
 }  // namespace filum

@@ -8,7 +8,7 @@ namespace filum {
 
 Scene::Scene() : root_(std::make_unique<Node>("root")) {}
 
-MechanicalState* Scene::bodyAt(const std::string& path) {
+MechanicalState* Scene::bodyAt(const std::string& path) const {
   Node* node = root_->find(path);
   return node ? node->mechanicalState() : nullptr;
 }
@@ -76,6 +76,49 @@ void Scene::init() {
   for (ForceField* f : force_fields_) bindBodyComponent(*f);
   for (Constraint* c : constraints_) bindBodyComponent(*c);
 
+  // Extra scalar DOFs of constraints (a sliding point's abscissa) after the 3N point
+  // coordinates, in declaration order (scene_state.hpp); their velocities start at zero.
+  extra_count_ = 0;
+  for (Constraint* c : constraints_) {
+    c->setExtraIndex(3 * point_count_ + extra_count_);
+    extra_count_ += c->extraDofCount();
+  }
+  if (extra_count_ > 0 && integrator_->needsJacobians())
+    for (const Constraint* c : constraints_)
+      if (c->extraDofCount() > 0)
+        throw SceneError(c->origin(), integrator_->typeName() + " does not advance the extra degrees of freedom of " +
+                                          c->describe() + " (use an explicit integrator such as RungeKutta4)");
+  state_.q.conservativeResize(3 * point_count_ + extra_count_);
+  state_.v.setZero(3 * point_count_ + extra_count_);
+  for (const Constraint* c : constraints_) c->initialExtra(state_.q);
+  for (Constraint* c : constraints_) c->updateRelease(state_);
+  if (integrator_->needsJacobians())
+    for (const ForceField* f : force_fields_)
+      if (!f->hasJacobian())
+        throw SceneError(f->origin(), integrator_->typeName() + " needs the force Jacobian of every force field, but " +
+                                          f->describe() + " does not provide one (use an explicit integrator)");
+
+  // Stage 2 runs only when the scene holds collision models (collision_pipeline.hpp).
+  std::vector<CollisionModel*> collision_models;
+  std::vector<CollisionPipeline*> pipelines;
+  root_->collect(collision_models);
+  root_->collect(pipelines);
+  if (pipelines.size() > 1)
+    throw SceneError(pipelines[1]->origin(), "at most one collision pipeline in the scene", std::to_string(pipelines.size()));
+  collision_ = nullptr;
+  if (!collision_models.empty()) {
+    if (pipelines.empty())
+      throw SceneError(settings_.source + ": /collision",
+                       "a collision pipeline since the scene has collision models (e.g. \"collision\": {\"type\": "
+                       "\"CollisionPipeline\"})",
+                       "none");
+    collision_ = pipelines.front();
+    collision_->init(*this);
+    if (integrator_->needsJacobians() && !collision_->hasJacobian())
+      throw SceneError(collision_->origin(), integrator_->typeName() + " needs the contact force Jacobian, but " +
+                                                 collision_->describe() + " does not provide one");
+  }
+
   force_.setZero(3 * point_count_);
   last_good_ = state_;
   step_count_ = 0;
@@ -85,31 +128,69 @@ void Scene::init() {
 std::string Scene::findNonFinite(const VecX& v) const {
   for (const MechanicalState* body : bodies_)
     if (!body->block(v).allFinite()) return body->describe();
+  for (const Constraint* c : constraints_)
+    if (c->extraDofCount() > 0 && !v.segment(c->extraIndex(), c->extraDofCount()).allFinite()) return c->describe();
   return "";
 }
 
-void Scene::computeAcceleration(const SceneState& s, VecX& a) {
+void Scene::computeForce(const SceneState& s, VecX& B) {
   // Stage 3a: accumulate generalized forces B (paper eq. 2): gravity and every force field.
-  force_.setZero();
-  for (const MechanicalState* body : bodies_) body->addGravity(settings_.gravity, body->block(force_));
+  B.setZero(3 * point_count_);
+  for (const MechanicalState* body : bodies_) body->addGravity(settings_.gravity, body->block(B));
   for (const ForceField* field : force_fields_) {
-    field->addForce(s, force_);
-    if (fault_.empty() && !force_.allFinite()) fault_ = field->describe() + " produced a non-finite force";
+    field->addForce(s, B);
+    if (fault_.empty() && !B.allFinite()) fault_ = field->describe() + " produced a non-finite force";
   }
+  // Contact penalties of the step's contact set (stage 2 detected it).
+  if (collision_) {
+    collision_->addForce(s, B);
+    if (fault_.empty() && !B.allFinite()) fault_ = collision_->describe() + " produced a non-finite contact force";
+  }
+  // Known constraint forces (friction along a sliding point's tangent).
+  for (const Constraint* c : constraints_)
+    if (c->active()) c->addForce(s, B);
+  if (fault_.empty() && !B.allFinite()) fault_ = "a constraint produced a non-finite force";
+}
 
-  // Stage 3b: tendency accelerations A_t = M⁻¹ B, one banded solve per body (paper eq. 3).
-  a = force_;
-  for (const MechanicalState* body : bodies_) body->solveMass(body->block(a));
-
+void Scene::applyConstraints(const SceneState& s, const BlockInverse& inverse, VecX& a) {
   // Stage 3c: constrained accelerations (paper §4, acceleration decomposition).
-  if (constraint_solver_) {
-    rows_.clear();
+  if (!constraint_solver_ && !collision_) return;
+  rows_.clear();
+  for (const Constraint* c : constraints_)
+    if (c->active()) c->buildRows(s, rows_);
+  // Unilateral contacts of the step are solved together with the bilateral rows by the collision
+  // pipeline; without any, the scene's constraint solver takes the bilateral rows alone.
+  const bool contacts = collision_ && collision_->solveContacts(*this, s, rows_, inverse, a);
+  if (!contacts && constraint_solver_ && rows_.rows() > 0) constraint_solver_->solve(*this, rows_, inverse, a);
+  // Stage 3d: accelerations of the constraints' extra DOFs (a sliding point's s̈ by the direct
+  // relation of talk 002), from the constrained point accelerations.
+  if (extra_count_ > 0 && a.size() == 3 * point_count_ + extra_count_)
     for (const Constraint* c : constraints_)
-      if (c->active()) c->buildRows(s, rows_);
-    if (rows_.rows() > 0) constraint_solver_->solve(*this, rows_, mass_inverse_, a);
-    if (fault_.empty() && !a.allFinite())
-      fault_ = constraint_solver_->describe() + " produced non-finite accelerations";
-  }
+      if (c->extraDofCount() > 0) c->extraAcceleration(s, a);
+  if (fault_.empty() && !a.allFinite())
+    fault_ = (contacts ? collision_->describe() : constraint_solver_ ? constraint_solver_->describe() : "the scene") +
+             " produced non-finite accelerations";
+}
+
+void Scene::computeAcceleration(const SceneState& s, VecX& a) {
+  computeForce(s, force_);
+  // Stage 3b: tendency accelerations A_t = M⁻¹ B, one banded solve per body (paper eq. 3);
+  // a also holds the extra DOFs after the points (scene_state.hpp), set by applyConstraints.
+  a.resize(3 * point_count_ + extra_count_);
+  a.head(3 * point_count_) = force_;
+  a.tail(extra_count_).setZero();
+  for (const MechanicalState* body : bodies_) body->solveMass(body->block(a));
+  applyConstraints(s, mass_inverse_, a);
+}
+
+void Scene::addForceJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const {
+  // Gravity is constant: only the force fields contribute to K = ∂Q/∂q and D = ∂Q/∂q̇.
+  for (const ForceField* field : force_fields_) field->addJacobian(s, k_factor, d_factor, out);
+  if (collision_) collision_->addJacobian(s, k_factor, d_factor, out);
+}
+
+void Scene::addMassMatrix(double factor, Triplets& out) const {
+  for (const MechanicalState* body : bodies_) body->addMassMatrix(factor, out);
 }
 
 StepReport Scene::step() {
@@ -121,6 +202,10 @@ StepReport Scene::step() {
   // Stage 4 needs the last good state: copy into preallocated storage (no allocation).
   last_good_ = state_;
   fault_.clear();
+  // Scheduled releases (cuts) take effect at the first step that starts at or after their time.
+  for (Constraint* c : constraints_) c->updateRelease(state_);
+  // Stage 2: collision detection at the step's start state, only if collision models exist.
+  if (collision_) collision_->beginStep(*this, state_);
   integrator_->step(*this, state_, settings_.dt);
 
   std::string culprit = fault_;
@@ -128,9 +213,10 @@ StepReport Scene::step() {
     const std::string body = findNonFinite(state_.v).empty() ? findNonFinite(state_.q) : findNonFinite(state_.v);
     culprit = (body.empty() ? std::string("the scene") : body) + " has non-finite positions or velocities";
   }
-  if (culprit.empty() && state_.v.cwiseAbs().maxCoeff() > settings_.max_speed) {
+  // Speeds of points only: extra DOFs (abscissas) have other units.
+  if (culprit.empty() && point_count_ > 0 && state_.v.head(3 * point_count_).cwiseAbs().maxCoeff() > settings_.max_speed) {
     Eigen::Index i = 0;
-    state_.v.cwiseAbs().maxCoeff(&i);
+    state_.v.head(3 * point_count_).cwiseAbs().maxCoeff(&i);
     for (const MechanicalState* body : bodies_)
       if (i / 3 >= body->offset() && i / 3 < body->offset() + body->pointCount())
         culprit = body->describe() + " moves faster than max_speed = " + std::to_string(settings_.max_speed) +
@@ -173,15 +259,21 @@ Energy Scene::energy(const SceneState& s) const {
 VecX Scene::constraintViolation(const SceneState& s) const {
   int rows = 0;
   for (const Constraint* c : constraints_)
-    if (c->active()) rows += c->rowCount();
+    if (c->active()) rows += c->violationCount();
   VecX g(rows);
   int first = 0;
   for (const Constraint* c : constraints_) {
     if (!c->active()) continue;
     c->violation(s, g, first);
-    first += c->rowCount();
+    first += c->violationCount();
   }
   return g;
+}
+
+void Scene::setState(const SceneState& s) {
+  state_ = s;
+  // Releases are a function of the state: restoring a state before a cut restores the rows.
+  for (Constraint* c : constraints_) c->updateRelease(state_);
 }
 
 }  // namespace filum

@@ -182,6 +182,9 @@ std::unique_ptr<Scene> loadScene(const json& document, const std::string& source
 
   addRoleComponent(top, "integrator", "Integrator", *scene, factory);
   addRoleComponent(top, "constraint_solver", "ConstraintSolver", *scene, factory);
+  // The collision pipeline (collision_pipeline.hpp): "collision": {"type": ...}, or the factory's
+  // default; it stays idle, never called, unless the scene holds collision models.
+  addRoleComponent(top, "collision", "CollisionPipeline", *scene, factory);
   if (!top.has("nodes")) top.fail("nodes", "a list of nodes (bodies)");
   loadNode(top, scene->root(), factory);  // reads "nodes" (and "components" at the root)
   top.finish();

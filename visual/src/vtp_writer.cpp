@@ -63,19 +63,33 @@ void writeVtp(const std::string& path, const std::vector<PolyLine>& lines, const
   if (!out) throw std::runtime_error(path + ": write failed");
 }
 
-void PvdSeries::add(double time, const std::string& relative_file) {
-  entries_.emplace_back(time, relative_file);
-  const std::string temporary = path_ + ".tmp";
-  {
-    std::ofstream out = openOrThrow(temporary);
-    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-        << "  <Collection>\n";
-    for (const auto& [t, file] : entries_)
-      out << "    <DataSet timestep=\"" << exact(t) << "\" group=\"\" part=\"0\" file=\"" << file << "\"/>\n";
-    out << "  </Collection>\n</VTKFile>\n";
-    if (!out) throw std::runtime_error(temporary + ": write failed");
-  }
-  if (std::rename(temporary.c_str(), path_.c_str()) != 0) throw std::runtime_error(path_ + ": cannot replace");
+void writeMeshVtp(const std::string& path, const TriangleMesh& mesh) {
+  if (!mesh.vertices.allFinite() || !mesh.normals.allFinite())
+    throw std::runtime_error(path + ": refusing to write non-finite mesh vertices or normals");
+  std::ofstream out = openOrThrow(path);
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "  <PolyData>\n"
+      << "    <Piece NumberOfPoints=\"" << mesh.vertexCount() << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\""
+      << " NumberOfStrips=\"0\" NumberOfPolys=\"" << mesh.triangleCount() << "\">\n"
+      << "      <Points>\n        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (int v = 0; v < mesh.vertexCount(); ++v)
+    out << "          " << exact(mesh.vertices(v, 0)) << ' ' << exact(mesh.vertices(v, 1)) << ' '
+        << exact(mesh.vertices(v, 2)) << '\n';
+  out << "        </DataArray>\n      </Points>\n"
+      << "      <PointData Normals=\"Normals\">\n"
+      << "        <DataArray type=\"Float64\" Name=\"Normals\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (int v = 0; v < mesh.vertexCount(); ++v)
+    out << "          " << exact(mesh.normals(v, 0)) << ' ' << exact(mesh.normals(v, 1)) << ' '
+        << exact(mesh.normals(v, 2)) << '\n';
+  out << "        </DataArray>\n      </PointData>\n"
+      << "      <Polys>\n        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
+  for (int f = 0; f < mesh.triangleCount(); ++f)
+    out << "          " << mesh.triangles(f, 0) << ' ' << mesh.triangles(f, 1) << ' ' << mesh.triangles(f, 2) << '\n';
+  out << "        </DataArray>\n        <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n";
+  for (int f = 0; f < mesh.triangleCount(); ++f) out << "          " << 3 * (f + 1) << '\n';
+  out << "        </DataArray>\n      </Polys>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
+  if (!out) throw std::runtime_error(path + ": write failed");
 }
 
 }  // namespace filum::visual

@@ -1,4 +1,5 @@
-// Registers the constraints library's components: FixedPointConstraint and
+// Registers the constraints library's components: FixedPointConstraint, PointOnAxisConstraint,
+// PointOnPlaneConstraint, ClampConstraint, SlidingPointConstraint, SplineJunctionConstraint and
 // LagrangeMultiplierSolver (the default constraint solver).
 #pragma once
 

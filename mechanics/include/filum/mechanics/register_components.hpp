@@ -1,5 +1,7 @@
-// Registers the mechanics library's components: DynamicSpline, SpringForceField,
-// ViscousDamping, SymplecticEuler, RungeKutta4 (default integrator).
+// Registers the mechanics library's components: DynamicSpline; the force fields
+// SpringForceField, GreenLagrangeStretching, GlobalStretching, ParametricBending,
+// CurvatureBending, ViscousDamping, RayleighDamping; the integrators ExplicitEuler,
+// SymplecticEuler, RungeKutta4 (default), ImplicitEuler, ImplicitMidpoint.
 #pragma once
 
 #include "filum/core/factory.hpp"

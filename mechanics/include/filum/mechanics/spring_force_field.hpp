@@ -4,6 +4,12 @@
 // taken from the initial curve. Spring force on the pair (a, b), u = (x_b − x_a)/l:
 //   f = [k (l − l0) + c (v_b − v_a)·u] u,  F_a += f, F_b −= f,
 // mapped to the control points by Q_i += Σ_k b_i(s_k) F_k (SplinePointMapping::applyJT).
+//
+// Jacobian. With d = x_b − x_a, P = I − u uᵀ and Δv = v_b − v_a, the pair force f(d, Δv) has
+//   G = ∂f/∂d = k u uᵀ + (k (l − l0) + c Δv·u) P / l + c u Δvᵀ P / l,   G_v = ∂f/∂Δv = c u uᵀ,
+// and ∂F_a/∂x_b = G, ∂F_a/∂x_a = −G, ∂F_b/∂x_a = G, ∂F_b/∂x_b = −G (same with G_v for
+// velocities), mapped to control points as ∂Q_i/∂q_j = Σ_{k,m} b_i(s_k) b_j(s_m) ∂F_k/∂x_m.
+// The dashpot's position term c u Δvᵀ P / l is not symmetric (a dissipative force).
 #pragma once
 
 #include <memory>
@@ -25,6 +31,8 @@ class SpringForceField final : public ForceField {
   std::string typeName() const override { return "SpringForceField"; }
   void addForce(const SceneState& s, VecX& B) const override;
   double potentialEnergy(const SceneState& s) const override;
+  void addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const override;
+  bool hasJacobian() const override { return true; }
 
   int sampleCount() const { return samples_; }
 

@@ -4,6 +4,8 @@
 // of paper §4 serves explicit and implicit integrators alike.
 #pragma once
 
+#include <stdexcept>
+
 #include "filum/core/types.hpp"
 
 namespace filum {
@@ -12,7 +14,27 @@ class BlockInverse {
  public:
   virtual ~BlockInverse() = default;
   /// In place x := A_b⁻¹ x for body b's block x (3 n_b values, x0 y0 z0 x1 ...).
+  /// Only valid when !coupled().
   virtual void solveBlock(int body, Eigen::Ref<VecX> x) const = 0;
+
+  /// True when the matrix couples bodies (e.g. an implicit step with a force between two
+  /// bodies): it is then not block diagonal, and solves must use solveAll on whole vectors.
+  virtual bool coupled() const { return false; }
+  /// In place x := A⁻¹ x for a whole-scene vector (3N). Needed only when coupled().
+  virtual void solveAll(Eigen::Ref<VecX> /*x*/) const {
+    throw std::logic_error("BlockInverse::solveAll is not implemented by a block-diagonal inverse");
+  }
+
+  /// True when every block is I₃ ⊗ A_b: the same n_b × n_b matrix on x, y and z, as the mass
+  /// matrix is (paper eq. 3). A constraint solver may then solve three scalar right-hand sides
+  /// with one solveBlock (one per coordinate column) and share A_b⁻¹ b(s) between the rows of
+  /// a constraint (a fixed point's 3 rows need one scalar solve, not three 3-column ones).
+  /// Implicit step matrices M − h D − h² K mix the coordinates: false (the safe default).
+  virtual bool sameOnEveryAxis() const { return false; }
+  /// A number that changes whenever the matrix changes, so that a solver may keep A⁻¹Lᵀ from
+  /// one call to the next for rows that did not change; −1 (the default): it may change at
+  /// any call, keep nothing. The mass matrix never changes: 0.
+  virtual long revision() const { return -1; }
 };
 
 }  // namespace filum

@@ -1,5 +1,9 @@
 // ForceField: a term of the right-hand side B of M A = B (paper eq. 2–3): generalized forces
-// Q_i = −∂E/∂q_i of an energy, or dissipative forces.
+// Q_i = −∂E/∂q_i of an energy, or dissipative forces Q(q, q̇).
+//
+// Implicit integrators also need the force Jacobian: K = ∂Q/∂q (the stiffness, −∇²E for an
+// energy) and D = ∂Q/∂q̇ (the damping). Fields provide them analytically through addJacobian;
+// finite differences are for tests only (tests/support/finite_difference.hpp).
 #pragma once
 
 #include "filum/core/body_component.hpp"
@@ -14,6 +18,16 @@ class ForceField : public BodyComponent {
 
   /// Potential energy stored by this field (J); 0 for dissipative fields.
   virtual double potentialEnergy(const SceneState& /*s*/) const { return 0.0; }
+
+  /// Appends k_factor·K + d_factor·D at state s, K = ∂Q/∂q (N/m), D = ∂Q/∂q̇ (N·s/m), as
+  /// triplets over the scene's global 3N coordinates (3·(offset + i) + axis). Implicit steps
+  /// pass k_factor = −h², d_factor = −h to build M − h D − h² K. Must not allocate once `out`
+  /// has reached its capacity. Only called when hasJacobian().
+  virtual void addJacobian(const SceneState& /*s*/, double /*k_factor*/, double /*d_factor*/,
+                           Triplets& /*out*/) const {}
+  /// True when addJacobian is implemented; the scene refuses fields without it when the
+  /// integrator needs Jacobians (Integrator::needsJacobians).
+  virtual bool hasJacobian() const { return false; }
 };
 
 }  // namespace filum

@@ -1,5 +1,6 @@
 // Integrator: advances the scene state by one time step using the scene's accelerations
-// A = f(q, v, t) (Scene::computeAcceleration).
+// A = f(q, v, t) (Scene::computeAcceleration), or, for implicit schemes, the pieces of it
+// (Scene::computeForce, Scene::addForceJacobian, Scene::addMassMatrix, Scene::applyConstraints).
 #pragma once
 
 #include "filum/core/component.hpp"
@@ -15,6 +16,9 @@ class Integrator : public Component {
   virtual void step(Scene& scene, SceneState& s, double dt) = 0;
   /// Global order of accuracy in dt (for convergence tests and reports).
   virtual int order() const = 0;
+  /// True for schemes that use the force Jacobian (ForceField::addJacobian): the scene then
+  /// refuses, at init, force fields that do not provide one.
+  virtual bool needsJacobians() const { return false; }
 };
 
 }  // namespace filum

@@ -25,6 +25,11 @@ class MechanicalState : public Component {
   /// out := M x for this body's block.
   virtual void multiplyMass(ConstPointsRef x, PointsRef out) const = 0;
 
+  /// Appends factor·(M ⊗ I₃) as triplets over the scene's global 3N coordinates
+  /// (3·(offset + i) + axis), for the matrices of implicit steps. The default builds M column
+  /// by column from multiplyMass (O(n²)); bodies with a sparse M override it.
+  virtual void addMassMatrix(double factor, Triplets& out) const;
+
   /// B += generalized gravity forces Q_i = ∫ b_i(s) m g ds (N).
   virtual void addGravity(const Vec3& g, PointsRef B) const = 0;
 

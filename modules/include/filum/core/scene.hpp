@@ -1,7 +1,8 @@
 // Scene: the node tree, its settings and its state, and the step pipeline (DESIGN.md
 // "One time step"):
 //   1. map positions down (later issues: collision and visual sides);
-//   2. collision detection, only if collision models exist (later issue);
+//   2. collision detection, only if collision models exist (CollisionPipeline::beginStep, see
+//      collision_pipeline.hpp; the collision library implements it);
 //   3. per integrator stage: accumulate B (gravity, force fields), solve M A = B, and with
 //      constraints the multiplier system L M⁻¹Lᵀ λ = E − L A_t (paper §4);
 //   4. check the new state is finite and sane; if not, restore the last good state and report.
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "filum/core/block_inverse.hpp"
+#include "filum/core/collision_pipeline.hpp"
 #include "filum/core/constraint.hpp"
 #include "filum/core/constraint_rows.hpp"
 #include "filum/core/constraint_solver.hpp"
@@ -64,31 +66,59 @@ class Scene {
   /// before the step and the report says which step and component.
   StepReport step();
 
-  /// A = f(q, v, t): accelerations of every DOF at state s (all pipeline stages 1–3).
+  /// A = f(q, v, t): accelerations of every DOF at state s (all pipeline stages 1–3):
+  /// computeForce, M⁻¹ body by body, applyConstraints with the mass inverse.
   void computeAcceleration(const SceneState& s, VecX& a);
+
+  // The pieces of computeAcceleration, for integrators that solve their own system (implicit
+  // steps solve (M − θh D − κh² K) a = b and constrain a through that matrix's inverse).
+
+  /// Stage 3a: B = generalized forces at s, gravity and every force field (3N, N).
+  void computeForce(const SceneState& s, VecX& B);
+  /// Stage 3c: on entry a = A⁻¹ b (unconstrained); on exit the a that solves A a = b + Lᵀλ,
+  /// L a = E for the active constraints' rows built at state s. `inverse` applies A⁻¹: the mass
+  /// matrix for explicit steps, the step matrix for implicit ones. No-op without constraints.
+  /// In a step with unilateral contacts the collision pipeline solves the bilateral rows and the
+  /// contact rows together (CollisionPipeline::solveContacts) in place of the ConstraintSolver.
+  void applyConstraints(const SceneState& s, const BlockInverse& inverse, VecX& a);
+  /// Appends k_factor·K + d_factor·D of every force field at s (global 3N triplets).
+  void addForceJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const;
+  /// Appends factor·(M ⊗ I₃) of every body (global 3N triplets).
+  void addMassMatrix(double factor, Triplets& out) const;
+  /// Records what went wrong in the current step (e.g. an integrator's failed factorization);
+  /// the first fault wins, and step() rolls back and reports it.
+  void noteFault(const std::string& message) {
+    if (fault_.empty()) fault_ = message;
+  }
 
   /// Kinetic and potential energy at state s.
   Energy energy(const SceneState& s) const;
-  /// Position-level violation of every active constraint row.
+  /// Position-level violation of every active constraint (Constraint::violationCount()
+  /// entries each, in declaration order).
   VecX constraintViolation(const SceneState& s) const;
 
   const SceneState& state() const { return state_; }
-  /// Replaces the state (e.g. restores a saved one).
-  void setState(const SceneState& s) { state_ = s; }
+  /// Replaces the state (e.g. restores a saved one); scheduled releases follow its time.
+  void setState(const SceneState& s);
   long stepCount() const { return step_count_; }
   int dofPointCount() const { return point_count_; }
+  /// Number E of extra scalar DOFs (constraints' own, after the 3N point coordinates).
+  int extraDofCount() const { return extra_count_; }
 
   const std::vector<MechanicalState*>& bodies() const { return bodies_; }
   const std::vector<ForceField*>& forceFields() const { return force_fields_; }
   const std::vector<Constraint*>& constraints() const { return constraints_; }
   Integrator& integrator() const { return *integrator_; }
   ConstraintSolver* constraintSolver() const { return constraint_solver_; }
+  /// The collision pipeline, or nullptr when the scene holds no CollisionModel (collision is
+  /// then skipped entirely).
+  CollisionPipeline* collisionPipeline() const { return collision_; }
   /// M⁻¹ body by body (each body's factored mass matrix).
   const BlockInverse& massInverse() const { return mass_inverse_; }
   /// Index in bodies() of the body holding global point p.
   int bodyOfPoint(int p) const;
   /// The body held by the node at path (relative to the root), or nullptr.
-  MechanicalState* bodyAt(const std::string& path);
+  MechanicalState* bodyAt(const std::string& path) const;
 
  private:
   void bindBodyComponent(BodyComponent& component);
@@ -99,6 +129,8 @@ class Scene {
    public:
     explicit MassInverse(const Scene& scene) : scene_(scene) {}
     void solveBlock(int body, Eigen::Ref<VecX> x) const override;
+    bool sameOnEveryAxis() const override { return true; }  // M ⊗ I₃ (paper eq. 3)
+    long revision() const override { return 0; }            // M is factored once, never changes
 
    private:
     const Scene& scene_;
@@ -110,6 +142,7 @@ class Scene {
   SceneState last_good_;
   long step_count_ = 0;
   int point_count_ = 0;
+  int extra_count_ = 0;  // extra DOFs of constraints (scene_state.hpp)
   bool initialized_ = false;
 
   std::vector<MechanicalState*> bodies_;
@@ -118,6 +151,7 @@ class Scene {
   MassInverse mass_inverse_{*this};
   Integrator* integrator_ = nullptr;
   ConstraintSolver* constraint_solver_ = nullptr;
+  CollisionPipeline* collision_ = nullptr;  // null unless collision models exist
 
   // Workspace of computeAcceleration (allocated once in init).
   VecX force_;

@@ -5,6 +5,8 @@
 // viewed as points without copying.
 #pragma once
 
+#include <vector>
+
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
@@ -22,5 +24,10 @@ using PointsRef = Eigen::Ref<Points>;
 using ConstPointsRef = Eigen::Ref<const Points>;
 
 using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+/// Entries (row, column, value) of a sparse matrix over the scene's 3N coordinates, as force
+/// Jacobians and mass matrices are assembled (duplicates add up).
+using Triplet = Eigen::Triplet<double>;
+using Triplets = std::vector<Triplet>;
 
 }  // namespace filum

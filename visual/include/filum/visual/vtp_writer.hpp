@@ -1,12 +1,14 @@
-// VTK XML PolyData (.vtp) files and ParaView .pvd series, so that ParaView plays a run.
+// VTK XML PolyData (.vtp) files — polylines (sampled curves) and triangle meshes (the visual
+// models) — for ParaView, with .pvd series (pvd_series.hpp) so that ParaView plays a run.
 // ASCII with 17 significant digits: files are exact and bit-identical between identical runs.
 #pragma once
 
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "filum/core/types.hpp"
+#include "filum/visual/pvd_series.hpp"
+#include "filum/visual/triangle_mesh.hpp"
 
 namespace filum::visual {
 
@@ -22,18 +24,9 @@ struct PolyLine {
 /// a coordinate is not finite (nothing non-finite is ever written).
 void writeVtp(const std::string& path, const std::vector<PolyLine>& lines, const std::string& scalar_name);
 
-/// A ParaView collection (.pvd) of time steps; rewritten whole after each add, so the index on
-/// disk always lists every file written so far.
-class PvdSeries {
- public:
-  explicit PvdSeries(std::string path) : path_(std::move(path)) {}
-  /// Records a dataset file (path relative to the .pvd) at time t and rewrites the index.
-  void add(double time, const std::string& relative_file);
-  const std::vector<std::pair<double, std::string>>& entries() const { return entries_; }
-
- private:
-  std::string path_;
-  std::vector<std::pair<double, std::string>> entries_;
-};
+/// Writes one triangle mesh as a PolyData piece: Points, point data "Normals" (3 components)
+/// and Polys (triangles). Throws std::runtime_error if the file cannot be written or a value is
+/// not finite.
+void writeMeshVtp(const std::string& path, const TriangleMesh& mesh);
 
 }  // namespace filum::visual

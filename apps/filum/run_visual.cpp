@@ -1,0 +1,95 @@
+#include "filum/run_visual.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "filum/visual/heads_up_display.hpp"
+#include "filum/visual/obj_writer.hpp"
+#include "filum/visual/ply_writer.hpp"
+#include "filum/visual/vtp_writer.hpp"
+
+namespace filum::app {
+
+RunVisual::RunVisual(Scene& scene, const nlohmann::json& document, const std::string& directory,
+                     const RunVisualOptions& options, double duration)
+    : options_(options), directory_(directory), scene_name_(scene.settings().name), visuals_(scene) {
+  visuals_.update(scene.state());
+  // The scene's camera, or one that frames the visual models at t = 0.
+  if (auto camera = visual::readCamera(document, scene.settings().source)) {
+    camera_ = *camera;
+  } else {
+    Vec3 lower(-0.05, -0.05, -0.05), upper(0.05, 0.05, 0.05);
+    visuals_.bounds(lower, upper);
+    camera_ = visual::frameBox(lower, upper);
+  }
+  if (options_.meshes) {
+    std::filesystem::create_directories(directory_ + "/meshes");
+    series_ = std::make_unique<visual::PvdSeries>(directory_ + "/meshes.pvd");
+  }
+  if (options_.render) {
+    renderer_ = std::make_unique<visual::OffscreenRenderer>(camera_);
+    visual::FrameRecorderOptions recorder;
+    recorder.directory = directory_;
+    recorder.fps = 1.0 / camera_.frame_interval;
+    recorder.expected_frames = static_cast<int>(std::floor(duration / camera_.frame_interval + 1e-9)) + 1;
+    recorder.png_frames = options_.png_frames;
+    recorder.title = scene_name_;
+    recorder_ = std::make_unique<visual::FrameRecorder>(recorder);
+  }
+}
+
+RunVisual::~RunVisual() = default;
+
+void RunVisual::writeMeshes(const Scene& scene) {
+  if (!options_.meshes) return;
+  visuals_.update(scene.state());
+  std::vector<std::string> files;
+  for (std::size_t i = 0; i < visuals_.models().size(); ++i) {
+    char suffix[32];
+    std::snprintf(suffix, sizeof suffix, "_%06d.vtp", mesh_frames_);
+    const std::string file = "meshes/" + visuals_.modelName(i) + suffix;
+    visual::writeMeshVtp(directory_ + "/" + file, visuals_.models()[i]->mesh());
+    files.push_back(file);
+  }
+  series_->addStep(scene.state().time, files);
+  ++mesh_frames_;
+}
+
+void RunVisual::render(const Scene& scene, double wall_per_simulated_ms) {
+  if (!options_.render) return;
+  visuals_.update(scene.state());
+  visual::Image frame = renderer_->render(visuals_.models());
+  if (camera_.heads_up)
+    visual::drawHeadsUp(frame, scene_name_ + " | " +
+                                   visual::headsUpText(scene.state().time, wall_per_simulated_ms,
+                                                       scene.energy(scene.state()).total()));
+  recorder_->add(frame, scene.state().time);
+}
+
+void RunVisual::finish(const Scene& scene) {
+  if (finished_) return;
+  finished_ = true;
+  if (options_.meshes) {
+    visuals_.update(scene.state());
+    std::vector<visual::NamedMesh> named;
+    for (std::size_t i = 0; i < visuals_.models().size(); ++i) {
+      named.push_back({visuals_.modelName(i), &visuals_.models()[i]->mesh()});
+      if (visuals_.models()[i]->mesh().triangleCount() > 0)
+        visual::writePly(directory_ + "/meshes/final_" + visuals_.modelName(i) + ".ply", visuals_.models()[i]->mesh());
+    }
+    visual::writeObj(directory_ + "/meshes/final.obj", named);
+  }
+  if (recorder_) recorder_->finish();
+}
+
+std::string RunVisual::summary() const {
+  std::string s;
+  if (options_.meshes) s += ", meshes.pvd (" + std::to_string(mesh_frames_) + " frames), meshes/final.obj, meshes/final_*.ply";
+  if (options_.render)
+    s += ", video.avi (" + std::to_string(recorder_->frames()) + " frames)" + (options_.png_frames ? ", frames/*.png" : "") +
+         ", contact_sheet.png";
+  return s;
+}
+
+}  // namespace filum::app

@@ -1,0 +1,67 @@
+// RunVisual: the visual outputs of `filum run`, on request:
+//   --meshes   meshes/<model>_NNNNNN.vtp with meshes.pvd (every output frame; ParaView plays the
+//              skinned threads, spheres and organ meshes), and at the end meshes/final.obj (all
+//              models as named objects) and meshes/final_<model>.ply (Blender, MeshLab);
+//   --render   frames/frame_NNNNNN.png, video.avi (Motion-JPEG, real-time playback) and
+//              contact_sheet.png, pictures from the scene's "camera" (or a camera framing the
+//              scene at t = 0), with a heads-up line: simulated time, wall time per simulated
+//              millisecond and energy.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "filum/core/scene.hpp"
+#include "filum/visual/camera.hpp"
+#include "filum/visual/frame_recorder.hpp"
+#include "filum/visual/offscreen_renderer.hpp"
+#include "filum/visual/pvd_series.hpp"
+#include "filum/visual/visual_scene.hpp"
+
+namespace filum::app {
+
+struct RunVisualOptions {
+  bool meshes = false;
+  bool render = false;
+  bool png_frames = true;  // with render: every frame as PNG too
+};
+
+class RunVisual {
+ public:
+  /// Binds the visual models (throws SceneError) and opens the renderer (throws
+  /// std::runtime_error, e.g. without OpenCV or an X display). `duration` (s) spreads the
+  /// contact sheet.
+  RunVisual(Scene& scene, const nlohmann::json& document, const std::string& directory,
+            const RunVisualOptions& options, double duration);
+  ~RunVisual();
+
+  bool active() const { return options_.meshes || options_.render; }
+  /// Simulated seconds between rendered frames (the camera's frame_interval).
+  double renderInterval() const { return camera_.frame_interval; }
+  const visual::CameraSettings& camera() const { return camera_; }
+
+  /// Writes the meshes of the scene's current state (an output frame).
+  void writeMeshes(const Scene& scene);
+  /// Renders the current state; wall_per_simulated_ms < 0 when unknown (first frame).
+  void render(const Scene& scene, double wall_per_simulated_ms);
+  /// Final OBJ/PLY, video and contact sheet (idempotent).
+  void finish(const Scene& scene);
+  /// What was written, for the log ("meshes.pvd, video.avi, ...").
+  std::string summary() const;
+
+ private:
+  RunVisualOptions options_;
+  std::string directory_;
+  std::string scene_name_;
+  visual::VisualScene visuals_;
+  visual::CameraSettings camera_;
+  std::unique_ptr<visual::PvdSeries> series_;
+  std::unique_ptr<visual::OffscreenRenderer> renderer_;
+  std::unique_ptr<visual::FrameRecorder> recorder_;
+  int mesh_frames_ = 0;
+  bool finished_ = false;
+};
+
+}  // namespace filum::app

@@ -1,0 +1,210 @@
+#include "filum/view_command.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <ostream>
+
+#include <Eigen/Geometry>
+
+#include "filum/all_components.hpp"
+#include "filum/core/scene_error.hpp"
+#include "filum/core/scene_loader.hpp"
+#include "filum/geometry/spline_curve.hpp"
+#include "filum/mechanics/dynamic_spline.hpp"
+#include "filum/run_command.hpp"
+#include "filum/visual/heads_up_display.hpp"
+#include "filum/visual/image_file.hpp"
+#include "filum/visual/offscreen_renderer.hpp"
+#include "filum/visual/visual_scene.hpp"
+
+namespace filum::app {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// Adds {"type": "MouseProbe"} to every node that holds a DynamicSpline.
+void addProbeForces(nlohmann::json& node) {
+  if (node.contains("components") && node["components"].is_array()) {
+    bool spline = false;
+    for (const auto& c : node["components"])
+      if (c.is_object() && c.value("type", "") == "DynamicSpline") spline = true;
+    if (spline) node["components"].push_back({{"type", "MouseProbe"}, {"name", "mouse probe"}});
+  }
+  if (node.contains("nodes") && node["nodes"].is_array())
+    for (auto& child : node["nodes"]) addProbeForces(child);
+}
+
+/// The depth (along the view) of the spline point whose projection is nearest to pixel (u, v).
+double pickDepth(const Scene& scene, const visual::CameraSettings& camera, double u, double v) {
+  double best = std::numeric_limits<double>::infinity(), depth = (camera.look_at - camera.position).norm();
+  for (const MechanicalState* body : scene.bodies()) {
+    const auto* spline = dynamic_cast<const mechanics::DynamicSpline*>(body);
+    if (!spline) continue;
+    const ConstPointsMap q = body->block(scene.state().q);
+    for (int k = 0; k <= 200; ++k) {
+      const Vec3 x = geometry::curvePoint(spline->basis(), q, k / 200.0);
+      const visual::Pixel p = visual::project(camera, x);
+      const double d = std::hypot(p.u - u, p.v - v);
+      if (p.depth > 0.0 && d < best) {
+        best = d;
+        depth = p.depth;
+      }
+    }
+  }
+  return depth;
+}
+
+/// Orbits the camera about its look-at point: yaw about the up axis, pitch about the right axis.
+void orbit(visual::CameraSettings& camera, double yaw, double pitch) {
+  const Vec3 offset = camera.position - camera.look_at;
+  const Eigen::Matrix3d R = (Eigen::AngleAxisd(yaw, camera.up.normalized()) * Eigen::AngleAxisd(pitch, camera.right()))
+                                .toRotationMatrix();
+  const Vec3 rotated = R * offset;
+  if (rotated.normalized().cross(camera.up.normalized()).norm() > 0.05) camera.position = camera.look_at + rotated;
+}
+
+}  // namespace
+
+int viewScene(const ViewOptions& options, std::ostream& log) {
+  if (!visual::renderingAvailable()) {
+    log << "error: filum view: " << visual::renderingUnavailableMessage() << '\n';
+    return kRunIoError;
+  }
+  // The scene, with the mouse probe's force on every spline.
+  auto probe = std::make_shared<visual::ProbeState>();
+  Factory factory = makeFactory();
+  factory.add("MouseProbe", "the mouse probe of filum view (push and grab)",
+              [probe](const Params& p) {
+                p.finish();
+                return std::make_unique<visual::ProbeForceField>(probe);
+              });
+  std::unique_ptr<Scene> scene;
+  nlohmann::json document;
+  try {
+    document = readJsonFile(options.scene);
+    nlohmann::json patched = document;
+    addProbeForces(patched);
+    scene = loadScene(patched, options.scene, factory);
+  } catch (const SceneError& e) {
+    log << "error: " << e.what() << '\n';
+    return kRunSceneError;
+  }
+  const SceneState initial = scene->state();
+
+  try {
+    visual::VisualScene visuals(*scene);
+    visuals.update(scene->state());
+    visual::CameraSettings camera;
+    if (auto c = visual::readCamera(document, options.scene)) {
+      camera = *c;
+    } else {
+      Vec3 lower(-0.05, -0.05, -0.05), upper(0.05, 0.05, 0.05);
+      visuals.bounds(lower, upper);
+      camera = visual::frameBox(lower, upper);
+    }
+    probe->radius = options.probe_radius.value_or(0.02 * (camera.look_at - camera.position).norm());
+    visual::ProbeVisual probe_visual(probe);
+    std::vector<visual::VisualModel*> models = visuals.models();
+    models.push_back(&probe_visual);
+
+    visual::OffscreenRenderer renderer(camera);
+    visual::ViewerWindow window(camera.width, camera.height, "filum view: " + scene->settings().name);
+    log << "filum view: " << scene->settings().name
+        << " — left drag: push, Shift+left or g: grab, right drag: orbit, wheel: zoom, space: pause, r: restart, "
+           "q: quit\n";
+
+    const double dt = scene->settings().dt;
+    bool paused = false, grab_mode = false, quit = false, left_down = false, right_down = false;
+    double probe_depth = 0.0;
+    int last_x = 0, last_y = 0;
+    auto last = Clock::now();
+    double wall_per_ms = -1.0;
+    visual::Image frame;
+    for (int index = 0; !quit && (options.frames <= 0 || index < options.frames); ++index) {
+      // Events: the probe follows the pointer in the plane facing the camera.
+      visual::WindowEvent e;
+      while (window.poll(e)) {
+        using Type = visual::WindowEvent::Type;
+        if (e.type == Type::kClose) quit = true;
+        if (e.type == Type::kKey) {
+          if (e.key == "q" || e.key == "Escape") quit = true;
+          if (e.key == "space") paused = !paused;
+          if (e.key == "g") grab_mode = !grab_mode;
+          if (e.key == "r") {
+            scene->setState(initial);
+            probe->touching = probe->grabbing = false;
+          }
+        }
+        if (e.type == Type::kButtonPress && e.button == 1) {
+          left_down = true;
+          probe_depth = pickDepth(*scene, camera, e.x, e.y);
+          probe->position = visual::unproject(camera, e.x, e.y, probe_depth);
+          probe->touching = true;
+          if (grab_mode || e.shift) visual::startGrab(*probe, *scene, 3.0 * probe->radius);
+        }
+        if (e.type == Type::kButtonRelease && e.button == 1) {
+          left_down = false;
+          probe->touching = probe->grabbing = false;
+        }
+        if (e.type == Type::kButtonPress && e.button == 3) right_down = true;
+        if (e.type == Type::kButtonRelease && e.button == 3) right_down = false;
+        if (e.type == Type::kButtonPress && (e.button == 4 || e.button == 5)) {
+          const double factor = e.button == 4 ? 0.9 : 1.0 / 0.9;
+          camera.position = camera.look_at + factor * (camera.position - camera.look_at);
+          renderer.setCamera(camera);
+        }
+        if (e.type == Type::kMotion) {
+          if (left_down) probe->position = visual::unproject(camera, e.x, e.y, probe_depth);
+          if (right_down) {
+            orbit(camera, -0.01 * (e.x - last_x), -0.01 * (e.y - last_y));
+            renderer.setCamera(camera);
+          }
+          last_x = e.x;
+          last_y = e.y;
+        }
+      }
+      // Advance the simulation by the elapsed wall time (or a fixed step), at most 0.1 s per frame.
+      const auto now = Clock::now();
+      const double elapsed = std::chrono::duration<double>(now - last).count();
+      last = now;
+      if (!paused) {
+        const double advance = std::min(0.1, options.fixed_step.value_or(elapsed * options.speed));
+        const long steps = std::max(1L, std::lround(advance / dt));
+        const auto before = Clock::now();
+        for (long k = 0; k < steps; ++k) {
+          const StepReport report = scene->step();
+          if (!report.ok) {
+            log << "error: " << report.message << " (state rolled back; press r to restart)\n";
+            paused = true;
+            break;
+          }
+        }
+        wall_per_ms = std::chrono::duration<double>(Clock::now() - before).count() / (steps * dt);
+      }
+      // Draw.
+      visuals.update(scene->state());
+      probe_visual.update(scene->state());
+      frame = renderer.render(models);
+      std::string hud = visual::headsUpText(scene->state().time, wall_per_ms, scene->energy(scene->state()).total());
+      if (paused) hud += " | paused";
+      if (grab_mode) hud += " | grab mode";
+      visual::drawHeadsUp(frame, hud);
+      visual::drawFooter(frame, "left: push | shift+left or g: grab | right: orbit | wheel: zoom | space: pause | r | q");
+      window.show(frame);
+      if (options.on_frame) options.on_frame(ViewFrame{index, window, *scene, camera, *probe});
+    }
+    if (!options.screenshot.empty() && !frame.empty()) visual::writePng(options.screenshot, frame);
+  } catch (const SceneError& e) {
+    log << "error: " << e.what() << '\n';
+    return kRunSceneError;
+  } catch (const std::exception& e) {
+    log << "error: filum view: " << e.what() << '\n';
+    return kRunIoError;
+  }
+  return kRunOk;
+}
+
+}  // namespace filum::app

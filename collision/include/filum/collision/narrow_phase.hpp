@@ -1,0 +1,45 @@
+// Narrow phase: from candidate pairs to the contacts of one step (contact.hpp), at the step's
+// start state, with continuous detection over the step (DESIGN.md step 2).
+//
+// Thread–obstacle, per sphere k of radius r at centre x_k moving at v_k, against an obstacle
+// whose surface moves at most at speed u: the sphere may touch the surface within the step if
+//   d(x_k) − r <= margin + (|v_k| + u) h       (h: the time step),
+// since the distance between two moving sets decreases at most at their relative speed. Each
+// such sphere gives a contact at its centre's abscissa, with the surface point and normal of
+// the obstacle's query.
+//
+// Thread–thread, per pair of chords [x_k, x_{k+1}] of A and [y_l, y_{l+1}] of B (B may be A):
+// closest points p = x_k + s (x_{k+1} − x_k), q = y_l + t (y_{l+1} − y_l) at the start, gap
+// |p − q| − (r_A + r_B), and the same conservative continuous test with the largest endpoint
+// speeds of both chords. The contact point is p on A (weights (1 − s) W_k + s W_{k+1}), q on B,
+// normal n = (p − q)/|p − q|. So that one touching point gives one contact and not one per
+// chord sharing it, a closest point at a chord's end vertex is kept only where that vertex is
+// the closest point from both chords that share it (a convex corner), and then by the chord
+// that starts there; closest points inside chords are always kept. On one thread, chords that
+// are neighbours or closer than the exclusion distance along the curve are skipped
+// (sphere_collision_model.hpp).
+#pragma once
+
+#include "filum/collision/contact.hpp"
+#include "filum/collision/obstacle.hpp"
+#include "filum/collision/sphere_collision_model.hpp"
+
+namespace filum::collision {
+
+struct NarrowPhaseSettings {
+  double margin = 0.0;            // m: contacts are kept up to this gap (beyond the sweep)
+  double time_step = 0.0;         // h (s): the sweep of continuous detection; 0: discrete
+  double friction = 0.0;          // μ of thread–thread contacts and obstacles without their own
+  double time = 0.0;              // t_0 (s), the step's start
+};
+
+/// Appends to `out` the contacts of the spheres of `model` (index model_index) with `obstacle`.
+void findObstacleContacts(const SphereCollisionModel& model, int model_index, const Obstacle& obstacle,
+                          int obstacle_index, const NarrowPhaseSettings& settings, ContactSet& out);
+
+/// Appends to `out` the contact between chord k of model a and chord l of model b, if any.
+/// For a == b (self-collision) the caller passes k < l.
+bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const SphereCollisionModel& b, int model_b,
+                      int l, const NarrowPhaseSettings& settings, ContactSet& out);
+
+}  // namespace filum::collision

@@ -1,0 +1,78 @@
+// SphereCollisionModel: the collision side of a thread (paper §3: "approximating all objects by
+// spheres ... in the case of the thread, spheres are created by a sampling along the curve
+// spline"). Spheres of radius r are placed along the DynamicSpline of the component's node at
+// curvilinear spacing <= h by a SphereSamplingMapping, resampled at every step as the thread
+// stretches (talk 002). Between two consecutive centres the union of the spheres is taken as the
+// capsule around their chord: thread–thread contacts are computed between chords (segment
+// closest points, continuous detection between moving segments), thread–obstacle contacts per
+// sphere.
+//
+// Self-collision skips pairs closer than `exclusion` along the curve: two points of a curve bent
+// with radius of curvature ρ at arc distance Δ are 2ρ sin(Δ/2ρ) apart, so with ρ >= r (a thread
+// cannot bend tighter than its own radius) points closer than πr along the curve may be within
+// 2r of each other without touching; the default exclusion 4r leaves a margin.
+#pragma once
+
+#include <memory>
+
+#include "filum/collision/sphere_sampling_mapping.hpp"
+#include "filum/core/collision_pipeline.hpp"
+#include "filum/core/params.hpp"
+#include "filum/core/scene_state.hpp"
+
+namespace filum {
+class Scene;
+namespace mechanics {
+class DynamicSpline;
+}
+}  // namespace filum
+
+namespace filum::collision {
+
+class SphereCollisionModel final : public CollisionModel {
+ public:
+  struct Settings {
+    double radius = 0.0;        // r (m); 0: the spline's own radius
+    double spacing = 0.0;       // h (m); 0: r
+    bool self_collision = true;
+    double exclusion = -1.0;    // m along the curve; < 0: 4 r
+  };
+  explicit SphereCollisionModel(Settings settings) : settings_(settings) {}
+
+  /// "radius": r (m, default: the DynamicSpline's radius), "spacing": h (m, default r),
+  /// "self_collision": bool (default true), "exclusion": m along the curve (default 4 r).
+  static std::unique_ptr<SphereCollisionModel> fromParams(const Params& p);
+
+  std::string typeName() const override { return "SphereCollisionModel"; }
+
+  /// Binds the DynamicSpline of the owner node (SceneError if there is none).
+  void init(const Scene& scene);
+  /// Resamples the spheres on the curve at state s and maps centres and velocities down.
+  void update(const SceneState& s);
+
+  const mechanics::DynamicSpline& spline() const { return *spline_; }
+  /// Index of the body in Scene::bodies() and of its first point in the state.
+  int bodyIndex() const { return body_index_; }
+  int pointOffset() const { return point_offset_; }
+  double radius() const { return radius_; }
+  double exclusion() const { return exclusion_; }
+  bool selfCollision() const { return settings_.self_collision; }
+
+  const SphereSamplingMapping& mapping() const { return *mapping_; }
+  int sphereCount() const { return mapping_->outputCount(); }
+  /// Centres x_k (m) and their velocities (m/s) at the state of the last update, K × 3.
+  const Points& centers() const { return centers_; }
+  const Points& velocities() const { return velocities_; }
+
+ private:
+  Settings settings_;
+  const mechanics::DynamicSpline* spline_ = nullptr;
+  int body_index_ = 0;
+  int point_offset_ = 0;
+  double radius_ = 0.0;
+  double exclusion_ = 0.0;
+  std::unique_ptr<SphereSamplingMapping> mapping_;
+  Points centers_, velocities_;
+};
+
+}  // namespace filum::collision

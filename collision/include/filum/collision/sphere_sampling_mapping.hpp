@@ -1,0 +1,96 @@
+// SphereSamplingMapping: the collision side of a spline — K sphere centres at (near) equal
+// curvilinear spacing along P(s) = Σ_i b_i(s) q_i (paper §3: "spheres are created by a sampling
+// along the curve spline"; talk 002: "dynamic distribution (curvilinear distance)").
+//
+// resample(q) places the centres at the abscissas s_k with L(s_k) = k L / (K − 1), L the arc
+// length of the current curve, and K = ⌈L / h⌉ + 1 for the
+// target spacing h: as the thread stretches, spheres are added so that the spacing never exceeds
+// h (and neighbouring spheres of radius r >= h keep overlapping — no gaps a thread could slip
+// through). Between two resamplings the abscissas are fixed and the mapping is linear:
+//   x_k = P(s_k) = Σ_i b_i(s_k) q_i,  J = W ⊗ I₃,  W_ki = b_i(s_k),
+// so forces F_k at the centres go up to the control points as Q_i += Σ_k b_i(s_k) F_k (applyJT),
+// and a force at a point of the chord between centres k and k+1, x = (1 − t) x_k + t x_{k+1},
+// goes up through (1 − t) W_k + t W_{k+1} (pointWeights).
+//
+// Resampling runs at every step, so it is built for speed from fixed tables: L(s) on 8 table
+// intervals per polynomial piece of the basis by 4-point Gauss–Legendre with the basis
+// derivatives at the nodes precomputed (each step only forms P'(s) = Σ b'_i q_i there), and
+// s(ℓ) by cubic Hermite interpolation with ds/dℓ = 1/|P'|. (geometry::ArcLengthParameterization,
+// adaptive and exact to round-off, costs ten times as much per step: the tests check the two
+// agree.)
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "filum/core/mapping.hpp"
+#include "filum/geometry/spline_basis.hpp"
+
+namespace filum::collision {
+
+/// A point of a body as weights on its control points: x = Σ_j weight[j] q_{point[j]}.
+/// Up to two basis rows (a point on the chord between two sphere centres), merged.
+struct PointWeights {
+  static constexpr int kMax = 2 * geometry::BasisRow::kMaxSupport;
+  int count = 0;
+  std::array<int, kMax> point{};      // control point index within the body
+  std::array<double, kMax> weight{};  // dimensionless, sum 1
+
+  Vec3 evaluate(ConstPointsRef q) const {
+    Vec3 x = Vec3::Zero();
+    for (int j = 0; j < count; ++j) x += weight[j] * q.row(point[j]).transpose();
+    return x;
+  }
+};
+
+class SphereSamplingMapping final : public Mapping {
+ public:
+  /// basis: the spline's basis (cloned); spacing: target curvilinear distance h (m) > 0.
+  /// Throws std::invalid_argument otherwise.
+  SphereSamplingMapping(const geometry::SplineBasis& basis, double spacing);
+
+  std::string typeName() const override { return "SphereSamplingMapping"; }
+  int inputCount() const override { return basis_->controlPointCount(); }
+  int outputCount() const override { return static_cast<int>(abscissas_.size()); }
+
+  /// Places the centres at equal curvilinear spacing on the curve of control points q (n × 3).
+  void resample(ConstPointsRef q);
+
+  void apply(ConstPointsRef in, PointsRef out) const override;
+  void applyJ(ConstPointsRef in, ConstPointsRef v_in, PointsRef v_out) const override;
+  void applyJT(ConstPointsRef in, ConstPointsRef f_out, PointsRef f_in) const override;
+  SparseMatrix jacobian(ConstPointsRef in) const override;
+
+  /// s_k of every centre (sorted, s_0 = 0, s_{K−1} = 1).
+  const std::vector<double>& abscissas() const { return abscissas_; }
+  /// Basis row of centre k.
+  const geometry::BasisRow& row(int k) const { return rows_[k]; }
+  /// Weights of the chord point (1 − t) x_k + t x_{k+1} (t ∈ [0, 1], k + 1 < K; t = 0 for k = K − 1).
+  PointWeights pointWeights(int k, double t) const;
+  /// Arc length L of the curve at the last resample (m) and the actual spacing L / (K − 1).
+  double length() const { return length_; }
+  double spacing() const { return actual_spacing_; }
+  double targetSpacing() const { return spacing_; }
+
+ private:
+  std::unique_ptr<geometry::SplineBasis> basis_;
+  double spacing_;
+  double length_ = 0.0;
+  double actual_spacing_ = 0.0;
+  std::vector<double> abscissas_;
+  std::vector<geometry::BasisRow> rows_;
+
+  // Arc-length table (model data, from the basis only): abscissas, basis derivatives there and
+  // at the 4 Gauss nodes of every table interval; lengths and speeds filled by resample.
+  struct Derivative {
+    int first = 0;
+    int count = 0;
+    std::array<double, geometry::BasisRow::kMaxSupport> d1{};
+  };
+  std::vector<double> table_s_;
+  std::vector<Derivative> table_derivative_, gauss_;
+  std::vector<double> table_length_, table_speed_;
+};
+
+}  // namespace filum::collision

@@ -1,0 +1,127 @@
+// The one translation unit of filum that includes CGAL (see triangle_mesh_surface.hpp).
+#include "filum/collision/triangle_mesh_surface.hpp"
+
+#include <filesystem>
+#include <stdexcept>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+
+namespace filum::collision {
+
+namespace {
+
+// Double-precision Cartesian kernel: closest points are constructions in doubles either way, and
+// Side_of_triangle_mesh re-shoots its ray when it meets a degenerate configuration.
+using Kernel = CGAL::Simple_cartesian<double>;
+using Point = Kernel::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+using Inside = CGAL::Side_of_triangle_mesh<Mesh, Kernel>;
+
+Vec3 toVec3(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
+Point toPoint(const Vec3& x) { return Point(x.x(), x.y(), x.z()); }
+
+}  // namespace
+
+struct TriangleMeshSurface::Impl {
+  Points vertices;
+  std::vector<Triangle> triangles;
+  Eigen::AlignedBox3d bounds;
+  Mesh mesh;
+  std::unique_ptr<Tree> tree;
+  std::unique_ptr<Inside> inside;
+};
+
+TriangleMeshSurface::TriangleMeshSurface(const Points& vertices, const std::vector<Triangle>& triangles)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.vertices = vertices;
+  m.triangles = triangles;
+  if (triangles.empty()) throw std::invalid_argument("the mesh has no triangles");
+  std::vector<Mesh::Vertex_index> index;
+  index.reserve(vertices.rows());
+  for (int v = 0; v < vertices.rows(); ++v) {
+    index.push_back(m.mesh.add_vertex(toPoint(vertices.row(v).transpose())));
+    m.bounds.extend(Vec3(vertices.row(v).transpose()));
+  }
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    const Triangle& t = triangles[f];
+    for (int c = 0; c < 3; ++c)
+      if (t[c] < 0 || t[c] >= vertices.rows())
+        throw std::invalid_argument("triangle " + std::to_string(f) + " uses vertex " + std::to_string(t[c]) +
+                                    " of " + std::to_string(vertices.rows()));
+    if (m.mesh.add_face(index[t[0]], index[t[1]], index[t[2]]) == Mesh::null_face())
+      throw std::invalid_argument("triangle " + std::to_string(f) +
+                                  " makes the mesh non-manifold or inconsistently oriented");
+  }
+  if (!CGAL::is_closed(m.mesh))
+    throw std::invalid_argument("the mesh is not closed (it has border edges); the inside test needs a closed surface");
+  m.tree = std::make_unique<Tree>(faces(m.mesh).first, faces(m.mesh).second, m.mesh);
+  m.tree->accelerate_distance_queries();
+  m.inside = std::make_unique<Inside>(m.mesh);
+}
+
+TriangleMeshSurface::~TriangleMeshSurface() = default;
+
+std::unique_ptr<TriangleMeshSurface> TriangleMeshSurface::read(const std::string& path, double scale,
+                                                               const Vec3& translation) {
+  if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such file");
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  bool ok = false;
+  try {
+    ok = CGAL::IO::read_polygon_soup(path, points, polygons);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+  if (!ok || points.empty() || polygons.empty())
+    throw std::runtime_error(path + ": CGAL could not read a polygon mesh from it (formats: .off, .obj, .stl, .ply)");
+  Points vertices(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t v = 0; v < points.size(); ++v)
+    vertices.row(static_cast<Eigen::Index>(v)) = (scale * toVec3(points[v]) + translation).transpose();
+  // Polygons fanned into triangles (v0, v_k, v_{k+1}).
+  std::vector<Triangle> triangles;
+  for (const auto& polygon : polygons) {
+    if (polygon.size() < 3) throw std::runtime_error(path + ": a face has fewer than 3 vertices");
+    for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
+      triangles.push_back({static_cast<int>(polygon[0]), static_cast<int>(polygon[k]), static_cast<int>(polygon[k + 1])});
+  }
+  try {
+    return std::make_unique<TriangleMeshSurface>(vertices, triangles);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+}
+
+int TriangleMeshSurface::vertexCount() const { return static_cast<int>(impl_->vertices.rows()); }
+int TriangleMeshSurface::triangleCount() const { return static_cast<int>(impl_->triangles.size()); }
+const Points& TriangleMeshSurface::vertices() const { return impl_->vertices; }
+const std::vector<TriangleMeshSurface::Triangle>& TriangleMeshSurface::triangles() const { return impl_->triangles; }
+const Eigen::AlignedBox3d& TriangleMeshSurface::bounds() const { return impl_->bounds; }
+
+Vec3 TriangleMeshSurface::closestPoint(const Vec3& x) const { return toVec3(impl_->tree->closest_point(toPoint(x))); }
+
+bool TriangleMeshSurface::inside(const Vec3& x) const {
+  return (*impl_->inside)(toPoint(x)) == CGAL::ON_BOUNDED_SIDE;
+}
+
+Vec3 TriangleMeshSurface::nearestFaceNormal(const Vec3& x) const {
+  const auto hit = impl_->tree->closest_point_and_primitive(toPoint(x));
+  const Mesh& mesh = impl_->mesh;
+  const auto h = mesh.halfedge(hit.second);
+  const Vec3 a = toVec3(mesh.point(mesh.source(h)));
+  const Vec3 b = toVec3(mesh.point(mesh.target(h)));
+  const Vec3 c = toVec3(mesh.point(mesh.target(mesh.next(h))));
+  // Counter-clockwise faces seen from outside: (b − a) × (c − a) points outwards.
+  return (b - a).cross(c - a).normalized();
+}
+
+}  // namespace filum::collision

@@ -1,0 +1,118 @@
+#include "filum/collision/narrow_phase.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "filum/collision/segment_closest_points.hpp"
+
+namespace filum::collision {
+
+namespace {
+
+Vec3 center(const SphereCollisionModel& m, int k) { return m.centers().row(k).transpose(); }
+double speed(const SphereCollisionModel& m, int k) { return m.velocities().row(k).norm(); }
+
+/// Abscissa of the chord point (1 − t) x_k + t x_{k+1}.
+double chordAbscissa(const SphereCollisionModel& m, int k, double t) {
+  const auto& s = m.mapping().abscissas();
+  return k + 1 < static_cast<int>(s.size()) ? (1.0 - t) * s[k] + t * s[k + 1] : s[k];
+}
+
+/// Whether the closest point at parameter u of chord k of m (against the chord [q0, q1]) is
+/// the one that represents it: inside the chord, or at a vertex that is the closest point of
+/// both chords sharing it, reported by the chord that starts there (or at the curve's ends).
+bool representsClosestPoint(const SphereCollisionModel& m, int k, double u, const Vec3& q0, const Vec3& q1) {
+  const int last_chord = m.sphereCount() - 2;
+  if (u > 0.0 && u < 1.0) return true;
+  if (u >= 1.0) return k == last_chord;  // an inner end vertex belongs to the next chord
+  if (k == 0) return true;               // the curve's first point
+  // u = 0: vertex k; keep it if chord k − 1 also has its closest point there (u' = 1).
+  return closestPointsOnSegments(center(m, k - 1), center(m, k), q0, q1).s >= 1.0;
+}
+
+}  // namespace
+
+void findObstacleContacts(const SphereCollisionModel& model, int model_index, const Obstacle& obstacle,
+                          int obstacle_index, const NarrowPhaseSettings& settings, ContactSet& out) {
+  const double r = model.radius();
+  const double mu = obstacle.friction().value_or(settings.friction);
+  const double surface_speed = obstacle.speed();
+  SurfaceSample sample;
+  for (int k = 0; k < model.sphereCount(); ++k) {
+    // Reach of the sphere during the step: d − r <= margin + (|v_k| + u) h.
+    const double reach = settings.margin + (speed(model, k) + surface_speed) * settings.time_step;
+    if (!obstacle.sample(center(model, k), r + reach, sample)) continue;
+    if (sample.distance - r > reach) continue;
+    Contact c;
+    c.model_a = model_index;
+    c.offset_a = model.pointOffset();
+    const geometry::BasisRow& row = model.mapping().row(k);
+    c.a.count = row.count;
+    for (int j = 0; j < row.count; ++j) {
+      c.a.point[j] = row.first + j;
+      c.a.weight[j] = row.value[j];
+    }
+    c.abscissa_a = model.mapping().abscissas()[k];
+    c.obstacle = obstacle_index;
+    c.surface_point = sample.point;
+    c.surface_velocity = sample.velocity;
+    c.time = settings.time;
+    c.normal = sample.normal;
+    c.radius = r;
+    c.friction = mu;
+    out.push_back(c);
+  }
+}
+
+bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const SphereCollisionModel& b, int model_b,
+                      int l, const NarrowPhaseSettings& settings, ContactSet& out) {
+  const bool self = model_a == model_b;
+  if (self && std::abs(k - l) <= 1) return false;  // neighbouring chords share a sphere
+  const Vec3 p0 = center(a, k), p1 = center(a, k + 1), q0 = center(b, l), q1 = center(b, l + 1);
+  const SegmentClosestPoints cp = closestPointsOnSegments(p0, p1, q0, q1);
+
+  // Continuous detection: the gap can shrink by at most the largest relative speed times h.
+  const double radius = a.radius() + b.radius();
+  const double sweep = (std::max(speed(a, k), speed(a, k + 1)) + std::max(speed(b, l), speed(b, l + 1))) *
+                       settings.time_step;
+  if (cp.distance - radius > settings.margin + sweep) return false;
+
+  // One contact per touching point (vertices shared by two chords).
+  if (!representsClosestPoint(a, k, cp.s, q0, q1)) return false;
+  if (!representsClosestPoint(b, l, cp.t, p0, p1)) return false;
+
+  // Self-collision: skip points closer than the exclusion distance along the curve.
+  const double s_a = chordAbscissa(a, k, cp.s), s_b = chordAbscissa(b, l, cp.t);
+  if (self && std::abs((k + cp.s) - (l + cp.t)) * a.mapping().spacing() < a.exclusion()) return false;
+
+  Contact c;
+  c.model_a = model_a;
+  c.offset_a = a.pointOffset();
+  c.a = a.mapping().pointWeights(k, cp.s);
+  c.abscissa_a = s_a;
+  c.model_b = model_b;
+  c.offset_b = b.pointOffset();
+  c.b = b.mapping().pointWeights(l, cp.t);
+  c.abscissa_b = s_b;
+  c.time = settings.time;
+  c.radius = radius;
+  c.friction = settings.friction;
+  // n = (p − q)/|p − q|; centre lines already touching: the common perpendicular, oriented from
+  // B's chord midpoint towards A's.
+  const double scale = (p1 - p0).norm() + (q1 - q0).norm();
+  if (cp.distance > 1e-12 * scale) {
+    c.normal = (cp.p - cp.q) / cp.distance;
+  } else {
+    Vec3 n = (p1 - p0).cross(q1 - q0);
+    if (!(n.norm() > 0.0)) n = Vec3::UnitZ();
+    n.normalize();
+    if (n.dot(0.5 * (p0 + p1) - 0.5 * (q0 + q1)) < 0.0) n = -n;
+    c.normal = n;
+  }
+  out.push_back(c);
+  return true;
+}
+
+}  // namespace filum::collision

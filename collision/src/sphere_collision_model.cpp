@@ -1,0 +1,57 @@
+#include "filum/collision/sphere_collision_model.hpp"
+
+#include <algorithm>
+
+#include "filum/core/node.hpp"
+#include "filum/core/scene.hpp"
+#include "filum/core/scene_error.hpp"
+#include "filum/mechanics/dynamic_spline.hpp"
+
+namespace filum::collision {
+
+std::unique_ptr<SphereCollisionModel> SphereCollisionModel::fromParams(const Params& p) {
+  Settings s;
+  s.radius = p.positive("radius", 0.0);
+  s.spacing = p.positive("spacing", 0.0);
+  s.self_collision = p.boolean("self_collision", true);
+  s.exclusion = p.nonNegative("exclusion", -1.0);
+  return std::make_unique<SphereCollisionModel>(s);
+}
+
+void SphereCollisionModel::init(const Scene& scene) {
+  MechanicalState* body = node() ? node()->mechanicalState() : nullptr;
+  spline_ = dynamic_cast<const mechanics::DynamicSpline*>(body);
+  if (!spline_)
+    throw SceneError(origin(), "a " + typeName() + " belongs in the node of a DynamicSpline (the thread it samples), "
+                                   "but its node holds " + (body ? body->typeName() : std::string("no body")));
+  const auto& bodies = scene.bodies();
+  body_index_ = static_cast<int>(std::find(bodies.begin(), bodies.end(), body) - bodies.begin());
+  point_offset_ = spline_->offset();
+  radius_ = settings_.radius > 0.0 ? settings_.radius : spline_->radius();
+  const double spacing = settings_.spacing > 0.0 ? settings_.spacing : radius_;
+  if (spacing > 2.0 * radius_)
+    throw SceneError(origin() + "/spacing",
+                     "a spacing <= 2 radius (" + std::to_string(2.0 * radius_) + " m) so that neighbouring spheres touch",
+                     std::to_string(spacing) + " m");
+  exclusion_ = settings_.exclusion >= 0.0 ? settings_.exclusion : 4.0 * radius_;
+  mapping_ = std::make_unique<SphereSamplingMapping>(spline_->basis(), spacing);
+  mapping_->resample(spline_->initialPositions());
+  const int capacity = 2 * mapping_->outputCount();  // room for stretching to twice the length
+  centers_.resize(capacity, 3);
+  velocities_.resize(capacity, 3);
+}
+
+void SphereCollisionModel::update(const SceneState& s) {
+  const ConstPointsMap q = spline_->block(s.q);
+  const ConstPointsMap v = spline_->block(s.v);
+  mapping_->resample(q);
+  const int count = mapping_->outputCount();
+  if (centers_.rows() < count) {  // grows only when the thread stretched beyond twice its length
+    centers_.resize(2 * count, 3);
+    velocities_.resize(2 * count, 3);
+  }
+  mapping_->apply(q, centers_.topRows(count));
+  mapping_->applyJ(q, v, velocities_.topRows(count));
+}
+
+}  // namespace filum::collision

@@ -1,0 +1,100 @@
+#include "filum/constraints/point_target.hpp"
+
+#include <stdexcept>
+
+#include "filum/constraints/spline_body.hpp"
+#include "filum/core/scene.hpp"
+#include "filum/core/scene_error.hpp"
+#include "filum/geometry/spline_curve.hpp"
+
+namespace filum::constraints {
+
+PointTarget PointTarget::scripted(ScriptedPath path) {
+  PointTarget t(Kind::kScripted, Vec3::Zero());
+  t.path_ = std::move(path);
+  return t;
+}
+
+PointTarget PointTarget::attached(std::string object, double abscissa) {
+  PointTarget t(Kind::kAttached, Vec3::Zero());
+  t.object_ = std::move(object);
+  t.abscissa_ = abscissa;
+  return t;
+}
+
+PointTarget PointTarget::fromParams(const Params& p) {
+  const bool has_target = p.has("target");
+  const bool has_path = p.has("path");
+  if (has_target && has_path) p.fail("path", "either 'target' or 'path', not both");
+  if (has_path) return scripted(ScriptedPath::fromParams(p, "path"));
+  if (!has_target) return PointTarget();
+  if (p.raw("target").is_object()) {
+    const Params attach = p.object("target");
+    PointTarget t = attached(attach.string("object"), attach.abscissa("abscissa"));
+    if (t.object_.empty()) attach.fail("object", "the path of the node holding the target spline");
+    t.where_ = attach.where("object");
+    attach.finish();
+    return t;
+  }
+  return fixed(p.vec3("target"));
+}
+
+void PointTarget::init(const Scene& scene, const Component& owner, const Vec3& start, const MechanicalState& own_body,
+                       double own_abscissa) {
+  if (kind_ == Kind::kStart) position_ = start;
+  if (kind_ != Kind::kAttached) return;
+  body_ = &findSpline(scene, object_, where_, owner);
+  if (body_ == &own_body && abscissa_ == own_abscissa)
+    throw SceneError(where_, "another point than the constrained one (" + owner.describe() +
+                                 " would hold a point to itself: g ≡ 0, a singular system)",
+                     "the same body at the same abscissa " + describeJson(abscissa_));
+  body_->basis().evaluate(abscissa_, row_);
+}
+
+Vec3 PointTarget::position(const SceneState& s) const {
+  switch (kind_) {
+    case Kind::kScripted:
+      return path_.position(s.time);
+    case Kind::kAttached:
+      return geometry::curvePoint(row_, body_->block(s.q));
+    default:
+      return position_;
+  }
+}
+
+Vec3 PointTarget::velocity(const SceneState& s) const {
+  switch (kind_) {
+    case Kind::kScripted:
+      return path_.velocity(s.time);
+    case Kind::kAttached:
+      return geometry::curvePoint(row_, body_->block(s.v));
+    default:
+      return Vec3::Zero();
+  }
+}
+
+Vec3 PointTarget::knownAcceleration(const SceneState& s) const {
+  return kind_ == Kind::kScripted ? path_.acceleration(s.time) : Vec3::Zero();
+}
+
+Vec3 PointTarget::attachedAcceleration(const VecX& a) const {
+  if (kind_ != Kind::kAttached) return Vec3::Zero();
+  return geometry::curvePoint(row_, body_->block(a));
+}
+
+Vec3 PointTarget::positionAt(double t) const {
+  if (kind_ == Kind::kAttached) throw std::logic_error("PointTarget::positionAt: an attached target needs a state");
+  return kind_ == Kind::kScripted ? path_.position(t) : position_;
+}
+
+void PointTarget::addToAnchor(ConstraintRows& rows, double scale) const {
+  if (kind_ != Kind::kAttached) return;
+  for (int k = 0; k < row_.count; ++k) rows.addAnchorPoint(body_->offset() + row_.first + k, -scale * row_.value[k]);
+}
+
+void PointTarget::addReaction(const Vec3& F, VecX& B) const {
+  if (kind_ != Kind::kAttached) return;
+  for (int k = 0; k < row_.count; ++k) B.segment<3>(3 * (body_->offset() + row_.first + k)) -= row_.value[k] * F;
+}
+
+}  // namespace filum::constraints

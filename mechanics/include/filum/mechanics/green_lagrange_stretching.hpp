@@ -1,0 +1,59 @@
+// GreenLagrangeStretching: continuous stretching energy of a thread with the Green-Lagrange
+// strain (Nocent & Rémion, CAS 2001; talk 002 "continuous stretching"):
+//   ε(s) = (|P'(s)|² − |P0'(s)|²) / (2 |P0'(s)|²),
+//   E = ½ ∫_0^1 E·A ε(s)² |P0'(s)| ds            (|P0'| ds = rest arc length dσ),
+// E Young's modulus (Pa), A = π r² the cross-section of the body's radius, P0 the rest
+// configuration (CurveQuadrature). Integrated by Gauss-Legendre on each polynomial piece
+// (2d − 1 nodes per piece make it exact for a uniformly parametrized rest curve).
+//
+// At a node g with weight w, x = P'(s_g) = Σ_j b'_j q_j, a0 = |P0'(s_g)| and c = E A w / a0:
+//   E_g = ½ c a0² ε²,  ∂E_g/∂x = c ε x,  ∂²E_g/∂x² = c (ε I + x xᵀ / a0²),
+//   Q_j = −Σ_g b'_j ∂E_g/∂x,  K_ij = ∂Q_i/∂q_j = −Σ_g b'_i b'_j ∂²E_g/∂x².
+// The axial force carried by the thread is N = E A ε |P'|/|P0'| (second Piola-Kirchhoff stress
+// E ε times the stretch). In compression (ε < 0) the transverse stiffness c ε is negative: a
+// string buckles; bending energies restore it.
+//
+// Stiffness derivative (for RayleighDamping): with ω = Σ_j b'_j w_j at a node,
+//   ∂(∂²E_g/∂x² ω)/∂x = (c / a0²) (ω xᵀ + (x·ω) I + x ωᵀ),
+//   ∂(K w)_i/∂q_k = −Σ_g b'_i b'_k (c / a0²) (ω xᵀ + (x·ω) I + x ωᵀ).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "filum/core/force_field.hpp"
+#include "filum/mechanics/curve_quadrature.hpp"
+#include "filum/mechanics/elastic_parameters.hpp"
+#include "filum/mechanics/stiffness_derivative.hpp"
+
+namespace filum::mechanics {
+
+class GreenLagrangeStretching final : public ForceField, public StiffnessDerivative {
+ public:
+  explicit GreenLagrangeStretching(ElasticParameters parameters) : parameters_(parameters) {}
+  /// "youngs_modulus": Pa, "rest_length": m (default: the initial curve's arc length),
+  /// "quadrature_nodes": per piece (default 2d − 1).
+  static std::unique_ptr<GreenLagrangeStretching> fromParams(const Params& p);
+
+  std::string typeName() const override { return "GreenLagrangeStretching"; }
+  void addForce(const SceneState& s, VecX& B) const override;
+  double potentialEnergy(const SceneState& s) const override;
+  void addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const override;
+  bool hasJacobian() const override { return true; }
+  void addStiffnessDerivative(const SceneState& s, const VecX& w, double factor, Triplets& out) const override;
+
+  /// E·A (N).
+  double axialStiffness() const { return axial_stiffness_; }
+  /// ℓ0 (m), the rest length integrated by the quadrature.
+  double restLength() const { return quadrature_.restLength(); }
+
+ private:
+  void init(const Scene& scene) override;
+
+  ElasticParameters parameters_;
+  double axial_stiffness_ = 0.0;  // E A (N)
+  CurveQuadrature quadrature_;
+  std::vector<double> c_;         // E A w_g / a0_g per node (N)
+};
+
+}  // namespace filum::mechanics

@@ -1,0 +1,101 @@
+// ImplicitStepSolver: Newton's method on the analytic force Jacobian for the acceleration a of a
+// one-step implicit scheme (the implicit integration of paper §3, after [HMC01]):
+//   M a = Q(q0 + θh v0 + κh² a,  v0 + θh a,  t0 + θh) + Lᵀλ,   L a = E(q0, v0, t0),
+// with (θ, κ) = (1, 1) for backward Euler (v1 = v0 + h a, q1 = q0 + h v1) and (½, ¼) for the
+// implicit midpoint rule (v1 = v0 + h a, q1 = q0 + h (v0 + v1)/2). Newton iteration k, from a_0 = 0:
+//   A_k = M − θh D_k − κh² K_k                 (K = ∂Q/∂q, D = ∂Q/∂q̇ at the iterate; StepMatrix)
+//   a_t = a_k + A_k⁻¹ (Q_k − M a_k)             (unconstrained Newton update)
+//   a_{k+1} = a_t + A_k⁻¹ Lᵀ λ,  L a_{k+1} = E  (paper §4's decomposition with A_k in place of M)
+// At convergence M a = Q + Lᵀλ holds exactly whatever A_k is (the residual is exact), so the
+// symmetrised or truncated Jacobians of StepMatrix/RayleighDamping cost iterations, not accuracy.
+// Converged when |a_{k+1} − a_k|∞ <= tolerance · max(|a_{k+1}|∞, |g|), or when the update stops
+// shrinking (|Δa_k| > ½ |Δa_{k−1}|) at the round-off floor of the residual: below √tolerance of
+// that scale, or moving the positions by θh²|Δa| <= tolerance · ℓ (ℓ the scene's extent). A
+// stiff residual's floor, ε |q| |M⁻¹K| ≈ ε ℓ ω_max² for small steps, is ~1e-4 m/s² for a real
+// suture: far above 1e-10 |a| when accelerations are small. max_iterations = 1 is the linearized
+// scheme of Baraff & Witkin (always accepted).
+//
+// Robustness. Far from equilibrium with a large step the Newton iteration may not converge: a
+// compressed thread has negative stiffness directions, so M − κh²K may be indefinite and the
+// Newton step overshoots. A non-converged iterate is never accepted (it can carry enormous
+// energy): step() then halves h and takes two steps, recursively up to max_halvings times
+// (2^max_halvings sub-steps at most), where M/h² dominates −K again. Only if that fails too is
+// the step reported to the scene (Scene::noteFault), which rolls it back. The iteration is also
+// abandoned early when the update stops shrinking above √tolerance (from the third iteration).
+//
+// Constraint rows are those of the (sub-)step's start state (Baumgarte terms included), as for
+// the explicit integrators. Workspaces are allocated on the first step and reused.
+#pragma once
+
+#include <string>
+
+#include "filum/core/params.hpp"
+#include "filum/core/scene_state.hpp"
+#include "filum/mechanics/step_matrix.hpp"
+
+namespace filum {
+class Scene;
+}
+
+namespace filum::mechanics {
+
+struct NewtonSettings {
+  int max_iterations = 10;
+  double tolerance = 1e-10;
+  int max_halvings = 10;
+  bool refactor_every_iteration = true;
+  LinearSolverChoice linear_solver = LinearSolverChoice::Auto;
+
+  /// "newton_iterations": max iterations >= 1 (default 10), "newton_tolerance": relative
+  /// tolerance >= 0 (default 1e-10; 0 runs every iteration and accepts the last),
+  /// "max_halvings": step halvings allowed when Newton does not converge (default 10),
+  /// "jacobian_update": "every_iteration" (Newton, default) or "every_step" (the chord method:
+  /// A factored once per step from the start of the iteration, later iterations only evaluate
+  /// forces and solve; linear convergence, cheaper iterations — worth it when h is small and A
+  /// changes little within a step), "linear_solver".
+  static NewtonSettings fromParams(const Params& p);
+};
+
+class ImplicitStepSolver {
+ public:
+  explicit ImplicitStepSolver(NewtonSettings settings)
+      : settings_(settings), matrix_(settings.linear_solver) {}
+
+  enum class Status { kConverged, kNotConverged, kFailed };
+
+  /// Newton for a (3N, m/s²) at step size h from state s0. kFailed: the step matrix could not
+  /// be factored or a is not finite (lastFailure() says which).
+  Status solve(Scene& scene, const SceneState& s0, double h, double theta, double kappa, VecX& a);
+
+  /// Advances s over h with the scheme (θ, κ): v1 = v0 + h a, q1 = q0 + h v0 + c h² a
+  /// (c = position_factor: 1 for backward Euler, ½ for the midpoint rule), halving h when
+  /// Newton does not converge (see above). False after Scene::noteFault when it cannot.
+  bool step(Scene& scene, SceneState& s, double h, double theta, double kappa, double position_factor);
+
+  const NewtonSettings& settings() const { return settings_; }
+  int lastIterations() const { return last_iterations_; }
+  long totalIterations() const { return total_iterations_; }
+  /// Newton solves (one per step, more when steps were halved).
+  long solves() const { return solves_; }
+  /// Steps that had to be halved.
+  long halvings() const { return halvings_; }
+  const std::string& lastFailure() const { return failure_; }
+  const StepMatrix& matrix() const { return matrix_; }
+
+ private:
+  bool advance(Scene& scene, SceneState& s, double h, double theta, double kappa, double position_factor,
+               int depth);
+
+  NewtonSettings settings_;
+  StepMatrix matrix_;
+  SceneState eval_;      // the state the forces are evaluated at
+  VecX a_, force_, ma_, next_;
+  Triplets triplets_;
+  std::string failure_;
+  int last_iterations_ = 0;
+  long total_iterations_ = 0;
+  long solves_ = 0;
+  long halvings_ = 0;
+};
+
+}  // namespace filum::mechanics

@@ -1,0 +1,57 @@
+// RayleighDamping: stiffness-proportional damping (the β K part of Rayleigh's C = α M + β K; the
+// α M part is ViscousDamping). With K(q) = ∂Q/∂q the stiffness of the body's elastic force fields
+// (every other force field of the same body except dampers) at the current positions,
+//   Q = β K(q) q̇,
+// which damps each vibration mode of frequency ω at the rate ζ = β ω / 2: high modes much more
+// than low ones, rigid motions not at all (K is evaluated at q, so it rotates with the thread).
+// Dissipation: Q·q̇ = β q̇ᵀ K q̇ <= 0 wherever K is negative semi-definite (a convex energy, e.g.
+// a thread in tension); a compressed thread's K has positive directions, along which this term
+// would feed energy back (at most β |λ_max(K)| |q̇|²).
+// Jacobian: ∂Q/∂q̇ = β K(q), and ∂Q/∂q = β ∂(K(q) q̇)/∂q from the third derivatives of the
+// energies, for the fields that provide them (StiffnessDerivative: GreenLagrangeStretching,
+// ParametricBending). For the others (CurvatureBending, GlobalStretching, SpringForceField) that
+// part of ∂Q/∂q is left out: Newton then converges linearly instead of quadratically when
+// velocities are large (the solution it converges to is unchanged).
+// K(q) is computed once per state: the force and the Jacobian at the same state share it.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "filum/core/force_field.hpp"
+#include "filum/core/params.hpp"
+
+namespace filum::mechanics {
+
+class RayleighDamping final : public ForceField {
+ public:
+  /// stiffness_coefficient β (s) >= 0.
+  explicit RayleighDamping(double stiffness_coefficient) : beta_(stiffness_coefficient) {}
+  /// "stiffness_coefficient": β (s).
+  static std::unique_ptr<RayleighDamping> fromParams(const Params& p);
+
+  std::string typeName() const override { return "RayleighDamping"; }
+  void addForce(const SceneState& s, VecX& B) const override;
+  void addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const override;
+  bool hasJacobian() const override { return true; }
+
+  double stiffnessCoefficient() const { return beta_; }
+
+ private:
+  void init(const Scene& scene) override;
+  /// The elastic force fields of the body (resolved on first use: all fields are bound by then).
+  const std::vector<const ForceField*>& elasticFields() const;
+  /// K(q) of the elastic fields as triplets (k_factor 1), recomputed only when the body's
+  /// positions or velocities change.
+  const Triplets& stiffness(const SceneState& s) const;
+
+  double beta_;
+  const Scene* scene_ = nullptr;
+  mutable bool resolved_ = false;
+  mutable std::vector<const ForceField*> elastic_;
+  mutable Triplets stiffness_;  // K(q) as triplets, at the state stiffness_key_
+  mutable VecX stiffness_key_;  // this body's q then q̇ when K was computed (2 · 3n)
+  mutable bool stiffness_valid_ = false;
+};
+
+}  // namespace filum::mechanics

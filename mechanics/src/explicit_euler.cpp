@@ -1,0 +1,14 @@
+#include "filum/mechanics/explicit_euler.hpp"
+
+#include "filum/core/scene.hpp"
+
+namespace filum::mechanics {
+
+void ExplicitEuler::step(Scene& scene, SceneState& s, double dt) {
+  scene.computeAcceleration(s, a_);
+  s.q += dt * s.v;  // with v_n, before the velocity update
+  s.v += dt * a_;
+  s.time += dt;
+}
+
+}  // namespace filum::mechanics

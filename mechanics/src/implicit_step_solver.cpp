@@ -1,0 +1,123 @@
+#include "filum/mechanics/implicit_step_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "filum/core/scene.hpp"
+
+namespace filum::mechanics {
+
+NewtonSettings NewtonSettings::fromParams(const Params& p) {
+  NewtonSettings settings;
+  settings.max_iterations = p.integer("newton_iterations", 1, settings.max_iterations);
+  settings.tolerance = p.nonNegative("newton_tolerance", settings.tolerance);
+  settings.max_halvings = p.has("max_halvings") ? p.integer("max_halvings", 0) : settings.max_halvings;
+  const std::string update = p.string("jacobian_update", "every_iteration");
+  if (update != "every_iteration" && update != "every_step")
+    p.fail("jacobian_update", "\"every_iteration\" or \"every_step\"", "\"" + update + "\"");
+  settings.refactor_every_iteration = update == "every_iteration";
+  settings.linear_solver = linearSolverFromParams(p);
+  return settings;
+}
+
+ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneState& s0, double h, double theta,
+                                                     double kappa, VecX& a) {
+  const Eigen::Index size = s0.q.size();
+  a.setZero(size);  // a_0 = 0: the first iterate evaluates forces at (q0 + θh v0, v0)
+  eval_.time = s0.time + theta * h;
+  eval_.steps = s0.steps;
+  ma_.resize(size);
+  const double gravity = scene.settings().gravity.norm();
+  const bool fixed_count = settings_.max_iterations == 1 || settings_.tolerance == 0.0;
+  // ℓ: the extent of the scene (largest side of the points' bounding box), the length scale of
+  // the round-off test below.
+  const Eigen::Index points = size / 3;
+  const auto coordinates = Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>>(s0.q.data(), 3, points);
+  const double extent = points > 0 ? (coordinates.rowwise().maxCoeff() - coordinates.rowwise().minCoeff()).maxCoeff() : 0.0;
+  ++solves_;
+  last_iterations_ = 0;
+  double previous_change = 0.0;
+
+  for (int k = 0; k < settings_.max_iterations; ++k) {
+    // The iterate's state: q = q0 + θh v0 + κh² a, v = v0 + θh a.
+    eval_.q = s0.q + (theta * h) * s0.v + (kappa * h * h) * a;
+    eval_.v = s0.v + (theta * h) * a;
+
+    // Residual r = Q(q, v) − M a.
+    scene.computeForce(eval_, force_);
+    for (const MechanicalState* body : scene.bodies()) body->multiplyMass(body->block(a), body->block(ma_));
+    force_ -= ma_;
+
+    // A = M − θh D − κh² K at the iterate, factored (at the first iterate only for the chord
+    // method).
+    if (k == 0 || settings_.refactor_every_iteration) {
+      triplets_.clear();
+      scene.addMassMatrix(1.0, triplets_);
+      scene.addForceJacobian(eval_, -kappa * h * h, -theta * h, triplets_);
+      failure_ = matrix_.assemble(scene, triplets_);
+      if (!failure_.empty()) return Status::kFailed;
+    }
+
+    // a_t = a + A⁻¹ r, then the constraints through A⁻¹.
+    matrix_.solveAll(force_);
+    next_ = a + force_;
+    scene.applyConstraints(s0, matrix_, next_);
+    if (!next_.allFinite()) {
+      failure_ = "Newton iteration " + std::to_string(k + 1) + " produced non-finite accelerations";
+      return Status::kFailed;
+    }
+
+    const double change = (next_ - a).lpNorm<Eigen::Infinity>();
+    a.swap(next_);
+    ++last_iterations_;
+    ++total_iterations_;
+    if (fixed_count) continue;
+    const double scale = std::max(a.lpNorm<Eigen::Infinity>(), gravity);
+    if (change <= settings_.tolerance * scale) return Status::kConverged;
+    // Newton contracts quadratically; the chord method linearly, at a rate below 1.
+    const double contraction = settings_.refactor_every_iteration ? 0.5 : 1.0;
+    if (k >= 1 && change > contraction * previous_change) {
+      // No longer contracting: either the round-off floor of the residual is reached — the
+      // update is below √tolerance of the acceleration scale, or it moves the positions by less
+      // than tolerance · ℓ (θh² |Δa|: the floor of a stiff residual, ε |q| |M⁻¹K|, can exceed
+      // tiny accelerations) — accept; or Newton is not converging: give up from the third
+      // iteration on (the caller halves the step).
+      if (change <= std::sqrt(settings_.tolerance) * scale || theta * h * h * change <= settings_.tolerance * extent)
+        return Status::kConverged;
+      if (k >= 2) return Status::kNotConverged;
+    }
+    previous_change = change;
+  }
+  return fixed_count ? Status::kConverged : Status::kNotConverged;
+}
+
+bool ImplicitStepSolver::step(Scene& scene, SceneState& s, double h, double theta, double kappa,
+                              double position_factor) {
+  if (advance(scene, s, h, theta, kappa, position_factor, 0)) return true;
+  scene.noteFault(scene.integrator().describe() + ": " + failure_);
+  return false;
+}
+
+bool ImplicitStepSolver::advance(Scene& scene, SceneState& s, double h, double theta, double kappa,
+                                 double position_factor, int depth) {
+  const Status status = solve(scene, s, h, theta, kappa, a_);
+  if (status == Status::kConverged) {
+    // v1 = v0 + h a,  q1 = q0 + h v0 + c h² a.
+    s.q += h * s.v + (position_factor * h * h) * a_;
+    s.v += h * a_;
+    s.time += h;
+    return true;
+  }
+  if (depth >= settings_.max_halvings) {
+    if (status == Status::kNotConverged)
+      failure_ = "Newton did not converge in " + std::to_string(settings_.max_iterations) + " iterations, even with " +
+                 std::to_string(1L << depth) + " sub-steps of " + std::to_string(h) + " s";
+    return false;
+  }
+  // Two steps of h/2 (the state advances through the first before the second starts).
+  ++halvings_;
+  return advance(scene, s, 0.5 * h, theta, kappa, position_factor, depth + 1) &&
+         advance(scene, s, 0.5 * h, theta, kappa, position_factor, depth + 1);
+}
+
+}  // namespace filum::mechanics

@@ -1,0 +1,63 @@
+#include "filum/mechanics/rayleigh_damping.hpp"
+
+#include "filum/core/scene.hpp"
+#include "filum/mechanics/stiffness_derivative.hpp"
+#include "filum/mechanics/viscous_damping.hpp"
+
+namespace filum::mechanics {
+
+std::unique_ptr<RayleighDamping> RayleighDamping::fromParams(const Params& p) {
+  return std::make_unique<RayleighDamping>(p.nonNegative("stiffness_coefficient", 0.0));
+}
+
+void RayleighDamping::init(const Scene& scene) {
+  scene_ = &scene;
+  resolved_ = false;
+  stiffness_valid_ = false;
+}
+
+const std::vector<const ForceField*>& RayleighDamping::elasticFields() const {
+  if (!resolved_) {
+    elastic_.clear();
+    for (const ForceField* field : scene_->forceFields()) {
+      if (field == this || !field->bound() || &field->body() != &body()) continue;
+      if (dynamic_cast<const RayleighDamping*>(field) || dynamic_cast<const ViscousDamping*>(field)) continue;
+      if (field->hasJacobian()) elastic_.push_back(field);
+    }
+    resolved_ = true;
+  }
+  return elastic_;
+}
+
+const Triplets& RayleighDamping::stiffness(const SceneState& s) const {
+  // The key is the body's positions and velocities (a spring's ∂Q/∂q has dashpot terms in q̇).
+  const Eigen::Index offset = 3 * body().offset(), size = 3 * body().pointCount();
+  if (!stiffness_valid_ || stiffness_key_.head(size) != s.q.segment(offset, size) ||
+      stiffness_key_.tail(size) != s.v.segment(offset, size)) {
+    stiffness_.clear();
+    for (const ForceField* field : elasticFields()) field->addJacobian(s, 1.0, 0.0, stiffness_);
+    stiffness_key_.resize(2 * size);
+    stiffness_key_ << s.q.segment(offset, size), s.v.segment(offset, size);
+    stiffness_valid_ = true;
+  }
+  return stiffness_;
+}
+
+void RayleighDamping::addForce(const SceneState& s, VecX& B) const {
+  // Q = β K(q) q̇, K from the elastic fields' analytic Jacobians (k_factor = 1, no damping part).
+  for (const Triplet& t : stiffness(s)) B[t.row()] += beta_ * t.value() * s.v[t.col()];
+}
+
+void RayleighDamping::addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const {
+  if (beta_ == 0.0) return;
+  // ∂Q/∂q̇ = β K(q).
+  if (d_factor != 0.0)
+    for (const Triplet& t : stiffness(s)) out.emplace_back(t.row(), t.col(), d_factor * beta_ * t.value());
+  // ∂Q/∂q = β ∂(K(q) q̇)/∂q, from the fields that can differentiate their stiffness.
+  if (k_factor != 0.0)
+    for (const ForceField* field : elasticFields())
+      if (const auto* derivative = dynamic_cast<const StiffnessDerivative*>(field))
+        derivative->addStiffnessDerivative(s, s.v, k_factor * beta_, out);
+}
+
+}  // namespace filum::mechanics

@@ -1,0 +1,94 @@
+// `filum view` under Xvfb (issue 7): the window opens, plays the scene, and mouse events sent to
+// it through the X server (a Shift + left press on the thread, drags, release) make the probe
+// grab the thread and pull it; q closes it. Skipped only if there is no DISPLAY and Xvfb is not
+// installed.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "filum/geometry/spline_curve.hpp"
+#include "filum/mechanics/dynamic_spline.hpp"
+#include "filum/visual/image_file.hpp"
+#include "filum/visual/offscreen_renderer.hpp"
+#include "filum/run_command.hpp"
+#include "filum/view_command.hpp"
+#include "visual/visual_test_support.hpp"
+
+namespace filum::app {
+namespace {
+
+namespace fs = std::filesystem;
+using visual::WindowEvent;
+
+TEST(ViewCommand, MouseGrabsAndPullsTheThread) {
+  if (!visual::renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)";
+  std::string reason;
+  const auto display = test::displayOrSkipReason(reason);
+  if (!display) GTEST_SKIP() << reason;
+
+  const fs::path out = fs::path(FILUM_BINARY_DIR) / "test_output" / "view";
+  fs::create_directories(out);
+  ViewOptions options;
+  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/hanging_thread.json";
+  options.frames = 24;
+  options.fixed_step = 0.02;  // 20 ms of simulation per frame, whatever the machine's speed
+  options.screenshot = (out / "view_last_frame.png").string();
+  bool grabbed = false, mapped = false;
+  double grab_abscissa = 0.0;
+  Vec3 target = Vec3::Zero(), reached = Vec3::Zero();
+  int target_u = 0, target_v = 0;
+  options.on_frame = [&](const ViewFrame& f) {
+    const auto& spline = static_cast<const mechanics::DynamicSpline&>(*f.scene.bodies().front());
+    const ConstPointsMap q = spline.block(f.scene.state().q);
+    if (f.index == 0) mapped = f.window.mapped();
+    if (f.index == 3) {
+      // Shift + left press on the thread's middle.
+      const visual::Pixel p = visual::project(f.camera, geometry::curvePoint(spline.basis(), q, 0.5));
+      f.window.sendToSelf({WindowEvent::Type::kButtonPress, static_cast<int>(p.u), static_cast<int>(p.v), 1, true, ""});
+      target_u = static_cast<int>(p.u) + 120;  // drag 120 pixels to the right, 60 up
+      target_v = static_cast<int>(p.v) - 60;
+    }
+    if (f.index == 4) {
+      grabbed = f.probe.grabbing;
+      grab_abscissa = f.probe.grab_abscissa;
+    }
+    if (f.index > 4 && f.index <= 10)  // drag in 6 moves
+      f.window.sendToSelf({WindowEvent::Type::kMotion, target_u - 20 * (10 - f.index), target_v + 10 * (10 - f.index), 0, true, ""});
+    if (f.index == 23) {
+      target = f.probe.position;
+      reached = geometry::curvePoint(spline.basis(), q, grab_abscissa);
+      f.window.sendToSelf({WindowEvent::Type::kButtonRelease, target_u, target_v, 1, true, ""});
+    }
+  };
+  std::ostringstream log;
+  ASSERT_EQ(viewScene(options, log), kRunOk) << log.str();
+  EXPECT_TRUE(mapped);
+  EXPECT_TRUE(grabbed) << "the Shift + left press on the thread did not grab it";
+  EXPECT_NEAR(grab_abscissa, 0.5, 0.05);
+  // After 0.26 s of holding the probe still, the grabbed point is at the probe (within 2 mm).
+  EXPECT_LT((reached - target).norm(), 2e-3) << "probe " << target.transpose() << ", point " << reached.transpose();
+  EXPECT_EQ(visual::readPng(options.screenshot).width, 960);
+}
+
+TEST(ViewCommand, QuitKeyClosesTheWindow) {
+  if (!visual::renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)";
+  std::string reason;
+  const auto display = test::displayOrSkipReason(reason);
+  if (!display) GTEST_SKIP() << reason;
+  ViewOptions options;
+  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/hanging_thread.json";
+  options.frames = 1000;
+  options.fixed_step = 0.001;
+  int frames = 0;
+  options.on_frame = [&](const ViewFrame& f) {
+    frames = f.index + 1;
+    if (f.index == 2) f.window.sendToSelf({WindowEvent::Type::kKey, 0, 0, 0, false, "q"});
+  };
+  std::ostringstream log;
+  ASSERT_EQ(viewScene(options, log), kRunOk) << log.str();
+  EXPECT_LE(frames, 5);
+}
+
+}  // namespace
+}  // namespace filum::app

@@ -1,0 +1,84 @@
+// The reference scenes of issue 5 run to the end without diverging, and do what their comments
+// say: apps/scenes/constraints.json (paper Fig. 1a), fallopian.json (C2 junctions, cut at
+// t = 2 s), sliding.json (a thread pulled through two holes).
+#include <gtest/gtest.h>
+
+#include <iostream>
+
+#include "filum/all_components.hpp"
+#include "filum/constraints/sliding_point_constraint.hpp"
+#include "filum/core/scene.hpp"
+#include "filum/core/scene_loader.hpp"
+#include "filum/geometry/spline_curve.hpp"
+#include "filum/mechanics/dynamic_spline.hpp"
+
+namespace filum {
+namespace {
+
+std::unique_ptr<Scene> load(const std::string& name) {
+  return loadScene(std::string(FILUM_SOURCE_DIR) + "/apps/scenes/" + name, app::makeFactory());
+}
+
+/// Runs the scene's whole duration; returns the largest constraint violation (m).
+double runToTheEnd(Scene& scene) {
+  const long steps = std::lround(scene.settings().duration / scene.settings().dt);
+  double worst = 0.0;
+  for (long k = 0; k < steps; ++k) {
+    const StepReport report = scene.step();
+    EXPECT_TRUE(report.ok) << report.message;
+    if (!report.ok) return std::numeric_limits<double>::infinity();
+    const VecX g = scene.constraintViolation(scene.state());
+    if (g.size()) worst = std::max(worst, g.cwiseAbs().maxCoeff());
+  }
+  return worst;
+}
+
+TEST(ReferenceScenes, ConstraintsFigure1a) {
+  // The probe follows a smooth (C1) scripted path, so no velocity jump disturbs the others;
+  // the bound 1e-8 m holds for all four constraints throughout.
+  auto scene = load("constraints.json");
+  ASSERT_EQ(scene->dofPointCount(), 30);
+  const double worst = runToTheEnd(*scene);
+  std::cout << "  constraints.json: violation <= " << worst << " m\n";
+  EXPECT_LE(worst, 1e-8);
+  EXPECT_FALSE(scene->constraints().back()->active()) << "the probe lets go at t = 3 s";
+}
+
+TEST(ReferenceScenes, FallopianTubeSeparatesAfterTheCut) {
+  auto scene = load("fallopian.json");
+  ASSERT_EQ(scene->bodies().size(), 3u);
+  const double worst = runToTheEnd(*scene);
+  const auto& middle = dynamic_cast<const mechanics::DynamicSpline&>(*scene->bodies()[1]);
+  const auto& right = dynamic_cast<const mechanics::DynamicSpline&>(*scene->bodies()[2]);
+  const double gap = (geometry::curvePoint(middle.basis(), middle.block(scene->state().q), 1.0) -
+                      geometry::curvePoint(right.basis(), right.block(scene->state().q), 0.0))
+                         .norm();
+  std::cout << "  fallopian.json: violation <= " << worst << " m; the cut ends are " << gap << " m apart at t = "
+            << scene->state().time << " s\n";
+  EXPECT_LE(worst, 1e-8);
+  EXPECT_GT(gap, 0.01);
+}
+
+TEST(ReferenceScenes, SlidingStitch) {
+  auto scene = load("sliding.json");
+  const double worst = runToTheEnd(*scene);
+  std::cout << "  sliding.json: violation <= " << worst << " m;";
+  int holes = 0;
+  for (const Constraint* c : scene->constraints())
+    if (const auto* h = dynamic_cast<const constraints::SlidingPointConstraint*>(c)) {
+      ++holes;
+      std::cout << " s = " << h->abscissa(scene->state());
+      EXPECT_TRUE(h->active());
+    }
+  std::cout << "\n";
+  EXPECT_EQ(holes, 2);
+  EXPECT_LE(worst, 1e-8);
+  // Both holes started at s = 0.5 and 0.7; about 3 cm of the 10 cm thread was drawn through.
+  const auto& hole1 = dynamic_cast<const constraints::SlidingPointConstraint&>(*scene->constraints()[0]);
+  const auto& hole2 = dynamic_cast<const constraints::SlidingPointConstraint&>(*scene->constraints()[1]);
+  EXPECT_LT(hole1.abscissa(scene->state()), 0.5 - 0.2);
+  EXPECT_LT(hole2.abscissa(scene->state()), 0.7 - 0.2);
+}
+
+}  // namespace
+}  // namespace filum

@@ -1,0 +1,161 @@
+// Shared pieces of the visual tests: a factory with the visual components, small scenes built
+// in code, the closed-2-manifold check of triangle meshes, and the display check (Xvfb).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <utility>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "filum/constraints/register_components.hpp"
+#include "filum/core/scene_loader.hpp"
+#include "filum/mechanics/register_components.hpp"
+#include "filum/visual/display_server.hpp"
+#include "filum/visual/register_components.hpp"
+#include "filum/visual/triangle_mesh.hpp"
+
+namespace filum::test {
+
+inline Factory visualFactory() {
+  Factory factory;
+  mechanics::register_components(factory);
+  constraints::register_components(factory);
+  visual::register_components(factory);
+  return factory;
+}
+
+/// A scene with one spline through `points` (no gravity unless given), plus `more` components
+/// in the thread's node; "camera" added if not null.
+inline nlohmann::json splineScene(const nlohmann::json& points, const nlohmann::json& more, double radius = 2e-3,
+                                  const nlohmann::json& camera = nullptr) {
+  nlohmann::json components = nlohmann::json::array();
+  components.push_back({{"type", "DynamicSpline"}, {"control_points", points}, {"mass", 1e-3}, {"radius", radius}});
+  for (const auto& c : more) components.push_back(c);
+  nlohmann::json scene{{"name", "visual test"},
+                       {"dt", 1e-4},
+                       {"gravity", {0.0, 0.0, 0.0}},
+                       {"nodes", nlohmann::json::array({{{"name", "thread"}, {"components", components}}})}};
+  if (!camera.is_null()) scene["camera"] = camera;
+  return scene;
+}
+
+/// Control points of a planar wave in the xy-plane: x from 0 to 0.1 m, y = a sin(2π x / 0.05).
+inline nlohmann::json planarWave(int n = 20, double amplitude = 0.01) {
+  nlohmann::json points = nlohmann::json::array();
+  for (int i = 0; i < n; ++i) {
+    const double x = 0.1 * i / (n - 1);
+    points.push_back({x, amplitude * std::sin(2.0 * 3.141592653589793 * x / 0.05), 0.0});
+  }
+  return points;
+}
+
+/// A helix around z: radius 0.02 m, pitch 0.03 m, 1.5 turns (non-planar, torsion).
+inline nlohmann::json helix(int n = 24) {
+  nlohmann::json points = nlohmann::json::array();
+  for (int i = 0; i < n; ++i) {
+    const double a = 3.0 * 3.141592653589793 * i / (n - 1);
+    points.push_back({0.02 * std::cos(a), 0.02 * std::sin(a), 0.03 * a / (2.0 * 3.141592653589793)});
+  }
+  return points;
+}
+
+struct ManifoldReport {
+  bool closed = true;                 // every edge in exactly two triangles
+  bool consistently_oriented = true;  // each directed edge once (neighbours traverse it oppositely)
+  bool vertex_manifold = true;        // the triangles around each vertex form one cycle
+  int euler_characteristic = 0;       // V − E + F (2 for a sphere-like surface)
+  bool no_degenerate = true;          // no triangle repeats a vertex
+  std::string first_problem;
+};
+
+/// Topological checks of a triangle mesh (after welding vertices closer than `weld`, if > 0).
+inline ManifoldReport checkClosedManifold(const visual::TriangleMesh& mesh, double weld = 0.0) {
+  ManifoldReport r;
+  // Welding: map each vertex to the first one within `weld` (quadratic; meshes here are small).
+  std::vector<int> id(mesh.vertexCount());
+  int unique = 0;
+  for (int v = 0; v < mesh.vertexCount(); ++v) {
+    id[v] = v;
+    if (weld > 0.0)
+      for (int u = 0; u < v; ++u)
+        if (id[u] == u && (mesh.vertices.row(u) - mesh.vertices.row(v)).norm() <= weld) {
+          id[v] = u;
+          break;
+        }
+    if (id[v] == v) ++unique;
+  }
+  std::map<std::pair<int, int>, int> directed;
+  std::map<std::pair<int, int>, int> undirected;
+  std::map<int, std::vector<std::pair<int, int>>> link;  // vertex → opposite edges (b, c) of its triangles
+  for (int f = 0; f < mesh.triangleCount(); ++f) {
+    const int a = id[mesh.triangles(f, 0)], b = id[mesh.triangles(f, 1)], c = id[mesh.triangles(f, 2)];
+    if (a == b || b == c || a == c) {
+      r.no_degenerate = false;
+      if (r.first_problem.empty()) r.first_problem = "degenerate triangle " + std::to_string(f);
+      continue;
+    }
+    const int t[3] = {a, b, c};
+    for (int k = 0; k < 3; ++k) {
+      const int p = t[k], q = t[(k + 1) % 3];
+      if (++directed[{p, q}] > 1) {
+        r.consistently_oriented = false;
+        if (r.first_problem.empty()) r.first_problem = "directed edge used twice";
+      }
+      ++undirected[{std::min(p, q), std::max(p, q)}];
+      link[p].push_back({q, t[(k + 2) % 3]});
+    }
+  }
+  for (const auto& [edge, count] : undirected)
+    if (count != 2) {
+      r.closed = false;
+      if (r.first_problem.empty())
+        r.first_problem = "edge " + std::to_string(edge.first) + "-" + std::to_string(edge.second) + " in " +
+                          std::to_string(count) + " triangles";
+    }
+  for (auto& [v, edges] : link) {
+    // The link of v: edges (b → c); follow them from the first and count the cycle length.
+    std::map<int, int> next;
+    for (const auto& [b, c] : edges) next[b] = c;
+    int length = 0, at = edges.front().first;
+    do {
+      if (!next.count(at)) break;
+      at = next[at];
+      ++length;
+    } while (at != edges.front().first && length <= static_cast<int>(edges.size()));
+    if (length != static_cast<int>(edges.size()) || at != edges.front().first) {
+      r.vertex_manifold = false;
+      if (r.first_problem.empty()) r.first_problem = "vertex " + std::to_string(v) + " is not a manifold vertex";
+    }
+  }
+  r.euler_characteristic = unique - static_cast<int>(undirected.size()) + mesh.triangleCount();
+  return r;
+}
+
+/// Signed volume enclosed by the triangles (divergence theorem): positive if they face outward.
+inline double signedVolume(const visual::TriangleMesh& mesh) {
+  double volume = 0.0;
+  for (int f = 0; f < mesh.triangleCount(); ++f) {
+    const Vec3 a = mesh.vertices.row(mesh.triangles(f, 0)).transpose(), b = mesh.vertices.row(mesh.triangles(f, 1)).transpose(),
+               c = mesh.vertices.row(mesh.triangles(f, 2)).transpose();
+    volume += a.dot(b.cross(c)) / 6.0;
+  }
+  return volume;
+}
+
+/// Ensures an X display for rendering tests; returns nullptr (and the caller skips) only when
+/// there is no DISPLAY and Xvfb is not installed.
+inline std::shared_ptr<visual::DisplayServer> displayOrSkipReason(std::string& reason) {
+  const char* display = std::getenv("DISPLAY");
+  if ((!display || !*display) && !visual::DisplayServer::xvfbInstalled()) {
+    reason = "no X display: DISPLAY is unset and Xvfb is not installed (Debian package xvfb, scripts/setup.sh)";
+    return nullptr;
+  }
+  return visual::DisplayServer::ensure();  // throws (the test fails) if Xvfb is installed but does not start
+}
+
+}  // namespace filum::test

@@ -1,0 +1,67 @@
+// SphereModel (scene type "SphereModel"): spheres to show probes, instruments, constraint
+// targets and, for debugging, the collision spheres sampled along a thread. Where they sit:
+//   "center": [x, y, z]       one fixed sphere (no body needed);
+//   "abscissa": s             one sphere following P(s) of the node's spline (or "object");
+//   "abscissas": [s1, ...]    several, following the spline;
+//   "count": n                n spheres at equal rest arc length along the spline, s = 0 to 1
+//                             (the collision spheres' layout);
+//   "constraint": "name"      the target X(t) of a point constraint (a scripted probe, a fixed
+//                             point's anchor), hidden once the constraint is released.
+// "radius" (m; default the spline's radius), "resolution" (latitude rings, default 12),
+// "color", "opacity". Points on the spline go through a SplineAxisMapping (positions down).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "filum/visual/spline_axis_mapping.hpp"
+#include "filum/visual/visual_model.hpp"
+
+namespace filum {
+class Constraint;
+}
+
+namespace filum::visual {
+
+class SphereModel final : public VisualModel {
+ public:
+  enum class Placement { kFixed, kOnCurve, kEvenlyOnCurve, kConstraintTarget };
+  struct Options {
+    Placement placement = Placement::kFixed;
+    Vec3 center = Vec3::Zero();       // kFixed
+    std::vector<double> abscissas;    // kOnCurve
+    int count = 0;                    // kEvenlyOnCurve
+    std::string constraint;           // kConstraintTarget
+    std::optional<double> radius;     // m
+    int resolution = 12;
+  };
+  explicit SphereModel(Options options);
+  static std::unique_ptr<SphereModel> fromParams(const Params& p);
+
+  std::string typeName() const override { return "SphereModel"; }
+  bool needsBody() const override {
+    return options_.placement == Placement::kOnCurve || options_.placement == Placement::kEvenlyOnCurve;
+  }
+  void update(const SceneState& s) override;
+  const TriangleMesh& mesh(int = 0) const override { return mesh_; }
+
+  /// Centres and radius of the last update.
+  const Points& centers() const { return centers_; }
+  double radius() const { return radius_; }
+
+ protected:
+  void init(const Scene& scene) override;
+
+ private:
+  Options options_;
+  double radius_ = 0.0;
+  TriangleMesh unit_;
+  std::unique_ptr<SplineAxisMapping> mapping_;
+  const Constraint* constraint_ = nullptr;
+  Points centers_;
+  TriangleMesh mesh_;
+};
+
+}  // namespace filum::visual

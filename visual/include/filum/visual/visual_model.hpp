@@ -1,0 +1,47 @@
+// VisualModel: the visual side of the three-sided model (DESIGN.md): what is drawn or exported
+// for a body — a skinned tube, spheres, a mesh from a file, a meshed implicit surface. It reads
+// the body's DOFs through a mapping (positions down only: nothing drawn pushes back) and hands
+// triangle meshes to the exporters (OBJ, PLY, VTK) and the renderers.
+//
+// A visual model is a component of the scene file like any other. It acts on the body of its
+// node, or of the node named by "object"; models that need no body (a fixed sphere, an organ
+// mesh) may sit in any node. VisualScene binds them and updates them when a frame is drawn, not
+// at every simulation step.
+#pragma once
+
+#include <string>
+
+#include "filum/core/body_component.hpp"
+#include "filum/core/scene_state.hpp"
+#include "filum/visual/material.hpp"
+#include "filum/visual/triangle_mesh.hpp"
+
+namespace filum::visual {
+
+class VisualModel : public BodyComponent {
+ public:
+  /// True if the model follows a body (it is then bound to one, see VisualScene).
+  virtual bool needsBody() const { return true; }
+
+  /// True for models that draw the body itself (a skin, an implicit surface): a spline that no
+  /// such model follows gets a default skin (VisualScene).
+  virtual bool drawsBody() const { return false; }
+
+  /// Initialises a model that needs no body (VisualScene calls bind() for the others).
+  void initWithoutBody(const Scene& scene) { init(scene); }
+
+  /// Recomputes the meshes from state s (positions down through the model's mapping).
+  virtual void update(const SceneState& s) = 0;
+
+  /// The meshes of the last update(); most models have one.
+  virtual int meshCount() const { return 1; }
+  virtual const TriangleMesh& mesh(int index = 0) const = 0;
+
+  const Material& material() const { return material_; }
+  void setMaterial(const Material& m) { material_ = m; }
+
+ private:
+  Material material_;
+};
+
+}  // namespace filum::visual

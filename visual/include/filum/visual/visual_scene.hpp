@@ -1,0 +1,38 @@
+// VisualScene: the visual side of a loaded scene — every VisualModel of the node tree, bound to
+// its body (its node's, or the node named by "object"), plus a default skin
+// (GeneralizedCylinder with the spline's radius) for each DynamicSpline that no skin or surface
+// follows, so that every scene can be drawn and exported. update(s) maps positions down for the
+// frame being drawn (not at every simulation step).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "filum/core/scene.hpp"
+#include "filum/visual/visual_model.hpp"
+
+namespace filum::visual {
+
+class VisualScene {
+ public:
+  /// Binds the models of `scene` (which must outlive this object). Throws SceneError naming the
+  /// model at fault (no such node, no body where one is needed, a body of the wrong kind).
+  explicit VisualScene(Scene& scene);
+
+  /// Recomputes every model's meshes from state s.
+  void update(const SceneState& s);
+
+  const std::vector<VisualModel*>& models() const { return models_; }
+  /// A unique, file-name-safe name per model: "<node path>_<model name>" with '/' and spaces as '_'.
+  const std::string& modelName(std::size_t i) const { return names_[i]; }
+  /// Bounds of every vertex of the last update (false if there is none).
+  bool bounds(Vec3& lower, Vec3& upper) const;
+
+ private:
+  std::vector<VisualModel*> models_;
+  std::vector<std::string> names_;
+  std::vector<std::unique_ptr<VisualModel>> defaults_;  // default skins (not in the node tree)
+};
+
+}  // namespace filum::visual

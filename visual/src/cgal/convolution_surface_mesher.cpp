@@ -1,0 +1,88 @@
+// The only translation unit that includes CGAL (compile time): see convolution_surface_mesher.hpp.
+#include "filum/visual/convolution_surface_mesher.hpp"
+
+#include <functional>
+#include <map>
+#include <stdexcept>
+#include <vector>
+
+#include <CGAL/Complex_2_in_triangulation_3.h>
+#include <CGAL/IO/facets_in_complex_2_to_triangle_mesh.h>
+#include <CGAL/Implicit_surface_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_default_triangulation_3.h>
+#include <CGAL/make_surface_mesh.h>
+
+#include <Eigen/Geometry>
+
+namespace filum::visual {
+
+namespace {
+
+using Triangulation = CGAL::Surface_mesh_default_triangulation_3;
+using Complex = CGAL::Complex_2_in_triangulation_3<Triangulation>;
+using Kernel = Triangulation::Geom_traits;
+using Point = Kernel::Point_3;
+using FT = Kernel::FT;
+
+// f(x) = T − F(x): negative inside, positive outside, as CGAL's Implicit_surface_3 expects.
+struct ImplicitFunction {
+  const geometry::ConvolutionSurface* surface;
+  FT operator()(const Point& p) const { return surface->implicitValue(Vec3(p.x(), p.y(), p.z())); }
+};
+
+using Surface = CGAL::Implicit_surface_3<Kernel, ImplicitFunction>;
+
+}  // namespace
+
+bool convolutionSurfaceMeshingAvailable() { return true; }
+
+TriangleMesh meshConvolutionSurface(const geometry::ConvolutionSurface& surface, const Vec3& inside,
+                                    double bounding_radius, const SurfaceMeshingCriteria& criteria) {
+  if (!(surface.implicitValue(inside) < 0.0))
+    throw std::invalid_argument("meshConvolutionSurface: the start point is not inside the surface");
+  Triangulation triangulation;
+  Complex complex(triangulation);
+  const ImplicitFunction function{&surface};
+  // Error bound of the bisection that locates surface points on segments: a small fraction of
+  // the approximation bound.
+  const Surface implicit(function, Kernel::Sphere_3(Point(inside.x(), inside.y(), inside.z()), bounding_radius * bounding_radius),
+                         1e-3 * criteria.approximation / bounding_radius);
+  const CGAL::Surface_mesh_default_criteria_3<Triangulation> bounds(criteria.angle_degrees, criteria.facet_size,
+                                                                   criteria.approximation);
+  CGAL::make_surface_mesh(complex, implicit, bounds, CGAL::Manifold_tag());
+  CGAL::Surface_mesh<Point> output;
+  CGAL::facets_in_complex_2_to_triangle_mesh(complex, output);
+  if (output.number_of_faces() == 0) throw std::runtime_error("meshConvolutionSurface: CGAL produced no facets");
+
+  TriangleMesh mesh;
+  mesh.vertices.resize(output.number_of_vertices(), 3);
+  mesh.normals.resize(output.number_of_vertices(), 3);
+  std::map<CGAL::Surface_mesh<Point>::Vertex_index, int> index;
+  int next = 0;
+  for (auto v : output.vertices()) {
+    const Point& p = output.point(v);
+    const Vec3 x(p.x(), p.y(), p.z());
+    mesh.vertices.row(next) = x.transpose();
+    // Outward normal ∇f = −∇F.
+    const Vec3 g = -surface.fieldGradient(x);
+    mesh.normals.row(next) = (g.norm() > 0.0 ? Vec3(g.normalized()) : Vec3::UnitZ()).transpose();
+    index[v] = next++;
+  }
+  mesh.triangles.resize(output.number_of_faces(), 3);
+  int f = 0;
+  for (auto face : output.faces()) {
+    int k = 0;
+    for (auto v : CGAL::vertices_around_face(output.halfedge(face), output)) mesh.triangles(f, k++) = index[v];
+    // Counter-clockwise seen from outside: the face normal agrees with the field normals.
+    const Vec3 a = mesh.vertices.row(mesh.triangles(f, 0)).transpose(), b = mesh.vertices.row(mesh.triangles(f, 1)).transpose(),
+               c = mesh.vertices.row(mesh.triangles(f, 2)).transpose();
+    const Vec3 n = mesh.normals.row(mesh.triangles(f, 0)).transpose() + mesh.normals.row(mesh.triangles(f, 1)).transpose() +
+                   mesh.normals.row(mesh.triangles(f, 2)).transpose();
+    if ((b - a).cross(c - a).dot(n) < 0.0) std::swap(mesh.triangles(f, 1), mesh.triangles(f, 2));
+    ++f;
+  }
+  return mesh;
+}
+
+}  // namespace filum::visual

@@ -1,0 +1,53 @@
+#include "filum/visual/convolution_surface_model.hpp"
+
+#include "filum/core/scene_error.hpp"
+#include "filum/geometry/spline_curve.hpp"
+#include "filum/mechanics/dynamic_spline.hpp"
+
+namespace filum::visual {
+
+std::unique_ptr<ConvolutionSurfaceModel> ConvolutionSurfaceModel::fromParams(const Params& p) {
+  Options o;
+  if (p.has("radius")) o.radius = p.positive("radius");
+  o.sharpness = p.nonNegative("sharpness", 0.0);
+  if (p.has("segments")) o.segments = p.integer("segments", 1);
+  if (p.has("facet_size")) o.facet_size = p.positive("facet_size");
+  if (p.has("approximation")) o.approximation = p.positive("approximation");
+  o.angle_degrees = p.positive("angle", o.angle_degrees);
+  if (o.angle_degrees > 30.0)
+    p.fail("angle", "a minimum facet angle in (0, 30] degrees (CGAL's mesher may not terminate above 30)",
+           std::to_string(o.angle_degrees));
+  o.every = p.integer("every", 1, o.every);
+  auto model = std::make_unique<ConvolutionSurfaceModel>(o);
+  model->setMaterial(Material::fromParams(p, Material{Vec3(0.9, 0.55, 0.55), 1.0}));
+  return model;
+}
+
+void ConvolutionSurfaceModel::init(const Scene&) {
+  const auto* spline = dynamic_cast<const mechanics::DynamicSpline*>(&body());
+  if (!spline)
+    throw SceneError(origin(), "a ConvolutionSurfaceModel wraps a DynamicSpline, but its body " + body().describe() +
+                                   " is not one");
+  radius_ = options_.radius.value_or(spline->radius());
+  segments_ = options_.segments.value_or(4 * (static_cast<int>(spline->basis().breakpoints().size()) - 1));
+  criteria_.angle_degrees = options_.angle_degrees;
+  criteria_.facet_size = options_.facet_size.value_or(0.5 * radius_);
+  criteria_.approximation = options_.approximation.value_or(0.05 * radius_);
+}
+
+void ConvolutionSurfaceModel::update(const SceneState& s) {
+  if (updates_++ % options_.every != 0 && !mesh_.empty()) return;
+  const auto& spline = static_cast<const mechanics::DynamicSpline&>(body());
+  const ConstPointsMap q = body().block(s.q);
+  geometry::ConvolutionSurface surface(radius_, options_.sharpness);
+  surface.addCurve(spline.basis(), q, segments_);
+  // Start inside, at the middle of the curve; the bounding ball holds the whole skeleton plus a
+  // margin of four radii (blends reach a little further than one radius).
+  const Vec3 inside = geometry::curvePoint(spline.basis(), q, 0.5);
+  double reach = 0.0;
+  for (int k = 0; k <= 64; ++k)
+    reach = std::max(reach, (geometry::curvePoint(spline.basis(), q, k / 64.0) - inside).norm());
+  mesh_ = meshConvolutionSurface(surface, inside, reach + 4.0 * radius_ + criteria_.facet_size, criteria_);
+}
+
+}  // namespace filum::visual

@@ -1,0 +1,21 @@
+#include "filum/visual/material.hpp"
+
+namespace filum::visual {
+
+Vec3 colorParam(const Params& p, const std::string& key, const Vec3& fallback) {
+  const Vec3 c = p.vec3(key, fallback);
+  if ((c.array() < 0.0).any() || (c.array() > 1.0).any())
+    p.fail(key, "an [r, g, b] colour with components in [0, 1]",
+           "[" + std::to_string(c.x()) + ", " + std::to_string(c.y()) + ", " + std::to_string(c.z()) + "]");
+  return c;
+}
+
+Material Material::fromParams(const Params& p, const Material& fallback) {
+  Material m;
+  m.color = colorParam(p, "color", fallback.color);
+  m.opacity = p.positive("opacity", fallback.opacity);
+  if (m.opacity > 1.0) p.fail("opacity", "an opacity in (0, 1]", std::to_string(m.opacity));
+  return m;
+}
+
+}  // namespace filum::visual

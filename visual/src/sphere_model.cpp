@@ -1,0 +1,122 @@
+#include "filum/visual/sphere_model.hpp"
+
+#include "filum/constraints/projected_point_constraint.hpp"
+#include "filum/core/scene.hpp"
+#include "filum/core/scene_error.hpp"
+#include "filum/geometry/arc_length.hpp"
+#include "filum/mechanics/dynamic_spline.hpp"
+#include "filum/visual/sphere_mesh.hpp"
+
+namespace filum::visual {
+
+SphereModel::SphereModel(Options options) : options_(std::move(options)), unit_(unitSphere(options_.resolution)) {}
+
+std::unique_ptr<SphereModel> SphereModel::fromParams(const Params& p) {
+  Options o;
+  int placements = 0;
+  if (p.has("center")) {
+    o.placement = Placement::kFixed;
+    o.center = p.vec3("center");
+    ++placements;
+  }
+  if (p.has("abscissa")) {
+    o.placement = Placement::kOnCurve;
+    o.abscissas = {p.abscissa("abscissa")};
+    ++placements;
+  }
+  if (p.has("abscissas")) {
+    o.placement = Placement::kOnCurve;
+    const nlohmann::json& list = p.raw("abscissas");
+    if (!list.is_array() || list.empty()) p.fail("abscissas", "a non-empty list of abscissas in [0, 1]", describeJson(list));
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      if (!list[i].is_number() || !(list[i].get<double>() >= 0.0 && list[i].get<double>() <= 1.0))
+        p.fail("abscissas", "abscissas in [0, 1]", "entry " + std::to_string(i) + " = " + describeJson(list[i]));
+      o.abscissas.push_back(list[i].get<double>());
+    }
+    ++placements;
+  }
+  if (p.has("count")) {
+    o.placement = Placement::kEvenlyOnCurve;
+    o.count = p.integer("count", 1);
+    ++placements;
+  }
+  if (p.has("constraint")) {
+    o.placement = Placement::kConstraintTarget;
+    o.constraint = p.string("constraint");
+    ++placements;
+  }
+  if (placements != 1)
+    p.fail("", "exactly one of \"center\", \"abscissa\", \"abscissas\", \"count\" or \"constraint\"",
+           std::to_string(placements) + " of them");
+  if (p.has("radius")) o.radius = p.positive("radius");
+  o.resolution = p.integer("resolution", 2, o.resolution);
+  auto model = std::make_unique<SphereModel>(std::move(o));
+  model->setMaterial(Material::fromParams(p, Material{Vec3(0.85, 0.2, 0.15), 1.0}));
+  return model;
+}
+
+void SphereModel::init(const Scene& scene) {
+  const auto* spline = bound() ? dynamic_cast<const mechanics::DynamicSpline*>(&body()) : nullptr;
+  if (needsBody() && !spline)
+    throw SceneError(origin(), "spheres on a curve need a DynamicSpline body, but " + body().describe() + " is not one");
+  if (options_.radius)
+    radius_ = *options_.radius;
+  else if (spline)
+    radius_ = spline->radius();
+  else
+    throw SceneError(origin() + "/radius", "a positive radius (m) for a sphere that is not on a spline", "nothing");
+
+  int count = 1;
+  if (options_.placement == Placement::kOnCurve) {
+    mapping_ = std::make_unique<SplineAxisMapping>(spline->basis(), options_.abscissas);
+    count = mapping_->outputCount();
+  } else if (options_.placement == Placement::kEvenlyOnCurve) {
+    std::vector<double> s{0.5};
+    if (options_.count > 1)
+      s = geometry::ArcLengthParameterization(spline->basis(), spline->initialPositions())
+              .equallySpacedAbscissas(options_.count);
+    mapping_ = std::make_unique<SplineAxisMapping>(spline->basis(), s);
+    count = mapping_->outputCount();
+  } else if (options_.placement == Placement::kConstraintTarget) {
+    for (const Constraint* c : scene.constraints())
+      if (c->name() == options_.constraint) constraint_ = c;
+    std::string known;
+    for (const Constraint* c : scene.constraints()) known += (known.empty() ? "\"" : ", \"") + c->name() + "\"";
+    if (!constraint_)
+      throw SceneError(origin() + "/constraint", "the name of a constraint of the scene (known: " + known + ")",
+                       "\"" + options_.constraint + "\"");
+    if (!dynamic_cast<const constraints::ProjectedPointConstraint*>(constraint_))
+      throw SceneError(origin() + "/constraint", "a point constraint with a target (e.g. a FixedPointConstraint)",
+                       constraint_->describe());
+  }
+  centers_.setZero(count, 3);
+}
+
+void SphereModel::update(const SceneState& s) {
+  switch (options_.placement) {
+    case Placement::kFixed:
+      centers_.row(0) = options_.center.transpose();
+      break;
+    case Placement::kOnCurve:
+    case Placement::kEvenlyOnCurve:
+      mapping_->apply(body().block(s.q), centers_);
+      break;
+    case Placement::kConstraintTarget: {
+      const auto* point = static_cast<const constraints::ProjectedPointConstraint*>(constraint_);
+      if (point->releasedAt(s) || !point->active()) {
+        centers_.resize(0, 3);  // released: nothing to draw
+      } else {
+        centers_.resize(1, 3);
+        centers_.row(0) = point->target().position(s).transpose();
+      }
+      break;
+    }
+  }
+  mesh_ = TriangleMesh{};
+  mesh_.vertices.resize(0, 3);
+  mesh_.normals.resize(0, 3);
+  mesh_.triangles.resize(0, 3);
+  for (Eigen::Index i = 0; i < centers_.rows(); ++i) appendSphere(unit_, centers_.row(i).transpose(), radius_, mesh_);
+}
+
+}  // namespace filum::visual

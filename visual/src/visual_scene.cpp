@@ -1,0 +1,103 @@
+#include "filum/visual/visual_scene.hpp"
+
+#include <cctype>
+#include <iterator>
+#include <set>
+
+#include "filum/core/scene_error.hpp"
+#include "filum/mechanics/dynamic_spline.hpp"
+#include "filum/visual/generalized_cylinder_model.hpp"
+
+namespace filum::visual {
+
+namespace {
+
+std::string safeName(std::string text) {
+  for (char& c : text)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.')) c = '_';
+  return text;
+}
+
+// Default skin colours, one per spline in declaration order.
+const Vec3 kPalette[] = {{0.15, 0.3, 0.85}, {0.85, 0.45, 0.1}, {0.2, 0.65, 0.3}, {0.7, 0.2, 0.6}, {0.1, 0.6, 0.7}};
+
+}  // namespace
+
+VisualScene::VisualScene(Scene& scene) {
+  std::vector<VisualModel*> declared;
+  scene.root().collect(declared);
+  std::set<const MechanicalState*> drawn;
+  for (VisualModel* model : declared) {
+    Node* node = model->node();
+    if (!model->objectPath().empty()) {
+      node = scene.root().find(model->objectPath());
+      if (!node) {
+        std::vector<std::string> paths;
+        scene.root().listPaths(paths);
+        std::string known;
+        for (const auto& p : paths) known += (known.empty() ? "" : ", ") + p;
+        throw SceneError(model->origin() + "/object", "the path of an existing node (known nodes: " + known + ")",
+                         "\"" + model->objectPath() + "\"");
+      }
+    }
+    MechanicalState* body = node ? node->mechanicalState() : nullptr;
+    if (body) {
+      model->bind(*body, scene);
+      if (model->drawsBody()) drawn.insert(body);
+    } else if (!model->needsBody()) {
+      model->initWithoutBody(scene);
+    } else {
+      const std::string where = model->objectPath().empty() ? model->origin() : model->origin() + "/object";
+      const std::string place = !node || node->path().empty() ? "the root node" : "node '" + node->path() + "'";
+      throw SceneError(where, model->typeName() + " '" + model->name() + "' follows a body, but " + place +
+                                  " holds no mechanical state (put it in the body's node or name one with \"object\")");
+    }
+    models_.push_back(model);
+    names_.push_back(safeName((node && !node->path().empty() ? node->path() + "_" : "") + model->name()));
+  }
+  // Default skins for the splines nothing draws.
+  int colour = 0;
+  for (MechanicalState* body : scene.bodies()) {
+    const auto* spline = dynamic_cast<const mechanics::DynamicSpline*>(body);
+    if (!spline) continue;
+    const Vec3 color = kPalette[colour++ % std::size(kPalette)];
+    if (drawn.count(body)) continue;
+    auto skin = std::make_unique<GeneralizedCylinderModel>(GeneralizedCylinderModel::Options{});
+    skin->setName("skin");
+    skin->setOrigin(body->origin() + " (default skin)");
+    skin->setNode(body->node());
+    skin->setMaterial(Material{color, 1.0});
+    skin->bind(*body, scene);
+    models_.push_back(skin.get());
+    names_.push_back(safeName(body->node()->path() + "_skin"));
+    defaults_.push_back(std::move(skin));
+  }
+  // Names must be unique (they become file names).
+  std::set<std::string> seen;
+  for (std::string& name : names_) {
+    std::string unique = name;
+    for (int k = 2; !seen.insert(unique).second; ++k) unique = name + "_" + std::to_string(k);
+    name = unique;
+  }
+}
+
+void VisualScene::update(const SceneState& s) {
+  for (VisualModel* model : models_) model->update(s);
+}
+
+bool VisualScene::bounds(Vec3& lower, Vec3& upper) const {
+  bool any = false;
+  for (const VisualModel* model : models_)
+    for (int i = 0; i < model->meshCount(); ++i) {
+      const TriangleMesh& mesh = model->mesh(i);
+      if (mesh.vertexCount() == 0) continue;
+      Vec3 lo, hi;
+      meshBounds(mesh, lo, hi);
+      lower = any ? Vec3(lower.cwiseMin(lo)) : lo;
+      upper = any ? Vec3(upper.cwiseMax(hi)) : hi;
+      any = true;
+    }
+  return any;
+}
+
+}  // namespace filum::visual
