@@ -164,6 +164,33 @@ TEST(SphereModel, SpheresFollowTheCurveAConstraintTargetOrStayFixed) {
   EXPECT_EQ(visuals.models().size(), 4u);
 }
 
+TEST(SphereModel, MarksASlidingHoleAndFollowsAScriptedPath) {
+  // A needle hole (its target is the initial P(s) of the sliding point) and a probe on a linear
+  // path from the origin to (0.1, 0, 0) between t = 0 and t = 1 s: at t = 0.25 s it is at x =
+  // 0.025 m exactly (linear interpolation, exact in binary for these numbers).
+  const json more = json::array(
+      {{{"type", "SlidingPointConstraint"}, {"name", "hole"}, {"abscissa", 0.5}},
+       {{"type", "SphereModel"}, {"name", "hole marker"}, {"constraint", "hole"}, {"radius", 1e-3}},
+       {{"type", "SphereModel"}, {"name", "probe"}, {"radius", 5e-3},
+        {"path", {{{"time", 0.0}, {"position", {0, 0, 0}}}, {{"time", 1.0}, {"position", {0.1, 0, 0}}}}}}});
+  json scene = test::splineScene(test::planarWave(), more);
+  scene["constraint_solver"] = {{"type", "LagrangeMultiplierSolver"}};
+  auto loaded = loadScene(scene, "test", test::visualFactory());
+  VisualScene visuals(*loaded);
+  SceneState s = loaded->state();
+  s.time = 0.25;
+  visuals.update(s);
+  const auto* hole = dynamic_cast<const SphereModel*>(visuals.models()[0]);
+  const auto* probe = dynamic_cast<const SphereModel*>(visuals.models()[1]);
+  ASSERT_TRUE(hole && probe);
+  const auto& spline = static_cast<const mechanics::DynamicSpline&>(*loaded->bodies().front());
+  const Vec3 hole_point = geometry::curvePoint(spline.basis(), spline.block(loaded->state().q), 0.5);
+  ASSERT_EQ(hole->centers().rows(), 1);
+  EXPECT_LE((hole->centers().row(0).transpose() - hole_point).norm(), 1e-15);
+  EXPECT_LE((probe->centers().row(0).transpose() - Vec3(0.025, 0, 0)).norm(), 1e-17);
+  EXPECT_EQ(probe->radius(), 5e-3);
+}
+
 TEST(SphereModel, NeedsExactlyOnePlacement) {
   try {
     loadScene(test::splineScene(test::planarWave(),

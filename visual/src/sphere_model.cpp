@@ -1,6 +1,7 @@
 #include "filum/visual/sphere_model.hpp"
 
 #include "filum/constraints/projected_point_constraint.hpp"
+#include "filum/constraints/sliding_point_constraint.hpp"
 #include "filum/core/scene.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/arc_length.hpp"
@@ -45,8 +46,13 @@ std::unique_ptr<SphereModel> SphereModel::fromParams(const Params& p) {
     o.constraint = p.string("constraint");
     ++placements;
   }
+  if (p.has("path")) {
+    o.placement = Placement::kScriptedPath;
+    o.path = constraints::ScriptedPath::fromParams(p, "path");
+    ++placements;
+  }
   if (placements != 1)
-    p.fail("", "exactly one of \"center\", \"abscissa\", \"abscissas\", \"count\" or \"constraint\"",
+    p.fail("", "exactly one of \"center\", \"abscissa\", \"abscissas\", \"count\", \"constraint\" or \"path\"",
            std::to_string(placements) + " of them");
   if (p.has("radius")) o.radius = p.positive("radius");
   o.resolution = p.integer("resolution", 2, o.resolution);
@@ -85,8 +91,13 @@ void SphereModel::init(const Scene& scene) {
     if (!constraint_)
       throw SceneError(origin() + "/constraint", "the name of a constraint of the scene (known: " + known + ")",
                        "\"" + options_.constraint + "\"");
-    if (!dynamic_cast<const constraints::ProjectedPointConstraint*>(constraint_))
-      throw SceneError(origin() + "/constraint", "a point constraint with a target (e.g. a FixedPointConstraint)",
+    if (const auto* point = dynamic_cast<const constraints::ProjectedPointConstraint*>(constraint_))
+      target_ = &point->target();
+    else if (const auto* hole = dynamic_cast<const constraints::SlidingPointConstraint*>(constraint_))
+      target_ = &hole->target();
+    else
+      throw SceneError(origin() + "/constraint",
+                       "a point constraint with a target (e.g. a FixedPointConstraint or a SlidingPointConstraint)",
                        constraint_->describe());
   }
   centers_.setZero(count, 3);
@@ -101,16 +112,17 @@ void SphereModel::update(const SceneState& s) {
     case Placement::kEvenlyOnCurve:
       mapping_->apply(body().block(s.q), centers_);
       break;
-    case Placement::kConstraintTarget: {
-      const auto* point = static_cast<const constraints::ProjectedPointConstraint*>(constraint_);
-      if (point->releasedAt(s) || !point->active()) {
+    case Placement::kConstraintTarget:
+      if (constraint_->releasedAt(s) || !constraint_->active()) {
         centers_.resize(0, 3);  // released: nothing to draw
       } else {
         centers_.resize(1, 3);
-        centers_.row(0) = point->target().position(s).transpose();
+        centers_.row(0) = target_->position(s).transpose();
       }
       break;
-    }
+    case Placement::kScriptedPath:
+      centers_.row(0) = options_.path.position(s.time).transpose();
+      break;
   }
   mesh_ = TriangleMesh{};
   mesh_.vertices.resize(0, 3);

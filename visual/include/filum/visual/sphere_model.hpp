@@ -5,8 +5,11 @@
 //   "abscissas": [s1, ...]    several, following the spline;
 //   "count": n                n spheres at equal rest arc length along the spline, s = 0 to 1
 //                             (the collision spheres' layout);
-//   "constraint": "name"      the target X(t) of a point constraint (a scripted probe, a fixed
-//                             point's anchor), hidden once the constraint is released.
+//   "constraint": "name"      the target X(t) of a point or sliding-point constraint (a
+//                             scripted grip, a fixed point's anchor, a needle hole), hidden
+//                             once the constraint is released;
+//   "path": [{"time", "position"}, ...]  a scripted path (constraints/scripted_path.hpp, with
+//                             "interpolation"), e.g. the same path as a ProbeSphere obstacle.
 // "radius" (m; default the spline's radius), "resolution" (latitude rings, default 12),
 // "color", "opacity". Points on the spline go through a SplineAxisMapping (positions down).
 #pragma once
@@ -16,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "filum/constraints/scripted_path.hpp"
 #include "filum/visual/spline_axis_mapping.hpp"
 #include "filum/visual/visual_model.hpp"
 
@@ -23,17 +27,22 @@ namespace filum {
 class Constraint;
 }
 
+namespace filum::constraints {
+class PointTarget;
+}
+
 namespace filum::visual {
 
 class SphereModel final : public VisualModel {
  public:
-  enum class Placement { kFixed, kOnCurve, kEvenlyOnCurve, kConstraintTarget };
+  enum class Placement { kFixed, kOnCurve, kEvenlyOnCurve, kConstraintTarget, kScriptedPath };
   struct Options {
     Placement placement = Placement::kFixed;
     Vec3 center = Vec3::Zero();       // kFixed
     std::vector<double> abscissas;    // kOnCurve
     int count = 0;                    // kEvenlyOnCurve
     std::string constraint;           // kConstraintTarget
+    constraints::ScriptedPath path;   // kScriptedPath
     std::optional<double> radius;     // m
     int resolution = 12;
   };
@@ -60,6 +69,7 @@ class SphereModel final : public VisualModel {
   TriangleMesh unit_;
   std::unique_ptr<SplineAxisMapping> mapping_;
   const Constraint* constraint_ = nullptr;
+  const constraints::PointTarget* target_ = nullptr;  // constraint_'s target
   Points centers_;
   TriangleMesh mesh_;
 };
