@@ -15,8 +15,12 @@
 //    held by c rows — groups {fixed point, point on axis, point on plane} spread evenly, the
 //    remainder as one smaller group — under gravity. n up to 5000, c up to 500. reuse = 1 is
 //    the default solver (M⁻¹ w kept between calls for anchors at fixed abscissas: the solver's
-//    per-step cost is then O(c² + n)); reuse = 0 solves every anchor in every call (what
-//    sliding points or an implicit step matrix cost: O(a·n), a anchors), showing the O(c·n).
+//    per-step cost is then O(c² + n)); reuse = 0 solves every anchor in every call (O(a·n),
+//    a anchors), showing the O(c·n) — but W itself is then still the same matrix bit for bit and
+//    its factorization is kept. sliding = 1 replaces the groups by {sliding point 2 rows, point
+//    on plane 1}: the holes' abscissas move every step, so every call solves the moved anchors,
+//    reassembles W and factors it again (dense LDLᵀ up to 64 rows, CHOLMOD above): the whole
+//    O(a·n + c² + factorization) cost of a suture.
 // 3. solve/n/c/reuse: LagrangeMultiplierSolver::solve alone on fixed rows (no forces, no
 //    integrator): the constraint part of the cost only.
 // Every StepReport is checked (a divergence fails the benchmark). Real (wall) time.
@@ -51,6 +55,7 @@ void setCounters(benchmark::State& state, long steps_per_ms, const filum::Scene&
     state.counters["solved_per_call"] = stats.solved_columns;
     state.counters["W_nonzeros"] = static_cast<double>(stats.nonzeros);
     state.counters["sparse"] = stats.sparse ? 1 : 0;
+    state.counters["refactored"] = stats.refactored ? 1 : 0;  // in the last call: W changed
   }
   state.counters["control_points"] = scene.dofPointCount();
 }
@@ -118,7 +123,7 @@ void slides(benchmark::State& state, int control_points, bool probe, const char*
 // 2 and 3. Long threads.
 
 /// n control points 3.7 mm apart (the scene's spacing), c rows in groups spread along.
-json longThread(int n, int c, bool reuse) {
+json longThread(int n, int c, bool reuse, bool sliding = false) {
   const double spacing = 0.1 / 27.0;
   const double length = spacing * (n - 3);
   json components = json::array();
@@ -129,9 +134,22 @@ json longThread(int n, int c, bool reuse) {
   components.push_back({{"type", "SpringForceField"}, {"stretch_stiffness", 1.0}, {"bend_stiffness", 0.001}, {"damping", 1e-5}});
   components.push_back({{"type", "ViscousDamping"}, {"coefficient", 0.5}});
   // Groups {fixed 3, axis 2, plane 1}; the remainder c mod 6 as the first members of a group.
-  const int groups = (c + 5) / 6;
+  // Sliding: groups {sliding point 2, plane 1} (the end s = 0 fixed so that the thread hangs).
+  const int groups = sliding ? (c + 2) / 3 : (c + 5) / 6;
   int left = c;
-  for (int g = 0; g < groups; ++g) {
+  if (sliding) components.push_back({{"type", "FixedPointConstraint"}, {"abscissa", 0.0}});
+  for (int g = 0; sliding && g < groups; ++g) {
+    const double s = (g + 0.5) / groups, ds = 0.5 / groups;
+    if (left >= 2) {
+      components.push_back({{"type", "SlidingPointConstraint"}, {"abscissa", s}, {"friction", 1e-5}});
+      left -= 2;
+    }
+    if (left >= 1) {
+      components.push_back({{"type", "PointOnPlaneConstraint"}, {"abscissa", s + ds}, {"normal", {0, 0, 1}}});
+      left -= 1;
+    }
+  }
+  for (int g = 0; !sliding && g < groups; ++g) {
     const double s = (g + 0.5) / groups, ds = 0.2 / groups;
     if (left >= 3) {
       components.push_back({{"type", "FixedPointConstraint"}, {"abscissa", s}});
@@ -157,6 +175,17 @@ json longThread(int n, int c, bool reuse) {
 void scaling(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0)), c = static_cast<int>(state.range(1));
   runScene(state, longThread(n, c, state.range(2) != 0), "long thread", kScalingWarmupSimulatedMs);
+}
+
+void sliding(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0)), c = static_cast<int>(state.range(1));
+  runScene(state, longThread(n, c, true, true), "long thread through holes", kScalingWarmupSimulatedMs);
+}
+
+void slidingArgs(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"n", "c"});
+  for (int c : {9, 30, 90, 300, 500}) b->Args({5000, c});
+  for (int n : {625, 1250, 2500}) b->Args({n, 90});
 }
 
 void solveOnly(benchmark::State& state) {
@@ -215,4 +244,5 @@ BENCHMARK_CAPTURE(slides, 50cp_9rows_SymplecticEuler, 50, true, "SymplecticEuler
     ->UseRealTime()
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(scaling)->Apply(scalingArgs)->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(0.3);
+BENCHMARK(sliding)->Apply(slidingArgs)->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(0.3);
 BENCHMARK(solveOnly)->Apply(scalingArgs)->UseRealTime()->Unit(benchmark::kMicrosecond)->MinTime(0.2);
