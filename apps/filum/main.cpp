@@ -7,6 +7,7 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/run_command.hpp"
+#include "filum/visual/camera.hpp"
 #include "filum/view_command.hpp"
 
 int main(int argc, char** argv) {
@@ -72,6 +73,8 @@ int main(int argc, char** argv) {
   if (*check_cmd) {
     try {
       auto scene = filum::loadScene(check_scene, filum::app::makeFactory());
+      // The camera block is read by --render and view only; check it here too.
+      filum::visual::readCamera(filum::readJsonFile(check_scene), check_scene);
       std::cout << check_scene << ": ok (" << scene->bodies().size() << " bodies, " << scene->dofPointCount()
                 << " control points, " << scene->constraints().size() << " constraints)\n";
       return 0;
