@@ -71,8 +71,13 @@ def plot_energy(columns, out):
     axes[0].set_ylabel("energy (J)")
     axes[0].legend()
     axes[0].grid(True, alpha=0.3)
-    violation = [max(v, 1e-300) for v in columns["max_violation"]]
-    axes[1].semilogy(t, violation)
+    # Exactly zero (the start, a frame where the rows hold to the last bit) cannot be drawn on a
+    # log scale: leave those frames out rather than plotting a 1e-300 spike.
+    shown = [(ti, v) for ti, v in zip(t, columns["max_violation"]) if v > 0]
+    if shown:
+        axes[1].semilogy([p[0] for p in shown], [p[1] for p in shown])
+    else:
+        axes[1].text(0.5, 0.5, "no constraint violation (exactly 0)", ha="center", transform=axes[1].transAxes)
     axes[1].set_xlabel("time (s)")
     axes[1].set_ylabel("max constraint violation (m)")
     axes[1].grid(True, alpha=0.3)
