@@ -1,5 +1,6 @@
 #include "filum/run_visual.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +11,10 @@
 #include "filum/visual/vtp_writer.hpp"
 
 namespace filum::app {
+
+namespace {
+constexpr double kMaxVideoFps = 30.0;  // players choke on higher rates; denser frames play slowed down
+}  // namespace
 
 RunVisual::RunVisual(Scene& scene, const nlohmann::json& document, const std::string& directory,
                      const RunVisualOptions& options, double duration)
@@ -31,7 +36,7 @@ RunVisual::RunVisual(Scene& scene, const nlohmann::json& document, const std::st
     renderer_ = std::make_unique<visual::OffscreenRenderer>(camera_);
     visual::FrameRecorderOptions recorder;
     recorder.directory = directory_;
-    recorder.fps = 1.0 / camera_.frame_interval;
+    recorder.fps = std::min(kMaxVideoFps, 1.0 / camera_.frame_interval);  // slow motion beyond 30 fps
     recorder.expected_frames = static_cast<int>(std::floor(duration / camera_.frame_interval + 1e-9)) + 1;
     recorder.png_frames = options_.png_frames;
     recorder.title = scene_name_;

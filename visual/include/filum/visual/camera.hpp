@@ -5,7 +5,8 @@
 //     "size": [960, 540],         // image width and height (pixels)
 //     "background": [1, 1, 1],    // colour, components in [0, 1]
 //     "lights": [{"position": [x, y, z], "color": [1, 1, 1]}],   // default: the renderer's headlight
-//     "frame_interval": 0.0333,   // simulated seconds between rendered frames (video: 1/interval fps)
+//     "frame_interval": 0.0333,   // simulated seconds between rendered frames; the video plays
+//                                 // at 1/interval fps, at most 30 (closer frames: slow motion)
 //     "heads_up": true            // the line with time, wall time per simulated ms and energy
 //   }
 // A pinhole camera: with the camera axes right = normalize(forward × up), down = forward ×
