@@ -11,7 +11,7 @@
 
 namespace filum::mechanics {
 
-class SplinePointMapping final : public Mapping {
+class SplinePointMapping : public Mapping {
  public:
   SplinePointMapping(const geometry::SplineBasis& basis, std::vector<double> abscissas);
 

@@ -9,39 +9,25 @@
 
 #include <vector>
 
-#include "filum/core/mapping.hpp"
-#include "filum/geometry/spline_basis.hpp"
+#include "filum/mechanics/spline_point_mapping.hpp"
 
 namespace filum::visual {
 
-class SplineAxisMapping final : public Mapping {
+/// mechanics::SplinePointMapping (positions, velocities, forces and the Jacobian W ⊗ I₃) plus
+/// the tangents and second derivatives at the same abscissas.
+class SplineAxisMapping final : public mechanics::SplinePointMapping {
  public:
   /// abscissas in [0, 1] (any order; the skin passes them increasing).
   SplineAxisMapping(const geometry::SplineBasis& basis, std::vector<double> abscissas);
 
   std::string typeName() const override { return "SplineAxisMapping"; }
-  int inputCount() const override { return static_cast<int>(weights_.cols()); }
-  int outputCount() const override { return static_cast<int>(weights_.rows()); }
-  /// out = W q: the axis points P(s_k) (outputCount × 3).
-  void apply(ConstPointsRef in, PointsRef out) const override { out.noalias() = weights_ * in; }
-  void applyJ(ConstPointsRef, ConstPointsRef v_in, PointsRef v_out) const override {
-    v_out.noalias() = weights_ * v_in;
-  }
-  void applyJT(ConstPointsRef, ConstPointsRef f_out, PointsRef f_in) const override {
-    f_in.noalias() += weights_.transpose() * f_out;
-  }
-  SparseMatrix jacobian(ConstPointsRef in) const override;
 
   /// out = W' q: the derivatives P'(s_k) = dP/ds (not normalised; outputCount × 3).
   void applyDerivative(ConstPointsRef in, PointsRef out) const { out.noalias() = derivative_weights_ * in; }
   /// out = W'' q: the second derivatives P''(s_k) = d²P/ds² (outputCount × 3).
   void applySecondDerivative(ConstPointsRef in, PointsRef out) const { out.noalias() = second_weights_ * in; }
 
-  const std::vector<double>& abscissas() const { return abscissas_; }
-
  private:
-  std::vector<double> abscissas_;
-  SparseMatrix weights_;             // W  (m × n), b_i(s_k)
   SparseMatrix derivative_weights_;  // W' (m × n), b'_i(s_k)
   SparseMatrix second_weights_;      // W'' (m × n), b''_i(s_k)
 };
