@@ -5,8 +5,8 @@
 
 writes pareto_<problem>.png next to each CSV: a log-log plot of the error against the wall time
 per simulated second, one colour per integrator, one marker per number of control points, the
-Pareto front (the runs no other run beats on both axes) as a line. Unstable runs are left out
-(listed in the CSV with error inf). How to read it: the lower left is better; a point on the
+Pareto front (the runs no other run beats on both axes) as a line. Unstable runs and runs
+stopped at the wall-time budget are left out (listed in the CSV with error inf). How to read it: the lower left is better; a point on the
 front is the cheapest way to reach its accuracy; along one colour, moving right is a smaller
 time step or more control points.
 """
@@ -61,7 +61,8 @@ def plot(path):
         ys = [float(r["error"]) for r in front]
         ax.step(xs, ys, where="post", color="black", linewidth=1.2, label="Pareto front")
         ax.scatter(xs, ys, facecolors="none", edgecolors="black", s=80, linewidths=1.2)
-    unstable = len(rows) - len(stable)
+    slow = sum(1 for r in rows if r.get("over_budget") == "1")
+    unstable = len(rows) - len(stable) - slow
     # Legends: colours (integrators) and markers (n).
     for integrator, colour in COLOURS.items():
         if any(r["integrator"] == integrator for r in rows):
@@ -72,7 +73,8 @@ def plot(path):
     ax.set_yscale("log")
     ax.set_xlabel("wall time per simulated second (s/s), one thread")
     ax.set_ylabel("error against the analytic solution")
-    ax.set_title(f"{problem}: run time against error ({len(stable)} stable runs, {unstable} unstable not shown)")
+    ax.set_title(f"{problem}: run time against error ({len(stable)} stable runs; not shown: {unstable} unstable"
+                 + (f", {slow} over the time budget" if slow else "") + ")")
     if meaning:
         fig.text(0.01, 0.005, meaning, fontsize=8)
     ax.grid(True, which="both", alpha=0.3)

@@ -26,11 +26,23 @@ std::unique_ptr<Scene> loadProblem(const ReferenceProblem& problem, const RunSet
 }
 
 bool advance(Scene& scene, double t_end, std::string* failure) {
+  bool out_of_time = false;
+  return advance(scene, t_end, std::chrono::steady_clock::time_point::max(), failure, &out_of_time);
+}
+
+bool advance(Scene& scene, double t_end, std::chrono::steady_clock::time_point deadline, std::string* failure,
+             bool* out_of_time) {
   const double dt = scene.settings().dt;
+  *out_of_time = false;
   while (scene.state().time < t_end - 0.5 * dt) {
     const StepReport report = scene.step();
     if (!report.ok) {
       if (failure) *failure = report.message;
+      return false;
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      *out_of_time = true;
+      if (failure) *failure = "over the wall-time budget";
       return false;
     }
   }
@@ -41,14 +53,18 @@ RunResult runProblem(const ReferenceProblem& problem, const RunSettings& setting
   auto scene = loadProblem(problem, settings);
   RunResult result;
   using Clock = std::chrono::steady_clock;
+  const auto deadline = settings.wall_budget > 0.0
+                            ? Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                 std::chrono::duration<double>(settings.wall_budget))
+                            : Clock::time_point::max();
   double wall = 0.0;
   for (double t : problem.sampleTimes()) {
     const auto start = Clock::now();
-    const bool ok = advance(*scene, t, &result.failure);
+    const bool ok = advance(*scene, t, deadline, &result.failure, &result.over_budget);
     wall += std::chrono::duration<double>(Clock::now() - start).count();
     result.simulated = scene->state().time;
     if (!ok) {
-      result.stable = false;
+      result.stable = result.over_budget;  // too slow is not unstable
       break;
     }
     const double e = problem.error(*scene);
@@ -61,7 +77,7 @@ RunResult runProblem(const ReferenceProblem& problem, const RunSettings& setting
   }
   result.wall_seconds = wall;
   result.steps = scene->stepCount();
-  if (!result.stable) result.error = std::numeric_limits<double>::infinity();
+  if (!result.stable || result.over_budget) result.error = std::numeric_limits<double>::infinity();
   return result;
 }
 

@@ -5,6 +5,8 @@
 // files, so the problems exercise exactly what `filum run` runs.
 #pragma once
 
+#include <chrono>
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,6 +36,7 @@ struct RunSettings {
   nlohmann::json integrator = {{"type", "ImplicitEuler"}};
   double dt = 1e-4;        // s
   int control_points = 30;
+  double wall_budget = 0.0;  // s of wall time for the whole run; 0: no limit
 };
 
 class ReferenceProblem {
@@ -61,6 +64,7 @@ struct RunResult {
   double wall_seconds = 0.0;   // wall time of the stepping only (s)
   double simulated = 0.0;      // simulated time reached (s)
   long steps = 0;
+  bool over_budget = false;    // stopped after RunSettings::wall_budget (error inf, not unstable)
   double wallPerSimulatedSecond() const { return simulated > 0.0 ? wall_seconds / simulated : 0.0; }
 };
 
@@ -73,6 +77,9 @@ std::unique_ptr<Scene> loadProblem(const ReferenceProblem& problem, const RunSet
 
 /// Steps until scene time >= t_end (to within dt/2); false at the first failed step.
 bool advance(Scene& scene, double t_end, std::string* failure = nullptr);
+/// The same, giving up (false, `*out_of_time` set) once steady_clock passes `deadline`.
+bool advance(Scene& scene, double t_end, std::chrono::steady_clock::time_point deadline, std::string* failure,
+             bool* out_of_time);
 
 /// A node with one DynamicSpline holding the given control points and mass.
 nlohmann::json splineComponent(const nlohmann::json& control_points, double mass, double radius);
