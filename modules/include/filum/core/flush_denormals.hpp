@@ -5,7 +5,7 @@
 // Why: M⁻¹ w, the response of a thread to a constraint or contact anchor, decays like 0.535^k
 // with the distance k in control points (lagrange_multiplier_solver.hpp), so about 1100 control
 // points away it enters the subnormal range, where x86 arithmetic is 10–100 times slower. On
-// long threads that made band solves up to ~30 times slower than the same solve on normal
+// long threads that made band solves up to 16 times slower than the same solve on normal
 // numbers (apps/bench/bench_constraints, n = 2500 and 5000). Flushing is deterministic (the same
 // bits on every run) and changes only values below 2.2e-308, which no physical quantity of a
 // scene in SI units reaches. Elsewhere than x86-64 this is a no-op.
