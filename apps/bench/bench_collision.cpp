@@ -98,8 +98,8 @@ void Scene(benchmark::State& state, const std::string& file) {
     for (long k = 0; k < steps_per_ms; ++k) {
       const filum::StepReport report = scene->step();
       if (!report.ok) {
-        state.SkipWithError(report.message.c_str());
-        return;
+        state.SkipWithError(report.message.c_str());  // the benchmark loop ends at its next check
+        break;
       }
       contacts += static_cast<double>(pipeline.contacts().size());
       spheres += pipeline.statistics().spheres;

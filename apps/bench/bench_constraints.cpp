@@ -33,6 +33,7 @@
 #include <string>
 
 #include "filum/all_components.hpp"
+#include "scene_stepping.hpp"
 #include "filum/constraints/lagrange_multiplier_solver.hpp"
 #include "filum/core/flush_denormals.hpp"
 #include "filum/core/scene.hpp"
@@ -71,24 +72,7 @@ void runScene(benchmark::State& state, const json& document, const std::string& 
     return;
   }
   const long steps_per_ms = std::lround(1e-3 / scene->settings().dt);
-  for (long k = 0; k < warmup_ms * steps_per_ms; ++k) {
-    const filum::StepReport report = scene->step();
-    if (!report.ok) {
-      state.SkipWithError(("warm-up: " + report.message).c_str());
-      return;
-    }
-  }
-  for (auto _ : state) {
-    for (long k = 0; k < steps_per_ms; ++k) {
-      const filum::StepReport report = scene->step();
-      if (!report.ok) {
-        state.SkipWithError(report.message.c_str());
-        break;
-      }
-    }
-    benchmark::DoNotOptimize(scene->state().q.data());
-    benchmark::ClobberMemory();
-  }
+  filum::bench::timeSteps(*scene, warmup_ms * steps_per_ms, steps_per_ms, state);
   setCounters(state, steps_per_ms, *scene);
 }
 

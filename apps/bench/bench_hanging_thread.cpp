@@ -35,6 +35,7 @@
 #include <benchmark/benchmark.h>
 
 #include "filum/all_components.hpp"
+#include "scene_stepping.hpp"
 #include "filum/core/scene.hpp"
 #include "filum/core/scene_loader.hpp"
 
@@ -88,25 +89,7 @@ void hangingThread(benchmark::State& state, Variant variant) {
     return;
   }
 
-  for (long k = 0; k < kWarmupSimulatedMs * steps_per_ms; ++k) {
-    const filum::StepReport report = scene->step();
-    if (!report.ok) {
-      state.SkipWithError(("warm-up: " + report.message).c_str());
-      return;
-    }
-  }
-
-  for (auto _ : state) {
-    for (long k = 0; k < steps_per_ms; ++k) {
-      const filum::StepReport report = scene->step();
-      if (!report.ok) {
-        state.SkipWithError(report.message.c_str());
-        break;
-      }
-    }
-    benchmark::DoNotOptimize(scene->state().q.data());
-    benchmark::ClobberMemory();
-  }
+  filum::bench::timeSteps(*scene, kWarmupSimulatedMs * steps_per_ms, steps_per_ms, state);
 
   using benchmark::Counter;
   state.counters["wall_ms_per_sim_ms"] = Counter(1e-3, Counter::kIsIterationInvariantRate | Counter::kInvert);
