@@ -37,10 +37,14 @@ std::unique_ptr<Scene> stabilityScene(const nlohmann::json& integrator, const St
 
 double stiffestFrequency(const StabilityProblem& problem) {
   auto scene = stabilityScene({{"type", "RungeKutta4"}}, problem, 1e-4);
+  return stiffestFrequency(*scene, scene->state());
+}
+
+double stiffestFrequency(const Scene& scene, const SceneState& s) {
   Triplets kt, mt;
-  scene->addForceJacobian(scene->state(), 1.0, 0.0, kt);
-  scene->addMassMatrix(1.0, mt);
-  const Eigen::Index n = scene->state().q.size();
+  scene.addForceJacobian(s, 1.0, 0.0, kt);
+  scene.addMassMatrix(1.0, mt);
+  const Eigen::Index n = s.q.size();
   Eigen::SparseMatrix<double> K(n, n), M(n, n);
   K.setFromTriplets(kt.begin(), kt.end());
   M.setFromTriplets(mt.begin(), mt.end());

@@ -15,6 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "filum/core/scene.hpp"
+
 namespace filum::validation {
 
 struct StabilityProblem {
@@ -31,6 +33,11 @@ bool runIsStable(const nlohmann::json& integrator, const StabilityProblem& probl
 /// −K v = λ M v, K the analytic Jacobian; the fixed point is left out: it removes modes, it does
 /// not stiffen them).
 double stiffestFrequency(const StabilityProblem& problem);
+
+/// ω_max (rad/s) of a scene's linearized dynamics at state s: the largest |λ| of −K v = λ M v
+/// (K the symmetric part of the analytic Jacobian ∂Q/∂q, M the mass matrix), square-rooted.
+/// Dense generalized eigenproblem: for test-sized scenes.
+double stiffestFrequency(const Scene& scene, const SceneState& s);
 
 /// The largest dt in [dt_min, dt_max] for which the run is stable, by bisection on log dt
 /// (`bisections` halvings of the bracket); dt_max if stable there, 0 if dt_min is unstable.

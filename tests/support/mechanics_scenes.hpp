@@ -5,11 +5,11 @@
 #include <memory>
 #include <string>
 
-#include <Eigen/Eigenvalues>
 #include <nlohmann/json.hpp>
 
 #include "filum/all_components.hpp"
 #include "filum/core/scene.hpp"
+#include "validation/stability.hpp"
 #include "filum/core/scene_loader.hpp"
 
 namespace filum::test {
@@ -45,19 +45,7 @@ inline std::unique_ptr<Scene> loadThreadWith(const ThreadSpec& spec, const nlohm
   return loadScene(threadWith(spec, more_components), "mechanics test thread", factory);
 }
 
-/// ω_max (rad/s) of the unconstrained linearized dynamics at state s: the largest
-/// √|λ| of −K v = λ M v (K: the analytic Jacobian of every force field, symmetrised; M: the mass).
-inline double stiffestFrequency(const Scene& scene, const SceneState& s) {
-  Triplets kt, mt;
-  scene.addForceJacobian(s, 1.0, 0.0, kt);
-  scene.addMassMatrix(1.0, mt);
-  const Eigen::Index n = s.q.size();
-  Eigen::SparseMatrix<double> K(n, n), M(n, n);
-  K.setFromTriplets(kt.begin(), kt.end());
-  M.setFromTriplets(mt.begin(), mt.end());
-  const MatX Kd = MatX(K);
-  const VecX eig = Eigen::GeneralizedSelfAdjointEigenSolver<MatX>(-0.5 * (Kd + Kd.transpose()), MatX(M)).eigenvalues();
-  return std::sqrt(eig.cwiseAbs().maxCoeff());
-}
+/// ω_max (rad/s) of the linearized dynamics at state s (apps/validation/stability.hpp).
+using validation::stiffestFrequency;
 
 }  // namespace filum::test
