@@ -64,13 +64,8 @@ void setCounters(benchmark::State& state, long steps_per_ms, const filum::Scene&
 
 /// Steps one simulated millisecond per iteration after a warm-up of `warmup_ms` simulated ms.
 void runScene(benchmark::State& state, const json& document, const std::string& name, int warmup_ms) {
-  std::unique_ptr<filum::Scene> scene;
-  try {
-    scene = filum::loadScene(document, name, filum::app::makeFactory());
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+  std::unique_ptr<filum::Scene> scene = filum::bench::loadOrSkip(document, name, state);
+  if (!scene) return;
   const long steps_per_ms = std::lround(1e-3 / scene->settings().dt);
   filum::bench::timeSteps(*scene, warmup_ms * steps_per_ms, steps_per_ms, state);
   setCounters(state, steps_per_ms, *scene);
@@ -175,13 +170,8 @@ void slidingArgs(benchmark::internal::Benchmark* b) {
 
 void solveOnly(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0)), c = static_cast<int>(state.range(1));
-  std::unique_ptr<filum::Scene> scene;
-  try {
-    scene = filum::loadScene(longThread(n, c, state.range(2) != 0), "long thread", filum::app::makeFactory());
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+  std::unique_ptr<filum::Scene> scene = filum::bench::loadOrSkip(longThread(n, c, state.range(2) != 0), "long thread", state);
+  if (!scene) return;
   for (int k = 0; k < 100; ++k) scene->step();
   const filum::SceneState& s = scene->state();
   filum::ConstraintRows rows;

@@ -81,13 +81,8 @@ void hangingThread(benchmark::State& state, Variant variant) {
   }
   const long steps_per_ms = std::lround(1e-3 / dt);
 
-  std::unique_ptr<filum::Scene> scene;
-  try {
-    scene = filum::loadScene(document, path + " (patched)", filum::app::makeFactory());
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+  std::unique_ptr<filum::Scene> scene = filum::bench::loadOrSkip(document, path + " (patched)", state);
+  if (!scene) return;
 
   filum::bench::timeSteps(*scene, kWarmupSimulatedMs * steps_per_ms, steps_per_ms, state);
 

@@ -25,6 +25,7 @@
 #include "filum/core/scene.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/mechanics/implicit_euler.hpp"
+#include "scene_stepping.hpp"
 
 namespace {
 
@@ -45,13 +46,8 @@ void implicitStep(benchmark::State& state, Variant variant) {
     components.erase(3);  // RayleighDamping
   }
   document["integrator"]["linear_solver"] = variant.linear_solver;
-  std::unique_ptr<filum::Scene> scene;
-  try {
-    scene = filum::loadScene(document, path + " (patched)", filum::app::makeFactory());
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+  std::unique_ptr<filum::Scene> scene = filum::bench::loadOrSkip(document, path + " (patched)", state);
+  if (!scene) return;
   const double dt = scene->settings().dt;
   for (int k = 0; k < static_cast<int>(0.05 / dt); ++k)
     if (!scene->step().ok) {

@@ -4,11 +4,26 @@
 
 #include <benchmark/benchmark.h>
 
+#include <memory>
 #include <string>
 
+#include "filum/all_components.hpp"
 #include "filum/core/scene.hpp"
+#include "filum/core/scene_loader.hpp"
 
 namespace filum::bench {
+
+/// The scene of `document` with every component of this build; null after
+/// state.SkipWithError(why) when it does not load.
+inline std::unique_ptr<Scene> loadOrSkip(const nlohmann::json& document, const std::string& name,
+                                         benchmark::State& state) {
+  try {
+    return loadScene(document, name, app::makeFactory());
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return nullptr;
+  }
+}
 
 /// Steps `steps` times; on a failed step: state.SkipWithError(prefix + its message), false.
 inline bool stepOrSkip(Scene& scene, long steps, benchmark::State& state, const std::string& prefix = "") {

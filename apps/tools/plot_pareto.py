@@ -20,13 +20,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COLOURS = {
-    "ExplicitEuler": "tab:gray",
-    "SymplecticEuler": "tab:orange",
-    "RungeKutta4": "tab:blue",
-    "ImplicitEuler": "tab:red",
-    "ImplicitMidpoint": "tab:green",
-}
+from integrator_colours import COLOURS  # noqa: E402  (beside this script)
+
 MARKERS = ["o", "s", "^", "D", "v", "P", "X"]
 
 

@@ -1,0 +1,8 @@
+"""One colour per integrator, shared by the plots of apps/bench (plot_pareto.py, plot_stability.py)."""
+COLOURS = {
+    "ExplicitEuler": "tab:gray",
+    "SymplecticEuler": "tab:orange",
+    "RungeKutta4": "tab:blue",
+    "ImplicitEuler": "tab:red",
+    "ImplicitMidpoint": "tab:green",
+}
