@@ -42,8 +42,9 @@ double stiffestFrequency(const StabilityProblem& problem) {
 
 double stiffestFrequency(const Scene& scene, const SceneState& s) {
   Triplets kt, mt;
-  scene.addForceJacobian(s, 1.0, 0.0, kt);
-  scene.addMassMatrix(1.0, mt);
+  TripletAccumulator k_accumulator(kt), m_accumulator(mt);
+  scene.addForceJacobian(s, 1.0, 0.0, k_accumulator);
+  scene.addMassMatrix(1.0, m_accumulator);
   const Eigen::Index n = s.q.size();
   Eigen::SparseMatrix<double> K(n, n), M(n, n);
   K.setFromTriplets(kt.begin(), kt.end());

@@ -125,7 +125,8 @@ void ContactPipeline::addForce(const SceneState& s, VecX& B) const {
   }
 }
 
-void ContactPipeline::addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const {
+void ContactPipeline::addJacobian(const SceneState& s, double k_factor, double d_factor,
+                                  JacobianAccumulator& out) const {
   if (settings_.response != Response::kPenalty) return;
   for (const Contact& c : contacts_) {
     const ContactKinematics k = contactKinematics(c, s);

@@ -21,7 +21,7 @@ PenaltyForce penaltyForce(const Contact& c, const ContactKinematics& k, const Pe
 }
 
 void addPenaltyJacobian(const Contact& c, const ContactKinematics& k, const PenaltyLaw& law, double k_factor,
-                        double d_factor, Triplets& out) {
+                        double d_factor, JacobianAccumulator& out) {
   const PenaltyForce f = penaltyForce(c, k, law);
   if (!(f.normal > 0.0)) return;
   const Vec3& n = c.normal;
@@ -48,10 +48,7 @@ void addPenaltyJacobian(const Contact& c, const ContactKinematics& k, const Pena
     for (int i = 0; i < wi.count; ++i)
       for (int j = 0; j < wj.count; ++j) {
         const double scale = si * sj * wi.weight[i] * wj.weight[j];
-        const int row = 3 * (oi + wi.point[i]), col = 3 * (oj + wj.point[j]);
-        for (int r = 0; r < 3; ++r)
-          for (int s = 0; s < 3; ++s)
-            if (block(r, s) != 0.0) out.emplace_back(row + r, col + s, scale * block(r, s));
+        out.addBlock(oi + wi.point[i], oj + wj.point[j], scale * block);
       }
   };
   emit(c.a, c.offset_a, 1.0, c.a, c.offset_a, 1.0);

@@ -34,6 +34,16 @@ std::string BandedLdlt::factor() {
   return "";
 }
 
+MatX BandedLdlt::reconstruct() const {
+  MatX L = MatX::Identity(n_, n_);
+  VecX d(n_);
+  for (int i = 0; i < n_; ++i) {
+    for (int j = std::max(0, i - p_); j < i; ++j) L(i, j) = at(i, j);
+    d[i] = at(i, i);
+  }
+  return L * d.asDiagonal() * L.transpose();
+}
+
 void BandedLdlt::solve(Eigen::Ref<VecX> x) const {
   // L y = x, z = D⁻¹ y, Lᵀ x = z.
   for (int i = 0; i < n_; ++i) {

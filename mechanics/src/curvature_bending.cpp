@@ -85,7 +85,7 @@ double CurvatureBending::potentialEnergy(const SceneState& s) const {
   return energy;
 }
 
-void CurvatureBending::addJacobian(const SceneState& s, double k_factor, double, Triplets& out) const {
+void CurvatureBending::addJacobian(const SceneState& s, double k_factor, double, JacobianAccumulator& out) const {
   if (k_factor == 0.0) return;
   const ConstPointsMap q = body().block(s.q);
   SupportJacobian jacobian(out, body().offset(), -k_factor);

@@ -27,13 +27,12 @@ void DynamicSpline::addGravity(const Vec3& g, PointsRef B) const {
   for (int i = 0; i < pointCount(); ++i) B.row(i) += (mass_ * basis_integrals_[i]) * g.transpose();
 }
 
-void DynamicSpline::addMassMatrix(double factor, Triplets& out) const {
+void DynamicSpline::addMassMatrix(double factor, JacobianAccumulator& out) const {
   // (M ⊗ I₃)_(3i+α, 3j+α) = M_ij: the same block for x, y and z (paper eq. 3).
-  const int base = 3 * offset();
+  const int base = offset();
   for (int i = 0; i < mass_matrix_.outerSize(); ++i)
     for (SparseMatrix::InnerIterator it(mass_matrix_, i); it; ++it)
-      for (int axis = 0; axis < 3; ++axis)
-        out.emplace_back(base + 3 * i + axis, base + 3 * static_cast<int>(it.col()) + axis, factor * it.value());
+      out.addIsotropic(base + i, base + static_cast<int>(it.col()), factor * it.value());
 }
 
 double DynamicSpline::gravityPotential(const Vec3& g, ConstPointsRef q) const {

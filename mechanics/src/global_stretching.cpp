@@ -55,7 +55,8 @@ double GlobalStretching::potentialEnergy(const SceneState& s) const {
   return 0.5 * k_ * r * r;  // Ê = ½ k (l²/l0² − 1)²
 }
 
-void GlobalStretching::addJacobian(const SceneState& s, double k_factor, double /*d_factor*/, Triplets& out) const {
+void GlobalStretching::addJacobian(const SceneState& s, double k_factor, double /*d_factor*/,
+                                    JacobianAccumulator& out) const {
   if (k_factor == 0.0) return;
   const ConstPointsMap q = body().block(s.q);
   const double l = lengthAndGradient(q);
@@ -77,15 +78,8 @@ void GlobalStretching::addJacobian(const SceneState& s, double k_factor, double 
       local.add(node.row.d1, node.row.d1, H);
     }
   }
-  // Dense rank-one part Ê''(l) ∇l ∇lᵀ.
-  const int n = body().pointCount(), base = 3 * body().offset();
-  const double scale = -k_factor * d2E;
-  for (int i = 0; i < n; ++i)
-    for (int a = 0; a < 3; ++a) {
-      const double gi = scale * gradient_(i, a);  // every entry, even zeros: a fixed pattern
-      for (int j = 0; j < n; ++j)
-        for (int b = 0; b < 3; ++b) out.emplace_back(base + 3 * i + a, base + 3 * j + b, gi * gradient_(j, b));
-    }
+  // Rank-one part Ê''(l) ∇l ∇lᵀ: kept apart by the band step matrix (Sherman–Morrison).
+  out.addRankOne(body().offset(), gradient_, -k_factor * d2E);
 }
 
 }  // namespace filum::mechanics

@@ -48,7 +48,7 @@ double GreenLagrangeStretching::potentialEnergy(const SceneState& s) const {
 }
 
 void GreenLagrangeStretching::addJacobian(const SceneState& s, double k_factor, double /*d_factor*/,
-                                          Triplets& out) const {
+                                          JacobianAccumulator& out) const {
   // Elastic: D = 0. K = −∇²E, so k_factor·K is the Hessian scaled by −k_factor.
   if (k_factor == 0.0) return;
   const ConstPointsMap q = body().block(s.q);
@@ -66,7 +66,7 @@ void GreenLagrangeStretching::addJacobian(const SceneState& s, double k_factor, 
 }
 
 void GreenLagrangeStretching::addStiffnessDerivative(const SceneState& s, const VecX& w, double factor,
-                                                     Triplets& out) const {
+                                                     JacobianAccumulator& out) const {
   if (factor == 0.0) return;
   const ConstPointsMap q = body().block(s.q);
   const ConstPointsMap wp = body().block(w);

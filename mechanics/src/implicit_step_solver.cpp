@@ -9,13 +9,20 @@ namespace filum::mechanics {
 
 NewtonSettings NewtonSettings::fromParams(const Params& p) {
   NewtonSettings settings;
+  const std::string solve = p.string("solve", "linearized");
+  if (solve != "linearized" && solve != "newton") p.fail("solve", "\"linearized\" or \"newton\"", "\"" + solve + "\"");
+  settings.linearized = solve == "linearized";
   settings.max_iterations = p.integer("newton_iterations", 1, settings.max_iterations);
-  settings.tolerance = p.nonNegative("newton_tolerance", settings.tolerance);
   settings.max_halvings = p.has("max_halvings") ? p.integer("max_halvings", 0) : settings.max_halvings;
-  const std::string update = p.string("jacobian_update", "every_iteration");
-  if (update != "every_iteration" && update != "every_step")
-    p.fail("jacobian_update", "\"every_iteration\" or \"every_step\"", "\"" + update + "\"");
-  settings.refactor_every_iteration = update == "every_iteration";
+  settings.tolerance = p.nonNegative("newton_tolerance", settings.tolerance);
+  if (settings.linearized) {
+    settings.linearization_tolerance = p.positive("linearization_tolerance", settings.linearization_tolerance);
+  } else {
+    const std::string update = p.string("jacobian_update", "every_iteration");
+    if (update != "every_iteration" && update != "every_step")
+      p.fail("jacobian_update", "\"every_iteration\" or \"every_step\"", "\"" + update + "\"");
+    settings.refactor_every_iteration = update == "every_iteration";
+  }
   settings.linear_solver = linearSolverFromParams(p);
   return settings;
 }
@@ -28,7 +35,7 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
   eval_.steps = s0.steps;
   ma_.resize(size);
   const double gravity = scene.settings().gravity.norm();
-  const bool fixed_count = settings_.max_iterations == 1 || settings_.tolerance == 0.0;
+  const bool fixed_count = settings_.max_iterations == 1 || (!settings_.linearized && settings_.tolerance == 0.0);
   // ℓ: the extent of the scene (largest side of the points' bounding box), the length scale of
   // the round-off test below.
   const Eigen::Index points = size / 3;
@@ -48,30 +55,41 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
     for (const MechanicalState* body : scene.bodies()) body->multiplyMass(body->block(a), body->block(ma_));
     force_ -= ma_;
 
-    // A = M − θh D − κh² K at the iterate, factored (at the first iterate only for the chord
-    // method).
-    if (k == 0 || settings_.refactor_every_iteration) {
-      triplets_.clear();
-      scene.addMassMatrix(1.0, triplets_);
-      scene.addForceJacobian(eval_, -kappa * h * h, -theta * h, triplets_);
-      failure_ = matrix_.assemble(scene, triplets_);
+    // A = M − θh D − κh² K at the iterate, factored: at every Newton iterate, at the first only
+    // for the chord method; in linearized mode not for the estimate (k = 1).
+    const bool refactor = settings_.linearized ? k != 1 : (k == 0 || settings_.refactor_every_iteration);
+    if (refactor) {
+      failure_ = matrix_.assemble(scene, eval_, -kappa * h * h, -theta * h);
       if (!failure_.empty()) return Status::kFailed;
     }
 
     // a_t = a + A⁻¹ r, then the constraints through A⁻¹.
-    matrix_.solveAll(force_);
-    next_ = a + force_;
-    scene.applyConstraints(s0, matrix_, next_);
-    if (!next_.allFinite()) {
-      failure_ = "Newton iteration " + std::to_string(k + 1) + " produced non-finite accelerations";
-      return Status::kFailed;
+    const bool estimate = settings_.linearized && k == 1;
+    if (estimate) residual_ = force_;
+    if (!update(scene, s0, a, k)) return Status::kFailed;
+    double change = (next_ - a).lpNorm<Eigen::Infinity>();
+    if (estimate) {
+      // The error estimate of the linearized step a_1 (one chord iteration): a_1 is accepted as
+      // it is when small enough; else this iteration becomes a Newton one from a_1, with A
+      // assembled at a_1 and the residual already evaluated there.
+      ++estimates_;
+      const double displacement = (eval_.q - s0.q).lpNorm<Eigen::Infinity>();  // θh v0 + κh² a_1
+      const double floor = settings_.tolerance * extent;  // round-off level of positions (see Newton's test)
+      if (kappa * h * h * change <= settings_.linearization_tolerance * std::max(displacement, floor))
+        return Status::kConverged;
+      ++corrections_;
+      failure_ = matrix_.assemble(scene, eval_, -kappa * h * h, -theta * h);
+      if (!failure_.empty()) return Status::kFailed;
+      force_ = residual_;
+      if (!update(scene, s0, a, k)) return Status::kFailed;
+      change = (next_ - a).lpNorm<Eigen::Infinity>();
     }
-
-    const double change = (next_ - a).lpNorm<Eigen::Infinity>();
     a.swap(next_);
     ++last_iterations_;
     ++total_iterations_;
     if (fixed_count) continue;
+    // Newton's convergence test (in linearized mode after a failed estimate: the estimate was a
+    // chord iteration, and Newton goes on to the full tolerance, as in "newton" mode).
     const double scale = std::max(a.lpNorm<Eigen::Infinity>(), gravity);
     if (change <= settings_.tolerance * scale) return Status::kConverged;
     // Newton contracts quadratically; the chord method linearly, at a rate below 1.
@@ -89,6 +107,16 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
     previous_change = change;
   }
   return fixed_count ? Status::kConverged : Status::kNotConverged;
+}
+
+bool ImplicitStepSolver::update(Scene& scene, const SceneState& s0, const VecX& a, int k) {
+  // next = a + A⁻¹ r (r in force_, solved in place), then constrained through A⁻¹.
+  matrix_.solveAll(force_);
+  next_ = a + force_;
+  scene.applyConstraints(s0, matrix_, next_);
+  if (next_.allFinite()) return true;
+  failure_ = "Newton iteration " + std::to_string(k + 1) + " produced non-finite accelerations";
+  return false;
 }
 
 bool ImplicitStepSolver::step(Scene& scene, SceneState& s, double h, double theta, double kappa,

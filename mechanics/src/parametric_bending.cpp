@@ -45,13 +45,13 @@ double ParametricBending::potentialEnergy(const SceneState& s) const {
   return 0.5 * q.cwiseProduct(kq_).sum();  // ½ Σ_α qᵀ K_b q
 }
 
-void ParametricBending::addJacobian(const SceneState&, double k_factor, double, Triplets& out) const {
+void ParametricBending::addJacobian(const SceneState&, double k_factor, double, JacobianAccumulator& out) const {
   if (k_factor == 0.0) return;
-  const int base = 3 * body().offset();
+  // K = −K_b ⊗ I₃: the same constant band on every axis.
+  const int base = body().offset();
   for (int i = 0; i < stiffness_.outerSize(); ++i)
     for (SparseMatrix::InnerIterator it(stiffness_, i); it; ++it)
-      for (int axis = 0; axis < 3; ++axis)
-        out.emplace_back(base + 3 * i + axis, base + 3 * static_cast<int>(it.col()) + axis, -k_factor * it.value());
+      out.addIsotropic(base + i, base + static_cast<int>(it.col()), -k_factor * it.value());
 }
 
 }  // namespace filum::mechanics

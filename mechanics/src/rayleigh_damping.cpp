@@ -35,7 +35,8 @@ const Triplets& RayleighDamping::stiffness(const SceneState& s) const {
   if (!stiffness_valid_ || stiffness_key_.head(size) != s.q.segment(offset, size) ||
       stiffness_key_.tail(size) != s.v.segment(offset, size)) {
     stiffness_.clear();
-    for (const ForceField* field : elasticFields()) field->addJacobian(s, 1.0, 0.0, stiffness_);
+    TripletAccumulator stiffness(stiffness_);
+    for (const ForceField* field : elasticFields()) field->addJacobian(s, 1.0, 0.0, stiffness);
     stiffness_key_.resize(2 * size);
     stiffness_key_ << s.q.segment(offset, size), s.v.segment(offset, size);
     stiffness_valid_ = true;
@@ -48,11 +49,12 @@ void RayleighDamping::addForce(const SceneState& s, VecX& B) const {
   for (const Triplet& t : stiffness(s)) B[t.row()] += beta_ * t.value() * s.v[t.col()];
 }
 
-void RayleighDamping::addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const {
+void RayleighDamping::addJacobian(const SceneState& s, double k_factor, double d_factor,
+                                  JacobianAccumulator& out) const {
   if (beta_ == 0.0) return;
   // ∂Q/∂q̇ = β K(q).
   if (d_factor != 0.0)
-    for (const Triplet& t : stiffness(s)) out.emplace_back(t.row(), t.col(), d_factor * beta_ * t.value());
+    for (const Triplet& t : stiffness(s)) out.addEntry(t.row(), t.col(), d_factor * beta_ * t.value());
   // ∂Q/∂q = β ∂(K(q) q̇)/∂q, from the fields that can differentiate their stiffness.
   if (k_factor != 0.0)
     for (const ForceField* field : elasticFields())

@@ -60,12 +60,13 @@ double SpringForceField::potentialEnergy(const SceneState& s) const {
   return e;
 }
 
-void SpringForceField::addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const {
+void SpringForceField::addJacobian(const SceneState& s, double k_factor, double d_factor,
+                                   JacobianAccumulator& out) const {
   const ConstPointsMap q = body().block(s.q);
   mapping_->apply(q, x_);
   mapping_->applyJ(q, body().block(s.v), v_);
   const SparseMatrix& W = mapping_->weights();
-  const int base = 3 * body().offset();
+  const int base = body().offset();
   for (const Spring& spring : springs_) {
     const Vec3 d = (x_.row(spring.b) - x_.row(spring.a)).transpose();
     const double l = d.norm();
@@ -87,9 +88,7 @@ void SpringForceField::addJacobian(const SceneState& s, double k_factor, double 
         for (SparseMatrix::InnerIterator wi(W, ends[kk]); wi; ++wi)
           for (SparseMatrix::InnerIterator wj(W, ends[mm]); wj; ++wj) {
             const double w = sign * wi.value() * wj.value();
-            const int row = base + 3 * static_cast<int>(wi.col()), col = base + 3 * static_cast<int>(wj.col());
-            for (int r = 0; r < 3; ++r)
-              for (int c = 0; c < 3; ++c) out.emplace_back(row + r, col + c, w * block(r, c));
+            out.addBlock(base + static_cast<int>(wi.col()), base + static_cast<int>(wj.col()), w * block);
           }
       }
   }

@@ -15,130 +15,259 @@ LinearSolverChoice linearSolverFromParams(const Params& p) {
   p.fail("linear_solver", "\"auto\", \"band\" or \"sparse\"", "\"" + name + "\"");
 }
 
-void StepMatrix::analyse(const Scene& scene, const Triplets& triplets) {
+namespace {
+// Half bandwidth of the interleaved 3n × 3n matrix when points up to `range` apart interact.
+int halfBandwidth(int range) { return 3 * range + 2; }
+}  // namespace
+
+void StepMatrix::analyse(const Scene& scene) {
   const auto& bodies = scene.bodies();
   const int body_count = static_cast<int>(bodies.size());
-  const int coordinates = 3 * scene.dofPointCount();
-  coordinate_body_.assign(coordinates, 0);
-  for (int b = 0; b < body_count; ++b)
-    std::fill_n(coordinate_body_.begin() + 3 * bodies[b]->offset(), 3 * bodies[b]->pointCount(), b);
-  body_block_.assign(body_count, -1);
-
-  // Half bandwidth of each body's block, and whether any entry couples two bodies.
-  wanted_width_.assign(body_count, 0);
-  bool coupled = false;
-  for (const Triplet& t : triplets) {
-    const int bi = coordinate_body_[t.row()], bj = coordinate_body_[t.col()];
-    if (bi != bj) {
-      coupled = true;
-      continue;
+  const int points = scene.dofPointCount();
+  const bool new_scene = static_cast<int>(point_body_.size()) != points || static_cast<int>(body_first_.size()) != body_count;
+  if (new_scene) {
+    point_body_.assign(points, 0);
+    body_first_.assign(body_count, 0);
+    wanted_range_.assign(body_count, -1);
+    wanted_coupling_ = false;
+    for (int b = 0; b < body_count; ++b) {
+      body_first_[b] = bodies[b]->offset();
+      std::fill_n(point_body_.begin() + bodies[b]->offset(), bodies[b]->pointCount(), b);
     }
-    wanted_width_[bi] = std::max(wanted_width_[bi], std::abs(t.row() - t.col()));
   }
-
-  // One sparse block for everything when bodies are coupled, else one block per body.
-  coupled_ = coupled;
+  body_block_.assign(body_count, 0);
   blocks_.clear();
+  has_constant_ = false;
+  ++layouts_;
+
+  // One sparse block for everything when bodies are coupled, else one block per body whose band
+  // is as wide as the body declares (couplingRange) or as the entries turned out to need.
+  coupled_ = wanted_coupling_;
   if (coupled_) {
     Block& block = blocks_.emplace_back();
-    block.first = 0;
-    block.size = coordinates;
+    block.first_point = 0;
+    block.points = points;
     block.band = false;
-    std::fill(body_block_.begin(), body_block_.end(), 0);
-  } else {
-    for (int b = 0; b < body_count; ++b) {
-      Block& block = blocks_.emplace_back();
-      block.first = 3 * bodies[b]->offset();
-      block.size = 3 * bodies[b]->pointCount();
-      block.band = choice_ == LinearSolverChoice::Band ||
-                   (choice_ == LinearSolverChoice::Auto && wanted_width_[b] <= kAutoBandLimit);
-      block.half_bandwidth = wanted_width_[b];
-      if (block.band) block.band_factor.resize(block.size, block.half_bandwidth);
-      body_block_[b] = b;
+    return;
+  }
+  for (int b = 0; b < body_count; ++b) {
+    Block& block = blocks_.emplace_back();
+    block.first_point = bodies[b]->offset();
+    block.points = bodies[b]->pointCount();
+    const int declared = bodies[b]->couplingRange();
+    block.range = std::max({declared, wanted_range_[b], 0});
+    block.band = choice_ == LinearSolverChoice::Band ||
+                 (choice_ == LinearSolverChoice::Auto && halfBandwidth(block.range) <= kAutoBandLimit);
+    if (block.band) {
+      block.band_factor.resize(3 * block.points, halfBandwidth(block.range));
+      block.constant.resize(3 * block.points, halfBandwidth(block.range));
     }
+    body_block_[b] = b;
   }
 }
 
-bool StepMatrix::scatter(const Triplets& triplets) {
+int StepMatrix::route(int i, int j) {
+  // kSparse: the entry goes to the triplets of a sparse block; kMisfit: the layout cannot hold it
+  // (noted, the pass is redone after a new analysis); else the index of the band block.
+  if (coupled_) return kSparse;
+  const int bi = point_body_[i], bj = point_body_[j];
+  if (bi != bj) {
+    wanted_coupling_ = true;
+    fits_ = false;
+    return kMisfit;
+  }
+  const int distance = std::abs(i - j);
+  if (distance > wanted_range_[bi]) wanted_range_[bi] = distance;
+  const int b = body_block_[bi];
+  const Block& block = blocks_[b];
+  if (!block.band) return kSparse;
+  if (distance > block.range) {
+    fits_ = false;
+    return kMisfit;
+  }
+  return b;
+}
+
+void StepMatrix::addLower(Block& block, int r, int c, double value) {
+  (constant_pass_ ? block.constant : block.band_factor).addLower(r, c, value);
+}
+
+void StepMatrix::addBlock(int i, int j, const Eigen::Matrix3d& value) {
+  const int b = route(i, j);
+  if (b == kMisfit) return;
+  if (b == kSparse) {
+    TripletAccumulator(triplets_).addBlock(i, j, value);
+    return;
+  }
+  // Symmetrised: value/2 at (i, j) and valueᵀ/2 at (j, i), of which the lower triangle is kept.
+  Block& block = blocks_[b];
+  const int li = 3 * (i - block.first_point), lj = 3 * (j - block.first_point);
+  if (li > lj) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) addLower(block, li + r, lj + c, 0.5 * value(r, c));
+  } else if (li < lj) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) addLower(block, lj + c, li + r, 0.5 * value(r, c));
+  } else {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c <= r; ++c) addLower(block, li + r, li + c, r == c ? value(r, r) : 0.5 * (value(r, c) + value(c, r)));
+  }
+}
+
+void StepMatrix::addBlockPair(int i, int j, const Eigen::Matrix3d& value) {
+  const int b = route(i, j);
+  if (b == kMisfit) return;
+  if (b == kSparse) {
+    TripletAccumulator(triplets_).addBlockPair(i, j, value);
+    return;
+  }
+  // value at (i, j) and valueᵀ at (j, i): symmetric already, the lower one is added.
+  Block& block = blocks_[b];
+  const int li = 3 * (i - block.first_point), lj = 3 * (j - block.first_point);
+  if (li > lj) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) addLower(block, li + r, lj + c, value(r, c));
+  } else {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) addLower(block, lj + c, li + r, value(r, c));
+  }
+}
+
+void StepMatrix::addEntry(int row, int col, double value) {
+  const int b = route(row / 3, col / 3);
+  if (b == kMisfit) return;
+  if (b == kSparse) {
+    triplets_.emplace_back(row, col, value);
+    return;
+  }
+  Block& block = blocks_[b];
+  const int r = row - 3 * block.first_point, c = col - 3 * block.first_point;
+  addLower(block, std::max(r, c), std::min(r, c), r == c ? value : 0.5 * value);
+}
+
+void StepMatrix::addIsotropic(int i, int j, double value) {
+  const int b = route(i, j);
+  if (b == kMisfit) return;
+  if (b == kSparse) {
+    TripletAccumulator(triplets_).addIsotropic(i, j, value);
+    return;
+  }
+  Block& block = blocks_[b];
+  const int li = 3 * (i - block.first_point), lj = 3 * (j - block.first_point);
+  const double half = li == lj ? value : 0.5 * value;
+  for (int axis = 0; axis < 3; ++axis) addLower(block, std::max(li, lj) + axis, std::min(li, lj) + axis, half);
+}
+
+void StepMatrix::addRankOne(int first, ConstPointsRef u, double factor) {
+  if (factor == 0.0 || u.rows() == 0) return;
+  const int last = first + static_cast<int>(u.rows()) - 1;
+  // Only a band block keeps the term apart; elsewhere (sparse, coupled) it is added entry by
+  // entry. route() of the two ends checks the term stays in one body.
+  const int b = coupled_ ? kSparse : route(first, first);
+  if (b == kMisfit) return;
+  if (b == kSparse || constant_pass_ || point_body_[first] != point_body_[last]) {
+    JacobianAccumulator::addRankOne(first, u, factor);
+    return;
+  }
+  Block& block = blocks_[b];
+  if (block.rank == block.low_rank.cols()) {  // grows on the first assembly only
+    block.low_rank.conservativeResize(3 * block.points, block.rank + 1);
+    block.sigma.conservativeResize(block.rank + 1);
+  }
+  auto column = block.low_rank.col(block.rank);
+  column.setZero();
+  for (Eigen::Index p = 0; p < u.rows(); ++p) column.segment<3>(3 * (first - block.first_point + p)) = u.row(p).transpose();
+  block.sigma[block.rank] = factor;
+  ++block.rank;
+}
+
+bool StepMatrix::fillConstant(const Scene& scene, const SceneState& s, double k_factor, double d_factor) {
+  // M ⊗ I₃ and the constant Jacobians, once per step size (DESIGN.md: "store them once").
+  fits_ = true;
+  constant_pass_ = true;
+  for (Block& block : blocks_) block.constant.setZero();
+  scene.addMassMatrix(1.0, *this);
+  scene.addForceJacobian(s, k_factor, d_factor, *this, Scene::JacobianTerms::kConstant);
+  constant_pass_ = false;
+  has_constant_ = fits_;
+  constant_key_[0] = k_factor;
+  constant_key_[1] = d_factor;
+  return fits_;
+}
+
+bool StepMatrix::fill(const Scene& scene, const SceneState& s, double k_factor, double d_factor, bool use_constant) {
+  fits_ = true;
+  triplets_.clear();
   for (Block& block : blocks_) {
-    if (block.band)
+    block.rank = 0;
+    if (!block.band) continue;
+    if (use_constant)
+      block.band_factor.assign(block.constant);
+    else
       block.band_factor.setZero();
-    else if (block.lower.nonZeros() > 0)
-      std::fill_n(block.lower.valuePtr(), block.lower.nonZeros(), 0.0);
+  }
+  if (use_constant) {
+    scene.addForceJacobian(s, k_factor, d_factor, *this, Scene::JacobianTerms::kVarying);
+  } else {
+    scene.addMassMatrix(1.0, *this);
+    scene.addForceJacobian(s, k_factor, d_factor, *this, Scene::JacobianTerms::kAll);
+  }
+  return fits_;
+}
+
+std::string StepMatrix::assemble(const Scene& scene, const SceneState& s, double k_factor, double d_factor) {
+  ++revision_;
+  const bool same_scene = static_cast<int>(point_body_.size()) == scene.dofPointCount() &&
+                          body_first_.size() == scene.bodies().size() && !blocks_.empty();
+  if (!same_scene) {
+    point_body_.clear();  // a new scene: forget what earlier assemblies needed
+    analyse(scene);
+  }
+  // At most three passes: the first assembly may find a wider band, then a coupling.
+  bool fitted = false;
+  for (int pass = 0; pass < 3 && !fitted; ++pass) {
+    const bool all_band = std::all_of(blocks_.begin(), blocks_.end(), [](const Block& b) { return b.band; });
+    const bool key_changed = constant_key_[0] != k_factor || constant_key_[1] != d_factor;
+    fitted = true;
+    if (all_band && (!has_constant_ || key_changed)) fitted = fillConstant(scene, s, k_factor, d_factor);
+    if (fitted) fitted = fill(scene, s, k_factor, d_factor, all_band);
+    if (!fitted) analyse(scene);
+  }
+  if (!fitted) return "step matrix M - theta h D - kappa h^2 K: its entries did not fit any layout";
+  return factorBlocks();
+}
+
+std::string StepMatrix::factorBlocks() {
+  // Sparse blocks: check the pattern is the one analysed and add each entry into the slot found
+  // then; a new pattern rebuilds the block (symbolic analysis again).
+  for (Block& block : blocks_) {
+    if (block.band) continue;
+    if (block.lower.nonZeros() > 0) std::fill_n(block.lower.valuePtr(), block.lower.nonZeros(), 0.0);
     block.routed = 0;
     block.pattern_ok = !block.keys.empty();
   }
-  // Band blocks add into the band; sparse blocks check that the pattern is the one analysed and
-  // add into the slot found then. A triplet the layout cannot hold (another body's block, out of
-  // the band) means the layout must be analysed again: false.
-  const bool single = blocks_.size() == 1;
-  for (const Triplet& t : triplets) {
-    const int index = single ? 0 : body_block_[coordinate_body_[t.row()]];
-    if (!single && body_block_[coordinate_body_[t.col()]] != index) return false;
-    Block& block = blocks_[index];
-    const int i = t.row() - block.first, j = t.col() - block.first;
-    const int r = std::max(i, j), c = std::min(i, j);
-    const double value = i == j ? t.value() : 0.5 * t.value();
-    if (block.band) {
-      if (r - c > block.half_bandwidth) return false;
-      block.band_factor.addLower(r, c, value);
-      continue;
-    }
+  for (const Triplet& t : triplets_) {
+    Block& block = blocks_[coupled_ ? 0 : body_block_[point_body_[t.row() / 3]]];
     if (!block.pattern_ok) continue;
+    const int first = 3 * block.first_point;
+    const int i = t.row() - first, j = t.col() - first;
+    const int r = std::max(i, j), c = std::min(i, j);
     const std::size_t k = block.routed++;
-    if (k >= block.keys.size() || block.keys[k] != static_cast<long long>(c) * block.size + r) {
+    if (k >= block.keys.size() || block.keys[k] != static_cast<long long>(c) * 3 * block.points + r) {
       block.pattern_ok = false;
       continue;
     }
-    block.lower.valuePtr()[block.slots[k]] += value;
-  }
-  return true;
-}
-
-void StepMatrix::rebuildSparse(Block& block, const Triplets& triplets) {
-  // Lower triangle of (A + Aᵀ)/2: an off-diagonal entry a_ij contributes a_ij / 2 at (max, min).
-  scratch_.clear();
-  block.keys.clear();
-  const int index = static_cast<int>(&block - blocks_.data());
-  for (const Triplet& t : triplets) {
-    if (body_block_[coordinate_body_[t.row()]] != index) continue;
-    const int i = t.row() - block.first, j = t.col() - block.first;
-    const int r = std::max(i, j), c = std::min(i, j);
-    scratch_.emplace_back(r, c, i == j ? t.value() : 0.5 * t.value());
-    block.keys.push_back(static_cast<long long>(c) * block.size + r);
-  }
-  block.lower.resize(block.size, block.size);
-  block.lower.setFromTriplets(scratch_.begin(), scratch_.end());
-  block.lower.makeCompressed();
-  // Where each triplet's value lands, so that later assemblies scatter without allocating.
-  block.slots.resize(block.keys.size());
-  const int* outer = block.lower.outerIndexPtr();
-  const int* inner = block.lower.innerIndexPtr();
-  for (std::size_t k = 0; k < block.keys.size(); ++k) {
-    const int c = static_cast<int>(block.keys[k] / block.size), r = static_cast<int>(block.keys[k] % block.size);
-    block.slots[k] = static_cast<int>(std::lower_bound(inner + outer[c], inner + outer[c + 1], r) - inner);
-  }
-}
-
-std::string StepMatrix::assemble(const Scene& scene, const Triplets& triplets) {
-  ++revision_;
-  // The layout (blocks, band widths) of the previous assembly is tried first; it is analysed
-  // again only on the first assembly, when the scene's size changed, or when a triplet does not
-  // fit it (e.g. a wider band, or a force now coupling two bodies).
-  const bool same_scene = static_cast<int>(coordinate_body_.size()) == 3 * scene.dofPointCount() &&
-                          body_block_.size() == scene.bodies().size() && !blocks_.empty();
-  if (!same_scene || !scatter(triplets)) {
-    analyse(scene, triplets);
-    scatter(triplets);  // fits by construction
+    block.lower.valuePtr()[block.slots[k]] += i == j ? t.value() : 0.5 * t.value();
   }
 
   for (Block& block : blocks_) {
     std::string failure;
     if (block.band) {
       failure = block.band_factor.factor();
+      if (failure.empty() && block.rank > 0) failure = factorLowRank(block);
     } else {
       const bool rebuild = !block.pattern_ok || block.routed != block.keys.size();
-      if (rebuild) rebuildSparse(block, triplets);
+      if (rebuild) rebuildSparse(block);
       failure = block.sparse.factor(block.lower, rebuild);
     }
     if (!failure.empty()) return "step matrix M - theta h D - kappa h^2 K: " + failure;
@@ -146,30 +275,107 @@ std::string StepMatrix::assemble(const Scene& scene, const Triplets& triplets) {
   return "";
 }
 
+void StepMatrix::rebuildSparse(Block& block) {
+  // Lower triangle of (A + Aᵀ)/2: an off-diagonal entry a_ij contributes a_ij / 2 at (max, min).
+  scratch_.clear();
+  block.keys.clear();
+  const int index = static_cast<int>(&block - blocks_.data());
+  const int size = 3 * block.points, first = 3 * block.first_point;
+  for (const Triplet& t : triplets_) {
+    if ((coupled_ ? 0 : body_block_[point_body_[t.row() / 3]]) != index) continue;
+    const int i = t.row() - first, j = t.col() - first;
+    const int r = std::max(i, j), c = std::min(i, j);
+    scratch_.emplace_back(r, c, i == j ? t.value() : 0.5 * t.value());
+    block.keys.push_back(static_cast<long long>(c) * size + r);
+  }
+  block.lower.resize(size, size);
+  block.lower.setFromTriplets(scratch_.begin(), scratch_.end());
+  block.lower.makeCompressed();
+  // Where each triplet's value lands, so that later assemblies scatter without allocating.
+  block.slots.resize(block.keys.size());
+  const int* outer = block.lower.outerIndexPtr();
+  const int* inner = block.lower.innerIndexPtr();
+  for (std::size_t k = 0; k < block.keys.size(); ++k) {
+    const int c = static_cast<int>(block.keys[k] / size), r = static_cast<int>(block.keys[k] % size);
+    block.slots[k] = static_cast<int>(std::lower_bound(inner + outer[c], inner + outer[c + 1], r) - inner);
+  }
+  block.routed = block.keys.size();
+  block.pattern_ok = true;
+}
+
+std::string StepMatrix::factorLowRank(Block& block) {
+  // Woodbury: Z = B⁻¹ U, C = Σ⁻¹ + Uᵀ Z (rank × rank), factored.
+  const int k = block.rank;
+  block.solved_low_rank.resize(3 * block.points, k);  // same size from the second assembly on
+  block.capacitance.resize(k, k);
+  block.projection.resize(k);
+  block.correction.resize(k);
+  for (int a = 0; a < k; ++a) {
+    block.solved_low_rank.col(a) = block.low_rank.col(a);
+    block.band_factor.solve(block.solved_low_rank.col(a));
+  }
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b) block.capacitance(a, b) = block.low_rank.col(a).dot(block.solved_low_rank.col(b));
+  for (int a = 0; a < k; ++a) block.capacitance(a, a) += 1.0 / block.sigma[a];
+  block.capacitance_factor.compute(block.capacitance);
+  const auto& d = block.capacitance_factor.vectorD();
+  if (block.capacitance_factor.info() != Eigen::Success || !d.allFinite() || (d.array() == 0.0).any())
+    return "the rank-one part of a global energy makes the step matrix singular (Sherman-Morrison)";
+  return "";
+}
+
+void StepMatrix::solveBand(const Block& block, Eigen::Ref<VecX> x) const {
+  // y = B⁻¹ x, then x = y − Z C⁻¹ Uᵀ y (Sherman–Morrison–Woodbury).
+  block.band_factor.solve(x);
+  if (block.rank == 0) return;
+  for (int a = 0; a < block.rank; ++a) block.projection[a] = block.low_rank.col(a).dot(x);
+  block.correction = block.capacitance_factor.solve(block.projection);
+  for (int a = 0; a < block.rank; ++a) x -= block.correction[a] * block.solved_low_rank.col(a);
+}
+
 void StepMatrix::solveBlock(int body, Eigen::Ref<VecX> x) const {
   const Block& block = blocks_[body_block_[body]];
   if (block.band)
-    block.band_factor.solve(x);
+    solveBand(block, x);
   else
     block.sparse.solve(x);
 }
 
 void StepMatrix::solveAll(Eigen::Ref<VecX> x) const {
   for (const Block& block : blocks_) {
-    auto segment = x.segment(block.first, block.size);
+    auto segment = x.segment(3 * block.first_point, 3 * block.points);
     if (block.band)
-      block.band_factor.solve(segment);
+      solveBand(block, segment);
     else
       block.sparse.solve(segment);
   }
+}
+
+MatX StepMatrix::assembledMatrix() const {
+  const Eigen::Index n = 3 * static_cast<Eigen::Index>(point_body_.size());
+  MatX A = MatX::Zero(n, n);
+  for (const Block& block : blocks_) {
+    const int first = 3 * block.first_point, size = 3 * block.points;
+    auto part = A.block(first, first, size, size);
+    if (block.band) {
+      part = block.band_factor.reconstruct();
+      for (int k = 0; k < block.rank; ++k) part += block.sigma[k] * block.low_rank.col(k) * block.low_rank.col(k).transpose();
+    } else {
+      const MatX lower = MatX(block.lower);
+      part = lower + lower.transpose();
+      part.diagonal() = lower.diagonal();
+    }
+  }
+  return A;
 }
 
 std::string StepMatrix::method() const {
   if (blocks_.empty()) return "none (not assembled)";
   std::string out;
   for (const Block& block : blocks_) {
-    const std::string one = block.band ? "band (half bandwidth " + std::to_string(block.half_bandwidth) + ")"
-                                       : block.sparse.method();
+    std::string one = block.band ? "band (half bandwidth " + std::to_string(block.band_factor.halfBandwidth()) + ")"
+                                 : block.sparse.method();
+    if (block.band && block.rank > 0) one += " + rank " + std::to_string(block.rank) + " (Sherman-Morrison-Woodbury)";
     if (out.find(one) == std::string::npos) out += (out.empty() ? "" : ", ") + one;
   }
   return coupled_ ? "coupled bodies, " + out : out;

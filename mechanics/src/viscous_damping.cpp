@@ -12,7 +12,7 @@ void ViscousDamping::addForce(const SceneState& s, VecX& B) const {
   body().block(B) -= coefficient_ * mv_;
 }
 
-void ViscousDamping::addJacobian(const SceneState&, double, double d_factor, Triplets& out) const {
+void ViscousDamping::addJacobian(const SceneState&, double, double d_factor, JacobianAccumulator& out) const {
   if (d_factor != 0.0 && coefficient_ != 0.0) body().addMassMatrix(-coefficient_ * d_factor, out);
 }
 

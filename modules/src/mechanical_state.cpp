@@ -9,7 +9,7 @@ double MechanicalState::kineticEnergy(ConstPointsRef v) const {
   return 0.5 * v.cwiseProduct(mv).sum();
 }
 
-void MechanicalState::addMassMatrix(double factor, Triplets& out) const {
+void MechanicalState::addMassMatrix(double factor, JacobianAccumulator& out) const {
   // Generic fallback: column j of M is M e_j; M ⊗ I₃ puts M_ij on every axis (paper eq. 3).
   const int n = pointCount();
   Points unit = Points::Zero(n, 3), column(n, 3);
@@ -19,8 +19,7 @@ void MechanicalState::addMassMatrix(double factor, Triplets& out) const {
     unit(j, 0) = 0.0;
     for (int i = 0; i < n; ++i)
       if (column(i, 0) != 0.0)
-        for (int axis = 0; axis < 3; ++axis)
-          out.emplace_back(3 * (offset_ + i) + axis, 3 * (offset_ + j) + axis, factor * column(i, 0));
+        out.addIsotropic(offset_ + i, offset_ + j, factor * column(i, 0));
   }
 }
 

@@ -184,13 +184,18 @@ void Scene::computeAcceleration(const SceneState& s, VecX& a) {
   applyConstraints(s, mass_inverse_, a);
 }
 
-void Scene::addForceJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const {
+void Scene::addForceJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out,
+                             JacobianTerms terms) const {
   // Gravity is constant: only the force fields contribute to K = ∂Q/∂q and D = ∂Q/∂q̇.
-  for (const ForceField* field : force_fields_) field->addJacobian(s, k_factor, d_factor, out);
-  if (collision_) collision_->addJacobian(s, k_factor, d_factor, out);
+  for (const ForceField* field : force_fields_) {
+    const bool constant = field->jacobianIsConstant();
+    if (terms == JacobianTerms::kAll || constant == (terms == JacobianTerms::kConstant))
+      field->addJacobian(s, k_factor, d_factor, out);
+  }
+  if (collision_ && terms != JacobianTerms::kConstant) collision_->addJacobian(s, k_factor, d_factor, out);
 }
 
-void Scene::addMassMatrix(double factor, Triplets& out) const {
+void Scene::addMassMatrix(double factor, JacobianAccumulator& out) const {
   for (const MechanicalState* body : bodies_) body->addMassMatrix(factor, out);
 }
 

@@ -54,7 +54,8 @@ TEST(PenaltyContact, AnalyticJacobianMatchesFiniteDifferences) {
   const Eigen::Index n = s.q.size();
   for (const auto& [k_factor, d_factor, h] : {std::tuple{1.0, 0.0, 1e-8}, std::tuple{0.0, 1.0, 1e-8}}) {
     Triplets triplets;
-    pipeline.addJacobian(s, k_factor, d_factor, triplets);
+    TripletAccumulator accumulator(triplets);
+    pipeline.addJacobian(s, k_factor, d_factor, accumulator);
     Eigen::SparseMatrix<double> J(n, n);
     J.setFromTriplets(triplets.begin(), triplets.end());
     const MatX analytic(J);

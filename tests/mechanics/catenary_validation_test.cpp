@@ -29,7 +29,7 @@ namespace {
 TEST(CatenaryValidation, ThreadComesToRestOnTheCatenaryAndConvergesWithN) {
   const validation::Catenary problem;
   validation::RunSettings settings;
-  settings.integrator = {{"type", "ImplicitEuler"}};
+  settings.integrator = {{"type", "ImplicitEuler"}};  // linearized, with its error estimate (the default)
   settings.dt = 5e-3;
   std::printf("  catenary: L = %.3f m, S = %.3f m, a = %.6f m\n", problem.options().length, problem.options().span,
               problem.parameter());

@@ -113,7 +113,7 @@ TEST(ImplicitIntegrators, ChordMethodConvergesToTheNewtonSolution) {
     spec.length = 0.03;
     spec.mass = 2.86e-5 * 0.03;
     spec.dt = 1e-4;
-    spec.integrator = {{"type", "ImplicitMidpoint"}, {"jacobian_update", update}};
+    spec.integrator = {{"type", "ImplicitMidpoint"}, {"solve", "newton"}, {"jacobian_update", update}};
     auto scene = test::loadThreadWith(spec, json::array({{{"type", "GreenLagrangeStretching"}, {"youngs_modulus", 2e9}},
                                                          {{"type", "ParametricBending"}, {"youngs_modulus", 2e9}},
                                                          {{"type", "ClampConstraint"}, {"abscissa", 0.0}}}));

@@ -63,8 +63,9 @@ StringAnalysis analyseString(const validation::TautString& problem, int n) {
 
   // K and M restricted to the y coordinates.
   Triplets kt, mt;
-  scene->addForceJacobian(s, 1.0, 0.0, kt);
-  scene->addMassMatrix(1.0, mt);
+  TripletAccumulator k_accumulator(kt), m_accumulator(mt);
+  scene->addForceJacobian(s, 1.0, 0.0, k_accumulator);
+  scene->addMassMatrix(1.0, m_accumulator);
   MatX K = MatX::Zero(n, n), M = MatX::Zero(n, n);
   for (const Triplet& t : kt)
     if (t.row() % 3 == 1 && t.col() % 3 == 1) K(t.row() / 3, t.col() / 3) += t.value();

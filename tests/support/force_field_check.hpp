@@ -25,7 +25,8 @@ inline VecX fieldForce(const ForceField& field, const SceneState& s) {
 /// k_factor K + d_factor D of one field at s, dense (3N × 3N).
 inline MatX fieldJacobian(const ForceField& field, const SceneState& s, double k_factor, double d_factor) {
   Triplets triplets;
-  field.addJacobian(s, k_factor, d_factor, triplets);
+  TripletAccumulator accumulator(triplets);
+  field.addJacobian(s, k_factor, d_factor, accumulator);
   Eigen::SparseMatrix<double> J(s.q.size(), s.q.size());
   J.setFromTriplets(triplets.begin(), triplets.end());
   return MatX(J);

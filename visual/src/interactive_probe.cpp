@@ -134,14 +134,11 @@ double ProbeForceField::potentialEnergy(const SceneState& s) const {
   return energy;
 }
 
-void ProbeForceField::addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const {
+void ProbeForceField::addJacobian(const SceneState& s, double k_factor, double d_factor,
+                                  JacobianAccumulator& out) const {
   if (!probe_->touching && !grabbing()) return;
   const int offset = body().offset();
-  const auto emit = [&](int i, int j, const Eigen::Matrix3d& block) {
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b)
-        if (block(a, b) != 0.0) out.emplace_back(3 * (offset + i) + a, 3 * (offset + j) + b, block(a, b));
-  };
+  const auto emit = [&](int i, int j, const Eigen::Matrix3d& block) { out.addBlock(offset + i, offset + j, block); };
   const auto& spline = static_cast<const mechanics::DynamicSpline&>(body());
   geometry::BasisRow row;
   if (grabbing()) {

@@ -78,7 +78,7 @@ class ContactPipeline final : public CollisionPipeline {
   void init(const Scene& scene) override;
   void beginStep(const Scene& scene, const SceneState& s) override;
   void addForce(const SceneState& s, VecX& B) const override;
-  void addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const override;
+  void addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const override;
   bool hasJacobian() const override { return true; }
   bool solveContacts(const Scene& scene, const SceneState& s, const ConstraintRows& bilateral,
                      const BlockInverse& inverse, VecX& a) override;

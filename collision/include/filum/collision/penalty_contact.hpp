@@ -20,6 +20,7 @@
 #pragma once
 
 #include "filum/collision/contact.hpp"
+#include "filum/core/jacobian_accumulator.hpp"
 
 namespace filum::collision {
 
@@ -39,6 +40,6 @@ PenaltyForce penaltyForce(const Contact& c, const ContactKinematics& k, const Pe
 
 /// Appends k_factor·∂Q/∂q + d_factor·∂Q/∂q̇ of the contact's force as global triplets.
 void addPenaltyJacobian(const Contact& c, const ContactKinematics& k, const PenaltyLaw& law, double k_factor,
-                        double d_factor, Triplets& out);
+                        double d_factor, JacobianAccumulator& out);
 
 }  // namespace filum::collision

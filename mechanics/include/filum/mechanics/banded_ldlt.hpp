@@ -24,6 +24,8 @@ class BandedLdlt {
   void resize(int n, int half_bandwidth);
   /// Zeroes the matrix (keeps the size and the storage).
   void setZero() { band_.setZero(); }
+  /// Copies the entries of another unfactored matrix of the same size and bandwidth.
+  void assign(const BandedLdlt& other) { band_ = other.band_; }
   /// a_ij += value for i >= j (the lower triangle; the matrix is symmetric).
   /// Precondition: i − j <= halfBandwidth().
   void addLower(int i, int j, double value) { band_(i, j - i + p_) += value; }
@@ -32,6 +34,8 @@ class BandedLdlt {
   std::string factor();
   /// In place x := A⁻¹ x (after factor()).
   void solve(Eigen::Ref<VecX> x) const;
+  /// The dense matrix L D Lᵀ of the factors (after factor(); for tests and diagnostics).
+  MatX reconstruct() const;
 
   int size() const { return n_; }
   int halfBandwidth() const { return p_; }

@@ -31,7 +31,7 @@ class CurvatureBending final : public ForceField {
   std::string typeName() const override { return "CurvatureBending"; }
   void addForce(const SceneState& s, VecX& B) const override;
   double potentialEnergy(const SceneState& s) const override;
-  void addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const override;
+  void addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const override;
   bool hasJacobian() const override { return true; }
 
   double bendingStiffness() const { return bending_stiffness_; }

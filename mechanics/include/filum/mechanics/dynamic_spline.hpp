@@ -34,8 +34,9 @@ class DynamicSpline final : public MechanicalState {
   const Points& initialPositions() const override { return initial_; }
   void solveMass(PointsRef B) const override { factor_.solve(B); }
   void multiplyMass(ConstPointsRef x, PointsRef out) const override { out.noalias() = mass_matrix_ * x; }
-  /// factor·(M ⊗ I₃) from the sparse M: 3 · (2d + 1) entries per control point.
-  void addMassMatrix(double factor, Triplets& out) const override;
+  /// factor·(M ⊗ I₃) from the sparse M: 2d + 1 isotropic entries per control point.
+  void addMassMatrix(double factor, JacobianAccumulator& out) const override;
+  int couplingRange() const override { return basis_->degree(); }
   void addGravity(const Vec3& g, PointsRef B) const override;
   double gravityPotential(const Vec3& g, ConstPointsRef q) const override;
 

@@ -33,7 +33,7 @@ class GlobalStretching final : public ForceField {
   std::string typeName() const override { return "GlobalStretching"; }
   void addForce(const SceneState& s, VecX& B) const override;
   double potentialEnergy(const SceneState& s) const override;
-  void addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const override;
+  void addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const override;
   bool hasJacobian() const override { return true; }
 
   /// l(q) = Σ_g w_g |P'(s_g)| (m).

@@ -38,9 +38,9 @@ class GreenLagrangeStretching final : public ForceField, public StiffnessDerivat
   std::string typeName() const override { return "GreenLagrangeStretching"; }
   void addForce(const SceneState& s, VecX& B) const override;
   double potentialEnergy(const SceneState& s) const override;
-  void addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const override;
+  void addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const override;
   bool hasJacobian() const override { return true; }
-  void addStiffnessDerivative(const SceneState& s, const VecX& w, double factor, Triplets& out) const override;
+  void addStiffnessDerivative(const SceneState& s, const VecX& w, double factor, JacobianAccumulator& out) const override;
 
   /// E·A (N).
   double axialStiffness() const { return axial_stiffness_; }

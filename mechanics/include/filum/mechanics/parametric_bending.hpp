@@ -29,10 +29,11 @@ class ParametricBending final : public ForceField, public StiffnessDerivative {
   std::string typeName() const override { return "ParametricBending"; }
   void addForce(const SceneState& s, VecX& B) const override;
   double potentialEnergy(const SceneState& s) const override;
-  void addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const override;
+  void addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const override;
+  bool jacobianIsConstant() const override { return true; }
   bool hasJacobian() const override { return true; }
   /// K_b is constant: ∂(K w)/∂q = 0.
-  void addStiffnessDerivative(const SceneState&, const VecX&, double, Triplets&) const override {}
+  void addStiffnessDerivative(const SceneState&, const VecX&, double, JacobianAccumulator&) const override {}
 
   /// E·I (N·m²).
   double bendingStiffness() const { return bending_stiffness_; }

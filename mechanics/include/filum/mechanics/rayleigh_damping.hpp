@@ -32,7 +32,7 @@ class RayleighDamping final : public ForceField {
 
   std::string typeName() const override { return "RayleighDamping"; }
   void addForce(const SceneState& s, VecX& B) const override;
-  void addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const override;
+  void addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const override;
   bool hasJacobian() const override { return true; }
 
   double stiffnessCoefficient() const { return beta_; }

@@ -31,7 +31,7 @@ class SpringForceField final : public ForceField {
   std::string typeName() const override { return "SpringForceField"; }
   void addForce(const SceneState& s, VecX& B) const override;
   double potentialEnergy(const SceneState& s) const override;
-  void addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const override;
+  void addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const override;
   bool hasJacobian() const override { return true; }
 
   int sampleCount() const { return samples_; }

@@ -1,35 +1,47 @@
 // StepMatrix: the matrix of an implicit step, A = M − θh D − κh² K (M the mass matrices, K = ∂Q/∂q
-// and D = ∂Q/∂q̇ the force Jacobians of ForceField::addJacobian), assembled from triplets and
-// factored, body by body when no force couples two bodies. It is the BlockInverse the constraint
-// solver works through during an implicit step, so constraints keep the acceleration
-// decomposition of paper §4 with A in place of M.
+// and D = ∂Q/∂q̇ the force Jacobians of ForceField::addJacobian), assembled in place and factored,
+// body by body when no force couples two bodies. It is the BlockInverse the constraint solver
+// works through during an implicit step, so constraints keep the acceleration decomposition of
+// paper §4 with A in place of M.
 //
-// Factorization per block (DESIGN.md "Numbers that matter"):
-//   - band (BandedLdlt, O(n d²)) when the block's half bandwidth is small — one spline with local
-//     energies: 3d + 2 = 11 for the cubic B-spline;
-//   - sparse (SparseLdlt: CHOLMOD, or Eigen SimplicialLDLT without SuiteSparse) for a wide band
-//     (the paper's global stretching couples every control point) and for the whole scene when a
-//     force couples bodies (then coupled() is true and solves go through solveAll).
-// The triplets are symmetrised, A ← (A + Aᵀ)/2: dissipative forces may have a non-symmetric
-// Jacobian (a dashpot's direction depends on positions); Newton then converges a little slower
-// but to the same solution, since the residual is evaluated exactly.
+// Direct band assembly (DESIGN.md "Numbers that matter"). StepMatrix is the JacobianAccumulator
+// the bodies and force fields write to: a 3 × 3 block lands straight in its body's band, with no
+// triplet list, scatter or sort. Per block:
+//   - band (BandedLdlt, O(n d²)): the half bandwidth comes from the body, 3d + 2 for a spline of
+//     degree d (11 for the cubic B-spline); the terms that do not change during a run — M ⊗ I₃,
+//     and the constant Jacobians (ForceField::jacobianIsConstant: parametric bending, viscous
+//     damping) at this step size — are assembled once into a constant band and copied in;
+//   - band + low rank: a global energy's rank-one part σ u uᵀ (GlobalStretching) is kept apart
+//     and solved with the Sherman–Morrison–Woodbury formula
+//       (B + U Σ Uᵀ)⁻¹ x = y − Z (Σ⁻¹ + Uᵀ Z)⁻¹ Uᵀ y,   y = B⁻¹ x, Z = B⁻¹ U,
+//     one extra band solve per rank-one term instead of a dense block;
+//   - sparse (SparseLdlt: CHOLMOD, or Eigen SimplicialLDLT without SuiteSparse) when the user asks
+//     for it, when a body declares no band, and for the whole scene when a force couples bodies
+//     (then coupled() is true and solves go through solveAll); entries are collected as triplets
+//     and scattered into the pattern analysed on the first assembly (symbolic analysis once).
+// Entries are symmetrised, A ← (A + Aᵀ)/2: dissipative forces may have a non-symmetric Jacobian
+// (a dashpot's direction depends on positions); Newton then converges a little slower but to the
+// same solution, since the residual is evaluated exactly.
 //
-// The structure (band widths, sparsity pattern) is analysed on the first assembly and redone only
-// when a triplet does not fit it; in the steady state assembling and factoring allocate nothing on
-// the band path, and the triplets are read once.
+// The layout (band widths, coupling) is worked out on the first assembly and again only when an
+// entry does not fit it; in the steady state assembling and factoring allocate nothing.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include <Eigen/Cholesky>
+
 #include "filum/core/block_inverse.hpp"
+#include "filum/core/jacobian_accumulator.hpp"
 #include "filum/core/params.hpp"
 #include "filum/mechanics/banded_ldlt.hpp"
 #include "filum/mechanics/sparse_ldlt.hpp"
 
 namespace filum {
 class Scene;
-}
+struct SceneState;
+}  // namespace filum
 
 namespace filum::mechanics {
 
@@ -39,7 +51,7 @@ enum class LinearSolverChoice { Auto, Band, Sparse };
 /// "linear_solver": "auto" (default) | "band" | "sparse" from integrator parameters.
 LinearSolverChoice linearSolverFromParams(const Params& p);
 
-class StepMatrix final : public BlockInverse {
+class StepMatrix final : public BlockInverse, public JacobianAccumulator {
  public:
   /// Auto uses the band solver when a body's half bandwidth is at most this (3 d + 2 for
   /// degree d <= 5 is at most 17; wider means a non-local energy).
@@ -47,48 +59,97 @@ class StepMatrix final : public BlockInverse {
 
   explicit StepMatrix(LinearSolverChoice choice = LinearSolverChoice::Auto) : choice_(choice) {}
 
-  /// A := symmetric part of the sum of `triplets` (global 3N indices of `scene`), factored.
-  /// Returns "" on success, else why the factorization failed.
-  std::string assemble(const Scene& scene, const Triplets& triplets);
+  /// A := M + k_factor·K + d_factor·D of `scene` at state s (k_factor = −κh², d_factor = −θh),
+  /// symmetrised and factored. Returns "" on success, else why the factorization failed.
+  std::string assemble(const Scene& scene, const SceneState& s, double k_factor, double d_factor);
 
+  // BlockInverse
   void solveBlock(int body, Eigen::Ref<VecX> x) const override;
   bool coupled() const override { return coupled_; }
   void solveAll(Eigen::Ref<VecX> x) const override;
   /// Changes at every assembly (a constraint solver may keep A⁻¹Lᵀ while it does not).
   long revision() const override { return revision_; }
 
+  // JacobianAccumulator (called by the bodies and force fields during assemble()).
+  void addBlock(int i, int j, const Eigen::Matrix3d& block) override;
+  void addBlockPair(int i, int j, const Eigen::Matrix3d& block) override;
+  void addEntry(int row, int col, double value) override;
+  void addIsotropic(int i, int j, double value) override;
+  void addRankOne(int first, ConstPointsRef u, double factor) override;
+
   /// How the blocks are factored, e.g. "band (half bandwidth 11)" or "CHOLMOD supernodal LLt".
   std::string method() const;
+  /// Times the layout was worked out (1 in a steady run: the first assembly).
+  long layouts() const { return layouts_; }
+  /// The dense matrix A the blocks hold (band blocks from their factors L D Lᵀ plus the rank-one
+  /// terms, sparse blocks from their lower triangle), 3N × 3N: for tests and diagnostics.
+  MatX assembledMatrix() const;
 
  private:
   struct Block {
-    int first = 0;  // first global coordinate
-    int size = 0;   // coordinates
+    int first_point = 0;  // first global point
+    int points = 0;       // points of the block
     bool band = true;
-    int half_bandwidth = 0;
+    int range = 0;  // band blocks: largest |i − j| of coupled points; half bandwidth 3 range + 2
     BandedLdlt band_factor;
+    BandedLdlt constant;  // band blocks: M + constant Jacobians at constant_key_ (never factored)
+    // Rank-one terms σ_k u_k u_kᵀ of this assembly (band blocks; Sherman–Morrison–Woodbury).
+    MatX low_rank;        // 3 points × capacity: the u_k as columns
+    VecX sigma;           // σ_k
+    int rank = 0;         // terms in this assembly
+    MatX solved_low_rank;  // Z = B⁻¹ U
+    MatX capacitance;      // Σ⁻¹ + Uᵀ Z (rank × rank)
+    Eigen::LDLT<MatX> capacitance_factor;
+    mutable VecX projection;  // Uᵀ y of a solve
+    mutable VecX correction;  // C⁻¹ Uᵀ y
+    // Sparse blocks.
     SparseLdlt sparse;
-    SparseLdlt::Matrix lower;        // lower triangle of A (sparse blocks)
-    std::vector<long long> keys;     // (row, col) of each triplet routed here, as of the last analysis
-    std::vector<int> slots;          // where each of those triplets lands in lower.valuePtr()
-    std::size_t routed = 0;          // triplets routed here in the current assembly
-    bool pattern_ok = true;          // the current triplets match keys so far
+    SparseLdlt::Matrix lower;     // lower triangle of A
+    std::vector<long long> keys;  // (row, col) of each triplet routed here, as of the last analysis
+    std::vector<int> slots;       // where each of those triplets lands in lower.valuePtr()
+    std::size_t routed = 0;       // triplets routed here in the current assembly
+    bool pattern_ok = true;       // the current triplets match keys so far
   };
 
-  /// Works out a new layout (blocks, band widths, coupling) from the triplets.
-  void analyse(const Scene& scene, const Triplets& triplets);
-  /// Adds the triplets into the current layout; false when one does not fit it.
-  bool scatter(const Triplets& triplets);
+  /// Works out a new layout (blocks, band widths, coupling) from the bodies and what the last
+  /// assembly needed (wanted_range_, wanted_coupling_).
+  void analyse(const Scene& scene);
+  /// One pass over the scene's terms into the current layout, starting from the constant bands
+  /// (use_constant) or from zero; false when an entry did not fit.
+  bool fill(const Scene& scene, const SceneState& s, double k_factor, double d_factor, bool use_constant);
+  /// The constant band of every band block at (k_factor, d_factor); false when an entry did not fit.
+  bool fillConstant(const Scene& scene, const SceneState& s, double k_factor, double d_factor);
+  static constexpr int kSparse = -1;  // route(): the entry goes to the sparse triplets
+  static constexpr int kMisfit = -2;  // route(): the layout cannot hold the entry
+  /// Where the entry coupling global points i and j goes: a band block's index, kSparse or kMisfit
+  /// (noted: the pass is redone after a new analysis).
+  int route(int i, int j);
+  /// Lower-triangle add a_rc += value in a band block (local coordinates, r >= c).
+  void addLower(Block& block, int r, int c, double value);
+  /// Scatters this assembly's triplets into the sparse blocks; factors every block.
+  std::string factorBlocks();
   /// Rebuilds a sparse block's matrix and slot table from this assembly's triplets.
-  void rebuildSparse(Block& block, const Triplets& triplets);
+  void rebuildSparse(Block& block);
+  /// Z = B⁻¹ U and the factored capacitance matrix of a band block with rank-one terms.
+  std::string factorLowRank(Block& block);
+  /// x := A⁻¹ x for a band block (band solve, then the Woodbury correction).
+  void solveBand(const Block& block, Eigen::Ref<VecX> x) const;
 
   LinearSolverChoice choice_;
   long revision_ = 0;
+  long layouts_ = 0;
   bool coupled_ = false;
+  bool fits_ = true;            // every entry of the current pass fitted the layout
+  bool constant_pass_ = false;  // fillConstant is running: band adds go to Block::constant
+  bool has_constant_ = false;   // constant bands hold M + constant Jacobians at constant_key_
+  double constant_key_[2] = {0.0, 0.0};
   std::vector<Block> blocks_;
-  std::vector<int> body_block_;     // block of each body
-  std::vector<int> coordinate_body_;  // body of each global coordinate
-  std::vector<int> wanted_width_;   // per body: half bandwidth seen in this assembly
+  std::vector<int> body_block_;   // block of each body
+  std::vector<int> point_body_;   // body of each global point
+  std::vector<int> body_first_;   // first global point of each body
+  std::vector<int> wanted_range_;  // per body: largest |i − j| seen (−1: none yet)
+  bool wanted_coupling_ = false;   // an entry coupled two bodies
+  Triplets triplets_;              // entries of sparse blocks in this assembly (global coordinates)
   std::vector<Eigen::Triplet<double>> scratch_;  // lower triplets for a sparse rebuild
 };
 

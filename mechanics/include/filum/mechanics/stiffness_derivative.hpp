@@ -17,7 +17,7 @@ class StiffnessDerivative {
   virtual ~StiffnessDerivative() = default;
   /// Appends factor · ∂(K(q) w)/∂q at state s as triplets over global 3N coordinates; w is a
   /// global 3N vector (e.g. the velocities).
-  virtual void addStiffnessDerivative(const SceneState& s, const VecX& w, double factor, Triplets& out) const = 0;
+  virtual void addStiffnessDerivative(const SceneState& s, const VecX& w, double factor, JacobianAccumulator& out) const = 0;
 };
 
 }  // namespace filum::mechanics

@@ -4,11 +4,12 @@
 //   ∂²e/∂q_i∂q_j = Σ_{u,w ∈ {P', P''}} c^u_i c^w_j ∂²e/∂u∂w   (c^{P'} = b', c^{P''} = b''),
 // a sum of outer products over the d + 1 control points of the node's support. Nodes of one
 // polynomial piece share that support, so their blocks are summed locally and emitted once per
-// piece as triplets: (3(d+1))² entries per piece instead of per node.
+// piece into the step matrix: (d+1)(d+2)/2 symmetric block pairs per piece instead of per node.
 #pragma once
 
 #include <array>
 
+#include "filum/core/jacobian_accumulator.hpp"
 #include "filum/core/types.hpp"
 #include "filum/geometry/spline_basis.hpp"
 
@@ -18,9 +19,10 @@ class SupportJacobian {
  public:
   static constexpr int kMax = 3 * geometry::BasisRow::kMaxSupport;
 
-  /// Starts accumulating; entries go to `out` at global row/column 3·base + local, scaled by
-  /// `factor` (e.g. −k_factor to turn a Hessian into k_factor·K).
-  SupportJacobian(Triplets& out, int base_point, double factor) : out_(out), base_(base_point), factor_(factor) {}
+  /// Starts accumulating; blocks go to `out` at global point base + local, scaled by `factor`
+  /// (e.g. −k_factor to turn a Hessian into k_factor·K).
+  SupportJacobian(JacobianAccumulator& out, int base_point, double factor)
+      : out_(out), base_(base_point), factor_(factor) {}
   ~SupportJacobian() { flush(); }
   SupportJacobian(const SupportJacobian&) = delete;
   SupportJacobian& operator=(const SupportJacobian&) = delete;
@@ -40,18 +42,23 @@ class SupportJacobian {
       for (int j = 0; j < count_; ++j) local_.block<3, 3>(3 * i, 3 * j) += (ci[i] * cj[j]) * H;
     dirty_ = true;
   }
-  /// Emits the current piece's blocks.
+  /// Emits the current piece's blocks: the diagonal ones, and each off-diagonal pair once,
+  /// symmetrised (the sum of Hessian terms is symmetric; its parts need not be).
   void flush() {
     if (!dirty_) return;
-    const int m = 3 * count_, origin = 3 * (base_ + first_);
-    for (int i = 0; i < m; ++i)
-      for (int j = 0; j < m; ++j) out_.emplace_back(origin + i, origin + j, factor_ * local_(i, j));
-    local_.topLeftCorner(m, m).setZero();
+    const int origin = base_ + first_;
+    for (int i = 0; i < count_; ++i) {
+      out_.addBlock(origin + i, origin + i, factor_ * local_.block<3, 3>(3 * i, 3 * i));
+      for (int j = 0; j < i; ++j)
+        out_.addBlockPair(origin + i, origin + j,
+                          (0.5 * factor_) * (local_.block<3, 3>(3 * i, 3 * j) + local_.block<3, 3>(3 * j, 3 * i).transpose()));
+    }
+    local_.topLeftCorner(3 * count_, 3 * count_).setZero();
     dirty_ = false;
   }
 
  private:
-  Triplets& out_;
+  JacobianAccumulator& out_;
   int base_;
   double factor_;
   int first_ = -1, count_ = 0;

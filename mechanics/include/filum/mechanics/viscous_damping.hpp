@@ -23,7 +23,8 @@ class ViscousDamping final : public ForceField {
   std::string typeName() const override { return "ViscousDamping"; }
   void addForce(const SceneState& s, VecX& B) const override;
   /// ∂Q/∂q = 0, ∂Q/∂q̇ = −γ M ⊗ I₃.
-  void addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const override;
+  void addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const override;
+  bool jacobianIsConstant() const override { return true; }
   bool hasJacobian() const override { return true; }
 
  private:

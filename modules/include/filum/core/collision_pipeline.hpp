@@ -24,6 +24,7 @@
 #include "filum/core/block_inverse.hpp"
 #include "filum/core/component.hpp"
 #include "filum/core/constraint_rows.hpp"
+#include "filum/core/jacobian_accumulator.hpp"
 #include "filum/core/scene_state.hpp"
 #include "filum/core/types.hpp"
 
@@ -46,9 +47,9 @@ class CollisionPipeline : public Component {
   /// Stage 3a: B += generalized contact forces at stage state s with the step's contact set.
   virtual void addForce(const SceneState& /*s*/, VecX& /*B*/) const {}
 
-  /// Appends k_factor·K + d_factor·D of the contact forces (as ForceField::addJacobian).
+  /// Adds k_factor·K + d_factor·D of the contact forces (as ForceField::addJacobian).
   virtual void addJacobian(const SceneState& /*s*/, double /*k_factor*/, double /*d_factor*/,
-                           Triplets& /*out*/) const {}
+                           JacobianAccumulator& /*out*/) const {}
   /// True when addJacobian is implemented (implicit integrators require it).
   virtual bool hasJacobian() const { return false; }
 

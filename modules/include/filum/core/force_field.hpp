@@ -7,6 +7,7 @@
 #pragma once
 
 #include "filum/core/body_component.hpp"
+#include "filum/core/jacobian_accumulator.hpp"
 #include "filum/core/scene_state.hpp"
 
 namespace filum {
@@ -19,15 +20,18 @@ class ForceField : public BodyComponent {
   /// Potential energy stored by this field (J); 0 for dissipative fields.
   virtual double potentialEnergy(const SceneState& /*s*/) const { return 0.0; }
 
-  /// Appends k_factor·K + d_factor·D at state s, K = ∂Q/∂q (N/m), D = ∂Q/∂q̇ (N·s/m), as
-  /// triplets over the scene's global 3N coordinates (3·(offset + i) + axis). Implicit steps
-  /// pass k_factor = −h², d_factor = −h to build M − h D − h² K. Must not allocate once `out`
-  /// has reached its capacity. Only called when hasJacobian().
+  /// Adds k_factor·K + d_factor·D at state s, K = ∂Q/∂q (N/m), D = ∂Q/∂q̇ (N·s/m), into `out`
+  /// over the scene's global points (offset() + i), block by block. Implicit steps pass
+  /// k_factor = −θh², d_factor = −θh to build M − θh D − κh² K. Must not allocate.
+  /// Only called when hasJacobian().
   virtual void addJacobian(const SceneState& /*s*/, double /*k_factor*/, double /*d_factor*/,
-                           Triplets& /*out*/) const {}
+                           JacobianAccumulator& /*out*/) const {}
   /// True when addJacobian is implemented; the scene refuses fields without it when the
   /// integrator needs Jacobians (Integrator::needsJacobians).
   virtual bool hasJacobian() const { return false; }
+  /// True when K and D do not depend on the state (parametric bending, viscous damping): the
+  /// step matrix then adds them once per step size into its constant part, not at every step.
+  virtual bool jacobianIsConstant() const { return false; }
 };
 
 }  // namespace filum

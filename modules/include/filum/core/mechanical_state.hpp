@@ -6,6 +6,7 @@
 #pragma once
 
 #include "filum/core/component.hpp"
+#include "filum/core/jacobian_accumulator.hpp"
 #include "filum/core/scene_state.hpp"
 #include "filum/core/types.hpp"
 
@@ -25,10 +26,13 @@ class MechanicalState : public Component {
   /// out := M x for this body's block.
   virtual void multiplyMass(ConstPointsRef x, PointsRef out) const = 0;
 
-  /// Appends factor·(M ⊗ I₃) as triplets over the scene's global 3N coordinates
-  /// (3·(offset + i) + axis), for the matrices of implicit steps. The default builds M column
-  /// by column from multiplyMass (O(n²)); bodies with a sparse M override it.
-  virtual void addMassMatrix(double factor, Triplets& out) const;
+  /// Adds factor·(M ⊗ I₃) into `out` over the scene's global points (offset() + i), for the
+  /// matrices of implicit steps. The default builds M column by column from multiplyMass
+  /// (O(n²), allocates); bodies with a sparse M override it.
+  virtual void addMassMatrix(double factor, JacobianAccumulator& out) const;
+  /// Largest |i − j| of control points i, j that a local energy couples (a spline of degree d:
+  /// d, its support); the step matrix sizes its band from it. −1: unknown (any width).
+  virtual int couplingRange() const { return -1; }
 
   /// B += generalized gravity forces Q_i = ∫ b_i(s) m g ds (N).
   virtual void addGravity(const Vec3& g, PointsRef B) const = 0;

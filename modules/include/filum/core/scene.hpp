@@ -81,10 +81,14 @@ class Scene {
   /// In a step with unilateral contacts the collision pipeline solves the bilateral rows and the
   /// contact rows together (CollisionPipeline::solveContacts) in place of the ConstraintSolver.
   void applyConstraints(const SceneState& s, const BlockInverse& inverse, VecX& a);
-  /// Appends k_factor·K + d_factor·D of every force field at s (global 3N triplets).
-  void addForceJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const;
-  /// Appends factor·(M ⊗ I₃) of every body (global 3N triplets).
-  void addMassMatrix(double factor, Triplets& out) const;
+  /// Which force Jacobians addForceJacobian adds: all of them, only the constant ones
+  /// (ForceField::jacobianIsConstant), or only those that change with the state (contacts too).
+  enum class JacobianTerms { kAll, kConstant, kVarying };
+  /// Adds k_factor·K + d_factor·D of the force fields (and contact penalties) at s.
+  void addForceJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out,
+                        JacobianTerms terms = JacobianTerms::kAll) const;
+  /// Adds factor·(M ⊗ I₃) of every body.
+  void addMassMatrix(double factor, JacobianAccumulator& out) const;
   /// Records what went wrong in the current step (e.g. an integrator's failed factorization);
   /// the first fault wins, and step() rolls back and reports it.
   void noteFault(const std::string& message) {

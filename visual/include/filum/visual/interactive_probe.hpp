@@ -48,7 +48,7 @@ class ProbeForceField final : public ForceField {
   std::string typeName() const override { return "MouseProbe"; }
   void addForce(const SceneState& s, VecX& B) const override;
   double potentialEnergy(const SceneState& s) const override;
-  void addJacobian(const SceneState& s, double k_factor, double d_factor, Triplets& out) const override;
+  void addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const override;
   bool hasJacobian() const override { return true; }
 
   /// Effective mass 1 / (bᵀ M⁻¹ b) of the curve point at abscissa s (kg).
