@@ -396,6 +396,30 @@ void LagrangeMultiplierSolver::factorAndSolve() {
   sparse_->solve(rhs_, lambda_);
 }
 
+bool LagrangeMultiplierSolver::sameRowsAsLastCall(const ConstraintRows& rows) const {
+  const int c = rows.rows();
+  if (c + 1 != static_cast<int>(last_row_start_.size())) return false;
+  for (int r = 0; r <= c; ++r)
+    if (last_row_start_[r] != (r < c ? rows.begin(r) : rows.end(c - 1))) return false;
+  const int terms = c > 0 ? rows.end(c - 1) : 0;
+  for (int t = 0; t < terms; ++t)
+    if (last_row_point_[t] != rows.point(t) || last_row_coeff_[t] != rows.coeff(t)) return false;
+  return true;
+}
+
+void LagrangeMultiplierSolver::rememberRows(const ConstraintRows& rows) {
+  const int c = rows.rows(), terms = c > 0 ? rows.end(c - 1) : 0;
+  last_row_start_.resize(c + 1);
+  for (int r = 0; r < c; ++r) last_row_start_[r] = rows.begin(r);
+  last_row_start_[c] = terms;
+  last_row_point_.resize(terms);
+  last_row_coeff_.resize(terms);
+  for (int t = 0; t < terms; ++t) {
+    last_row_point_[t] = rows.point(t);
+    last_row_coeff_[t] = rows.coeff(t);
+  }
+}
+
 void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse,
                                      VecX& a) {
   const int c = rows.rows();
@@ -406,8 +430,17 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   stats_.columns = separable ? rows.anchors() : c;
   stats_.sparse = c > options_.sparse_above;
 
-  // 1. Columns of M⁻¹ Lᵀ (per anchor or per row), kept or solved.
-  prepareColumns(scene, rows, inverse, separable);
+  // 1. Columns of M⁻¹ Lᵀ (per anchor or per row), kept or solved. Through an operator that mixes
+  // the axes the columns are kept whole when the operator (its revision) and the rows did not
+  // change since the last call: a linearized implicit step and its error estimate, or steps
+  // that reuse their factorization, solve through the same A.
+  const bool general_kept = !separable && have_general_ && options_.reuse && inverse.revision() >= 0 &&
+                            &inverse == cached_inverse_ && inverse.revision() == cached_revision_ &&
+                            cached_size_ == scene.state().q.size() && sameRowsAsLastCall(rows);
+  if (general_kept)
+    stats_.reused_columns = c;
+  else
+    prepareColumns(scene, rows, inverse, separable);
 
   // 2. W = L M⁻¹ Lᵀ (lower triangle), dense or with the entries below round-off dropped —
   // unless every column was taken over from the same place and every row has the same factors
@@ -415,6 +448,7 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   bool unchanged = separable && have_factorization_ && stats_.reused_columns == stats_.columns &&
                    stats_.sparse == last_sparse_ && c + 1 == static_cast<int>(last_factor_start_.size());
   for (int i = 0; unchanged && i < stats_.columns; ++i) unchanged = current_[i].from == i;
+  unchanged = unchanged || general_kept;
   for (int r = 0; unchanged && r <= c; ++r) unchanged = last_factor_start_[r] == (r < c ? rows.factorBegin(r) : rows.factorEnd(c - 1));
   const int factors = c > 0 ? rows.factorEnd(c - 1) : 0;
   for (int f = 0; unchanged && f < factors; ++f)
@@ -495,7 +529,11 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
     cached_size_ = scene.state().q.size();
   } else {
     previous_index_.clear();
-    cached_inverse_ = nullptr;
+    have_general_ = lambda_.allFinite() && inverse.revision() >= 0;
+    if (!general_kept) rememberRows(rows);
+    cached_inverse_ = &inverse;
+    cached_revision_ = inverse.revision();
+    cached_size_ = scene.state().q.size();
   }
 }
 

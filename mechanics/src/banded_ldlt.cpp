@@ -15,21 +15,30 @@ void BandedLdlt::resize(int n, int half_bandwidth) {
 std::string BandedLdlt::factor() {
   // Row by row (Doolittle form of LDLᵀ restricted to the band), for j < i:
   //   l_ij = (a_ij − Σ_{k<j} l_ik d_k l_jk) / d_j,   d_i = a_ii − Σ_{k<i} l_ik d_k l_ik,
-  // k running over the band only: O(n p²).
+  // k running over the band only: O(n p²). Row i of the storage holds a_(i, i−p .. i)
+  // contiguously, so each sum is a dot product of contiguous segments (Eigen vectorizes it).
+  const int width = p_ + 1;
+  double* band = band_.data();
   for (int i = 0; i < n_; ++i) {
     const int first = std::max(0, i - p_);
+    double* row_i = band + static_cast<std::ptrdiff_t>(i) * width + (first - i + p_);  // a_(i, first)
     for (int j = first; j < i; ++j) {
-      double sum = at(i, j);
-      for (int k = std::max(first, j - p_); k < j; ++k) sum -= work_[k - first] * at(j, k);
+      const int k0 = std::max(first, j - p_);
+      const double* row_j = band + static_cast<std::ptrdiff_t>(j) * width + (k0 - j + p_);  // l_(j, k0)
+      const int count = j - k0;
+      double sum = row_i[j - first];
+      if (count > 0)
+        sum -= Eigen::Map<const VecX>(work_.data() + (k0 - first), count).dot(Eigen::Map<const VecX>(row_j, count));
       work_[j - first] = sum;  // l_ij d_j
-      at(i, j) = sum / at(j, j);
+      row_i[j - first] = sum / at(j, j);
     }
-    double d = at(i, i);
-    for (int k = first; k < i; ++k) d -= work_[k - first] * at(i, k);
+    const int count = i - first;
+    double d = row_i[count];
+    if (count > 0) d -= Eigen::Map<const VecX>(work_.data(), count).dot(Eigen::Map<const VecX>(row_i, count));
     if (!(std::abs(d) > 0.0) || !std::isfinite(d))
       return "zero or non-finite pivot " + std::to_string(d) + " at row " + std::to_string(i) + " of " +
              std::to_string(n_);
-    at(i, i) = d;
+    row_i[count] = d;
   }
   return "";
 }
@@ -45,17 +54,21 @@ MatX BandedLdlt::reconstruct() const {
 }
 
 void BandedLdlt::solve(Eigen::Ref<VecX> x) const {
-  // L y = x, z = D⁻¹ y, Lᵀ x = z.
+  // L y = x (row i of L is contiguous: a dot product), z = D⁻¹ y, Lᵀ x = z (column i of Lᵀ is
+  // row i of L: an axpy, from the last row up).
+  const int width = p_ + 1;
+  const double* band = band_.data();
   for (int i = 0; i < n_; ++i) {
-    double sum = x[i];
-    for (int k = std::max(0, i - p_); k < i; ++k) sum -= at(i, k) * x[k];
-    x[i] = sum;
+    const int first = std::max(0, i - p_), count = i - first;
+    if (count > 0)
+      x[i] -= Eigen::Map<const VecX>(band + static_cast<std::ptrdiff_t>(i) * width + (first - i + p_), count)
+                  .dot(x.segment(first, count));
   }
   for (int i = 0; i < n_; ++i) x[i] /= at(i, i);
-  for (int i = n_ - 1; i >= 0; --i) {
-    double sum = x[i];
-    for (int k = i + 1; k <= std::min(n_ - 1, i + p_); ++k) sum -= at(k, i) * x[k];
-    x[i] = sum;
+  for (int i = n_ - 1; i > 0; --i) {
+    const int first = std::max(0, i - p_), count = i - first;
+    x.segment(first, count) -=
+        x[i] * Eigen::Map<const VecX>(band + static_cast<std::ptrdiff_t>(i) * width + (first - i + p_), count);
   }
 }
 

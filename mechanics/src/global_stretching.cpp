@@ -75,7 +75,7 @@ void GlobalStretching::addJacobian(const SceneState& s, double k_factor, double 
       const Vec3 u = x / speed;
       const Eigen::Matrix3d H = (dE * node.weight / speed) * (Eigen::Matrix3d::Identity() - u * u.transpose());
       local.begin(node.row);
-      local.add(node.row.d1, node.row.d1, H);
+      local.addSymmetric(node.row.d1, H);
     }
   }
   // Rank-one part Ê''(l) ∇l ∇lᵀ: kept apart by the band step matrix (Sherman–Morrison).

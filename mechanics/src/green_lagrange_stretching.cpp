@@ -61,7 +61,7 @@ void GreenLagrangeStretching::addJacobian(const SceneState& s, double k_factor, 
     const double strain = (x.squaredNorm() - a0sq) / (2.0 * a0sq);
     const Eigen::Matrix3d H = c_[g] * (strain * Eigen::Matrix3d::Identity() + x * x.transpose() / a0sq);
     jacobian.begin(node.row);
-    jacobian.add(node.row.d1, node.row.d1, H);
+    jacobian.addSymmetric(node.row.d1, H);
   }
 }
 
@@ -80,7 +80,7 @@ void GreenLagrangeStretching::addStiffnessDerivative(const SceneState& s, const 
     const Eigen::Matrix3d T =
         scale * (omega * x.transpose() + x.dot(omega) * Eigen::Matrix3d::Identity() + x * omega.transpose());
     derivative.begin(node.row);
-    derivative.add(node.row.d1, node.row.d1, T);
+    derivative.addSymmetric(node.row.d1, T);
   }
 }
 

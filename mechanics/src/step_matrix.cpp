@@ -99,19 +99,17 @@ void StepMatrix::addBlock(int i, int j, const Eigen::Matrix3d& value) {
     TripletAccumulator(triplets_).addBlock(i, j, value);
     return;
   }
-  // Symmetrised: value/2 at (i, j) and valueᵀ/2 at (j, i), of which the lower triangle is kept.
+  // Symmetrised: value/2 at (i, j) and valueᵀ/2 at (j, i), of which the lower blocks are kept
+  // (a diagonal block's upper triangle is ignored by the factorization).
   Block& block = blocks_[b];
-  const int li = 3 * (i - block.first_point), lj = 3 * (j - block.first_point);
-  if (li > lj) {
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) addLower(block, li + r, lj + c, 0.5 * value(r, c));
-  } else if (li < lj) {
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) addLower(block, lj + c, li + r, 0.5 * value(r, c));
-  } else {
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c <= r; ++c) addLower(block, li + r, li + c, r == c ? value(r, r) : 0.5 * (value(r, c) + value(c, r)));
-  }
+  BlockBandLdlt& target = constant_pass_ ? block.constant : block.band_factor;
+  const int I = i - block.first_point, J = j - block.first_point;
+  if (I > J)
+    target.block(I, J) += 0.5 * value;
+  else if (I < J)
+    target.block(J, I) += 0.5 * value.transpose();
+  else
+    target.block(I, I) += 0.5 * (value + value.transpose());
 }
 
 void StepMatrix::addBlockPair(int i, int j, const Eigen::Matrix3d& value) {
@@ -123,14 +121,12 @@ void StepMatrix::addBlockPair(int i, int j, const Eigen::Matrix3d& value) {
   }
   // value at (i, j) and valueᵀ at (j, i): symmetric already, the lower one is added.
   Block& block = blocks_[b];
-  const int li = 3 * (i - block.first_point), lj = 3 * (j - block.first_point);
-  if (li > lj) {
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) addLower(block, li + r, lj + c, value(r, c));
-  } else {
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) addLower(block, lj + c, li + r, value(r, c));
-  }
+  BlockBandLdlt& target = constant_pass_ ? block.constant : block.band_factor;
+  const int I = i - block.first_point, J = j - block.first_point;
+  if (I > J)
+    target.block(I, J) += value;
+  else
+    target.block(J, I) += value.transpose();
 }
 
 void StepMatrix::addEntry(int row, int col, double value) {
@@ -153,9 +149,9 @@ void StepMatrix::addIsotropic(int i, int j, double value) {
     return;
   }
   Block& block = blocks_[b];
-  const int li = 3 * (i - block.first_point), lj = 3 * (j - block.first_point);
-  const double half = li == lj ? value : 0.5 * value;
-  for (int axis = 0; axis < 3; ++axis) addLower(block, std::max(li, lj) + axis, std::min(li, lj) + axis, half);
+  BlockBandLdlt& target = constant_pass_ ? block.constant : block.band_factor;
+  const int I = i - block.first_point, J = j - block.first_point;
+  target.block(std::max(I, J), std::min(I, J)).diagonal().array() += I == J ? value : 0.5 * value;
 }
 
 void StepMatrix::addRankOne(int first, ConstPointsRef u, double factor) {

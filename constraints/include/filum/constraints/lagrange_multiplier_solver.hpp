@@ -132,6 +132,14 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   std::vector<int> last_factor_start_, last_factor_anchor_;
   std::vector<Vec3> last_factor_direction_;
   bool last_sparse_ = false, have_factorization_ = false;
+  // Rows of the last call through an operator that mixes the axes (an implicit step matrix):
+  // while the operator's revision and these rows are unchanged, its columns A⁻¹Lᵀ and W are kept.
+  std::vector<int> last_row_start_, last_row_point_;
+  std::vector<Vec3> last_row_coeff_;
+  bool have_general_ = false;
+  /// The rows are those of the last call (same points and coefficients, row by row).
+  bool sameRowsAsLastCall(const ConstraintRows& rows) const;
+  void rememberRows(const ConstraintRows& rows);
   long last_nonzeros_ = 0;
 
   MatX g_;  // G_ab = w_aᵀ M⁻¹ w_b for anchors a, b (mass operator)

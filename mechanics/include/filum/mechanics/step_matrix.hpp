@@ -7,8 +7,8 @@
 // Direct band assembly (DESIGN.md "Numbers that matter"). StepMatrix is the JacobianAccumulator
 // the bodies and force fields write to: a 3 × 3 block lands straight in its body's band, with no
 // triplet list, scatter or sort. Per block:
-//   - band (BandedLdlt, O(n d²)): the half bandwidth comes from the body, 3d + 2 for a spline of
-//     degree d (11 for the cubic B-spline); the terms that do not change during a run — M ⊗ I₃,
+//   - band (BlockBandLdlt: LDLᵀ by 3 × 3 blocks, O(n d²)): the half bandwidth comes from the
+//     body, 3d + 2 for a spline of degree d (11 for the cubic B-spline); the terms that do not change during a run — M ⊗ I₃,
 //     and the constant Jacobians (ForceField::jacobianIsConstant: parametric bending, viscous
 //     damping) at this step size — are assembled once into a constant band and copied in;
 //   - band + low rank: a global energy's rank-one part σ u uᵀ (GlobalStretching) is kept apart
@@ -35,7 +35,7 @@
 #include "filum/core/block_inverse.hpp"
 #include "filum/core/jacobian_accumulator.hpp"
 #include "filum/core/params.hpp"
-#include "filum/mechanics/banded_ldlt.hpp"
+#include "filum/mechanics/block_band_ldlt.hpp"
 #include "filum/mechanics/sparse_ldlt.hpp"
 
 namespace filum {
@@ -91,8 +91,8 @@ class StepMatrix final : public BlockInverse, public JacobianAccumulator {
     int points = 0;       // points of the block
     bool band = true;
     int range = 0;  // band blocks: largest |i − j| of coupled points; half bandwidth 3 range + 2
-    BandedLdlt band_factor;
-    BandedLdlt constant;  // band blocks: M + constant Jacobians at constant_key_ (never factored)
+    BlockBandLdlt band_factor;
+    BlockBandLdlt constant;  // band blocks: M + constant Jacobians at constant_key_ (never factored)
     // Rank-one terms σ_k u_k u_kᵀ of this assembly (band blocks; Sherman–Morrison–Woodbury).
     MatX low_rank;        // 3 points × capacity: the u_k as columns
     VecX sigma;           // σ_k

@@ -41,20 +41,34 @@ class SupportJacobian {
     for (int i = 0; i < count_; ++i)
       for (int j = 0; j < count_; ++j) local_.block<3, 3>(3 * i, 3 * j) += (ci[i] * cj[j]) * H;
     dirty_ = true;
+    full_ = true;
   }
-  /// Emits the current piece's blocks: the diagonal ones, and each off-diagonal pair once,
-  /// symmetrised (the sum of Hessian terms is symmetric; its parts need not be).
+  /// block(i, j) += c[i] c[j] H for a symmetric H: only the blocks i >= j are accumulated (the
+  /// others are their transposes), half the work of add(c, c, H).
+  void addSymmetric(const std::array<double, geometry::BasisRow::kMaxSupport>& c, const Eigen::Matrix3d& H) {
+    for (int i = 0; i < count_; ++i)
+      for (int j = 0; j <= i; ++j) local_.block<3, 3>(3 * i, 3 * j) += (c[i] * c[j]) * H;
+    dirty_ = true;
+  }
+  /// Emits the current piece's blocks: the diagonal ones, and each off-diagonal pair once —
+  /// symmetrised when add() was used (the sum of Hessian terms is symmetric; its parts need not
+  /// be), as accumulated when only addSymmetric() was.
   void flush() {
     if (!dirty_) return;
     const int origin = base_ + first_;
     for (int i = 0; i < count_; ++i) {
       out_.addBlock(origin + i, origin + i, factor_ * local_.block<3, 3>(3 * i, 3 * i));
-      for (int j = 0; j < i; ++j)
-        out_.addBlockPair(origin + i, origin + j,
-                          (0.5 * factor_) * (local_.block<3, 3>(3 * i, 3 * j) + local_.block<3, 3>(3 * j, 3 * i).transpose()));
+      for (int j = 0; j < i; ++j) {
+        const Eigen::Matrix3d lower = local_.block<3, 3>(3 * i, 3 * j);
+        if (full_)
+          out_.addBlockPair(origin + i, origin + j, (0.5 * factor_) * (lower + local_.block<3, 3>(3 * j, 3 * i).transpose()));
+        else
+          out_.addBlockPair(origin + i, origin + j, factor_ * lower);
+      }
     }
     local_.topLeftCorner(3 * count_, 3 * count_).setZero();
     dirty_ = false;
+    full_ = false;
   }
 
  private:
@@ -63,6 +77,7 @@ class SupportJacobian {
   double factor_;
   int first_ = -1, count_ = 0;
   bool dirty_ = false;
+  bool full_ = false;  // add() was used: the local matrix holds every block
   Eigen::Matrix<double, kMax, kMax> local_ = Eigen::Matrix<double, kMax, kMax>::Zero();
 };
 

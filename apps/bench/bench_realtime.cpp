@@ -1,0 +1,237 @@
+// bench_realtime: is a stiff thread real time? (issue 12). Wall time per simulated millisecond,
+// largest strain and energy drift of the benchmark rope (apps/scenes/rope.json: 1 m, 0.1 kg,
+// radius 5 mm, E = 1e8 Pa, held at one end, released horizontally) at n = 30, 50, 165, 1000
+// control points with each implicit scheme at dt = 1 ms, and with the explicit schemes at the
+// largest step their stability allows (a shorter run: their steps are ~1e4 times smaller); then
+// the reference scenes (apps/scenes/*.json) as they are.
+//
+// Wall time counts Scene::step only (no output). Each configuration runs `--repetitions` times
+// (default 5) from the same start; the figure is the median of the runs. Max strain is
+// max |ε| = max | |P'(s)| / |P0'(s)| − 1 | over 8 abscissas per span, sampled every 10 ms of
+// simulated time. Energy drift is (E(T) − E(0)) / (m g ℓ): kinetic + gravity + elastic; backward
+// Euler dissipates, so it is negative.
+//
+// Output: a table on stdout, realtime.csv and, with --plot, realtime.png (apps/tools/
+// plot_realtime.py: strain against wall time per simulated ms, one point per configuration).
+//   build/apps/bench/bench_realtime [--quick] [--repetitions R] [--duration T] [--out DIR] [--plot]
+// --quick: n = 30 and 165 only, 1 s, 3 repetitions, no explicit schemes nor reference scenes.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "filum/all_components.hpp"
+#include "filum/core/scene.hpp"
+#include "filum/core/scene_loader.hpp"
+#include "filum/geometry/spline_curve.hpp"
+#include "filum/mechanics/dynamic_spline.hpp"
+#include "filum/mechanics/implicit_euler.hpp"
+#include "filum/mechanics/implicit_midpoint.hpp"
+#include "validation/stability.hpp"
+
+namespace {
+
+using nlohmann::json;
+
+struct Scheme {
+  std::string label;  // as printed and in the CSV
+  json integrator;
+  bool explicit_scheme = false;
+};
+
+struct Figures {
+  double wall_ms_per_sim_ms = 0.0;  // median over repetitions
+  double max_strain = 0.0;
+  double energy_drift = 0.0;  // (E(T) − E(0)) / (m g ℓ)
+  double dt = 0.0;
+  double simulated = 0.0;
+  long corrections = -1, estimates = -1, halvings = -1;  // implicit solvers only
+  std::string failure;
+};
+
+json ropeDocument(int n, const json& integrator, double dt, double duration) {
+  json document = filum::readJsonFile(std::string(FILUM_SOURCE_DIR) + "/apps/scenes/rope.json");
+  document["dt"] = dt;
+  document["duration"] = duration;
+  document["integrator"] = integrator;
+  json& components = document["nodes"][0]["components"];
+  components[0]["control_points"]["count"] = n;
+  // Only the mechanical side: visual components cost nothing in a step but need not be built.
+  components.erase(components.size() - 1);
+  components.erase(components.size() - 1);
+  return document;
+}
+
+/// max | |P'(s)| / |P0'(s)| − 1 | over 8 abscissas per span of every spline body.
+double maxStrain(const filum::Scene& scene) {
+  double strain = 0.0;
+  for (const filum::MechanicalState* body : scene.bodies()) {
+    const auto* spline = dynamic_cast<const filum::mechanics::DynamicSpline*>(body);
+    if (!spline) continue;
+    const auto q = spline->block(scene.state().q);
+    const int samples = 8 * spline->pointCount();
+    filum::geometry::BasisRow row;
+    for (int k = 0; k <= samples; ++k) {
+      spline->basis().evaluate(static_cast<double>(k) / samples, row);
+      const double rest = filum::geometry::curveTangent(row, spline->initialPositions()).norm();
+      strain = std::max(strain, std::abs(filum::geometry::curveTangent(row, q).norm() / rest - 1.0));
+    }
+  }
+  return strain;
+}
+
+double totalMass(const filum::Scene& scene) {
+  double mass = 0.0;
+  for (const filum::MechanicalState* body : scene.bodies())
+    if (const auto* spline = dynamic_cast<const filum::mechanics::DynamicSpline*>(body)) mass += spline->mass();
+  return mass;
+}
+
+const filum::mechanics::ImplicitStepSolver* implicitSolver(const filum::Scene& scene) {
+  if (const auto* euler = dynamic_cast<const filum::mechanics::ImplicitEuler*>(&scene.integrator())) return &euler->solver();
+  if (const auto* midpoint = dynamic_cast<const filum::mechanics::ImplicitMidpoint*>(&scene.integrator()))
+    return &midpoint->solver();
+  return nullptr;
+}
+
+/// Runs the scene of `document` `repetitions` times for its duration; strain and drift of the
+/// first run (runs are bit-identical), wall time the median.
+Figures measure(const json& document, const std::string& name, int repetitions) {
+  Figures figures;
+  std::vector<double> walls;
+  for (int r = 0; r < repetitions; ++r) {
+    std::unique_ptr<filum::Scene> scene = filum::loadScene(document, name, filum::app::makeFactory());
+    scene->init();
+    const double dt = scene->settings().dt;
+    const long steps = std::lround(scene->settings().duration / dt);
+    const long sample_every = std::max(1L, std::lround(0.01 / dt));
+    const double scale = std::max(totalMass(*scene) * scene->settings().gravity.norm() * 1.0, 1e-300);
+    const double e0 = scene->energy(scene->state()).total();
+    double strain = 0.0, wall = 0.0;
+    for (long k = 0; k < steps; ++k) {
+      const auto start = std::chrono::steady_clock::now();
+      const filum::StepReport report = scene->step();
+      wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (!report.ok) {
+        figures.failure = report.message;
+        return figures;
+      }
+      if (r == 0 && k % sample_every == 0) strain = std::max(strain, maxStrain(*scene));
+    }
+    walls.push_back(1e3 * wall / (1e3 * steps * dt));
+    if (r == 0) {
+      figures.max_strain = std::max(strain, maxStrain(*scene));
+      figures.energy_drift = (scene->energy(scene->state()).total() - e0) / scale;
+      figures.dt = dt;
+      figures.simulated = steps * dt;
+      if (const auto* solver = implicitSolver(*scene)) {
+        figures.corrections = solver->corrections();
+        figures.estimates = solver->estimates();
+        figures.halvings = solver->halvings();
+      }
+    }
+  }
+  std::sort(walls.begin(), walls.end());
+  figures.wall_ms_per_sim_ms = walls[walls.size() / 2];
+  return figures;
+}
+
+void printRow(std::FILE* csv, const std::string& problem, int n, const std::string& scheme, const Figures& f) {
+  if (!f.failure.empty()) {
+    std::printf("%-22s %5d  %-26s FAILED: %s\n", problem.c_str(), n, scheme.c_str(), f.failure.c_str());
+    std::fprintf(csv, "%s,%d,%s,%g,,,,,,,failed\n", problem.c_str(), n, scheme.c_str(), f.dt);
+    return;
+  }
+  std::printf("%-22s %5d  %-26s dt %-8.2g %9.4f ms/ms  strain %.2e  drift %+.2e", problem.c_str(), n, scheme.c_str(), f.dt,
+              f.wall_ms_per_sim_ms, f.max_strain, f.energy_drift);
+  if (f.estimates >= 0) std::printf("  corrected %ld/%ld halved %ld", f.corrections, f.estimates, f.halvings);
+  std::printf("\n");
+  std::fflush(stdout);
+  std::fprintf(csv, "%s,%d,%s,%g,%g,%.6g,%.6g,%.6g,%ld,%ld,ok\n", problem.c_str(), n, scheme.c_str(), f.dt, f.simulated,
+               f.wall_ms_per_sim_ms, f.max_strain, f.energy_drift, f.corrections, f.halvings);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App cli{"bench_realtime: wall time per simulated ms, strain and energy drift of a stiff rope and the reference scenes"};
+  bool quick = false, plot = false;
+  int repetitions = 5;
+  double duration = 10.0;
+  std::string out = "apps/bench/results/realtime";
+  cli.add_flag("--quick", quick, "n = 30 and 165, 1 s, 3 repetitions, implicit schemes only");
+  cli.add_option("--repetitions", repetitions, "runs per configuration (median reported)")->check(CLI::Range(1, 100));
+  cli.add_option("--duration", duration, "simulated seconds of each rope run")->check(CLI::Range(1e-3, 1e3));
+  cli.add_option("--out", out, "directory for realtime.csv (and realtime.png)");
+  cli.add_flag("--plot", plot, "draw realtime.png with apps/tools/plot_realtime.py");
+  CLI11_PARSE(cli, argc, argv);
+  if (quick) {
+    repetitions = std::min(repetitions, 3);
+    duration = 1.0;
+  }
+  std::filesystem::create_directories(out);
+  const std::string csv_path = out + "/realtime.csv";
+  std::FILE* csv = std::fopen(csv_path.c_str(), "w");
+  if (!csv) {
+    std::fprintf(stderr, "error: cannot write %s\n", csv_path.c_str());
+    return 4;
+  }
+  std::fprintf(csv, "problem,n,scheme,dt,simulated_s,wall_ms_per_sim_ms,max_strain,energy_drift,corrections,halvings,status\n");
+
+  const std::vector<Scheme> implicit_schemes = {
+      {"implicit Euler linearized", {{"type", "ImplicitEuler"}}},
+      {"implicit Euler B-W only", {{"type", "ImplicitEuler"}, {"newton_iterations", 1}}},
+      {"implicit Euler Newton", {{"type", "ImplicitEuler"}, {"solve", "newton"}}},
+      {"implicit midpoint lin.", {{"type", "ImplicitMidpoint"}}},
+  };
+  const std::vector<Scheme> explicit_schemes = {
+      {"symplectic Euler", {{"type", "SymplecticEuler"}}, true},
+      {"RK4", {{"type", "RungeKutta4"}}, true},
+  };
+  const std::vector<int> sizes = quick ? std::vector<int>{30, 165} : std::vector<int>{30, 50, 165, 1000};
+  std::printf("rope: 1 m, 0.1 kg, r = 5 mm, E = 1e8 Pa; median of %d runs; %g s simulated (explicit: 0.05 s)\n",
+              repetitions, duration);
+  for (int n : sizes) {
+    for (const Scheme& scheme : implicit_schemes)
+      printRow(csv, "rope", n, scheme.label, measure(ropeDocument(n, scheme.integrator, 1e-3, duration), "rope", repetitions));
+    if (quick || n > 165) continue;  // explicit steps at n = 1000 would take hours
+    // Explicit schemes at 90 % of their stability limit ω_max dt = 2 (symplectic) or 2√2 (RK4).
+    const double omega = [&] {
+      auto scene = filum::loadScene(ropeDocument(n, implicit_schemes[0].integrator, 1e-3, duration), "rope",
+                                    filum::app::makeFactory());
+      scene->init();
+      return filum::validation::stiffestFrequency(*scene, scene->state());
+    }();
+    for (const Scheme& scheme : explicit_schemes) {
+      const double limit = scheme.label == "RK4" ? 2.0 * std::sqrt(2.0) : 2.0;
+      printRow(csv, "rope", n, scheme.label,
+               measure(ropeDocument(n, scheme.integrator, 0.9 * limit / omega, std::min(duration, 0.05)), "rope", repetitions));
+    }
+  }
+  if (!quick) {
+    std::printf("reference scenes, as they are (their own dt and integrator), %g s or their duration\n", duration);
+    std::vector<std::filesystem::path> scenes;
+    for (const auto& entry : std::filesystem::directory_iterator(std::string(FILUM_SOURCE_DIR) + "/apps/scenes"))
+      if (entry.path().extension() == ".json") scenes.push_back(entry.path());
+    std::sort(scenes.begin(), scenes.end());
+    for (const auto& path : scenes) {
+      json document = filum::readJsonFile(path.string());
+      document["duration"] = std::min(document.value("duration", 1.0), duration);
+      const std::string integrator = document["integrator"].value("type", "RungeKutta4");
+      printRow(csv, path.stem().string(), -1, integrator, measure(document, path.string(), repetitions));
+    }
+  }
+  std::fclose(csv);
+  std::printf("wrote %s\n", csv_path.c_str());
+  if (plot) {
+    const std::string command = "/usr/bin/python3 " + std::string(FILUM_SOURCE_DIR) + "/apps/tools/plot_realtime.py " + out;
+    return std::system(command.c_str()) == 0 ? 0 : 4;
+  }
+  return 0;
+}
