@@ -37,6 +37,7 @@ void SphereCollisionModel::init(const Scene& scene) {
   mapping_ = std::make_unique<SphereSamplingMapping>(spline_->basis(), spacing);
   mapping_->resample(spline_->initialPositions());
   const int capacity = 2 * mapping_->outputCount();  // room for stretching to twice the length
+  mapping_->reserve(capacity);
   centers_.resize(capacity, 3);
   velocities_.resize(capacity, 3);
 }
@@ -47,6 +48,7 @@ void SphereCollisionModel::update(const SceneState& s) {
   mapping_->resample(q);
   const int count = mapping_->outputCount();
   if (centers_.rows() < count) {  // grows only when the thread stretched beyond twice its length
+    mapping_->reserve(2 * count);
     centers_.resize(2 * count, 3);
     velocities_.resize(2 * count, 3);
   }

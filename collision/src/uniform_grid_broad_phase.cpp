@@ -31,6 +31,24 @@ void UniformGridBroadPhase::findPairs(const std::vector<BoundingSphere>& spheres
   pairs.clear();
   const int n = static_cast<int>(spheres.size());
   if (n < 2) return;
+  // Room for the pairs of a dense tangle from the first call on, so that a knot tightening over
+  // many steps does not grow the lists step after step (the step workspace is sized once): with
+  // the cell twice the largest radius, a sphere overlaps at most a few dozen others of similar
+  // size; kPairsPerSphere of them on average is more than any thread scene shows.
+  constexpr std::size_t kPairsPerSphere = 16;
+  const std::size_t room = kPairsPerSphere * static_cast<std::size_t>(n);
+  if (found_.capacity() < room) found_.reserve(2 * room);  // twice: the sphere count may grow
+  if (pairs.capacity() < room) pairs.reserve(2 * room);
+  // The per-sphere tables get room for twice as many spheres: a stretching thread adds spheres.
+  if (members_.capacity() < static_cast<std::size_t>(n)) {
+    const std::size_t spheres_room = 2 * static_cast<std::size_t>(n) + 2;
+    members_.reserve(spheres_room);
+    cell_.reserve(3 * spheres_room);
+    bucket_.reserve(spheres_room);
+    sorted_.reserve(spheres_room);
+    first_start_.reserve(spheres_room + 1);
+    bucket_start_.reserve(4 * spheres_room + 1);  // the hash table has <= 4n buckets
+  }
 
   // Cell side h: given, or twice the largest radius (partners then lie in the 27 cells around).
   double largest = 0.0;

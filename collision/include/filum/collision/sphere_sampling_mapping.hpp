@@ -56,6 +56,12 @@ class SphereSamplingMapping final : public Mapping {
 
   /// Places the centres at equal curvilinear spacing on the curve of control points q (n × 3).
   void resample(ConstPointsRef q);
+  /// Room for `count` spheres, so that resampling a thread that stretches up to that count
+  /// allocates nothing (the step workspace is sized once).
+  void reserve(int count) {
+    abscissas_.reserve(count);
+    rows_.reserve(count);
+  }
 
   void apply(ConstPointsRef in, PointsRef out) const override;
   void applyJ(ConstPointsRef in, ConstPointsRef v_in, PointsRef v_out) const override;
