@@ -8,8 +8,8 @@
 // Wall time counts Scene::step only (no output). Each configuration runs `--repetitions` times
 // (default 5) from the same start; the figure is the median of the runs. Max strain is
 // max |ε| = max | |P'(s)| / |P0'(s)| − 1 | over 8 abscissas per span, sampled every 10 ms of
-// simulated time. Energy drift is (E(T) − E(0)) / (m g ℓ): kinetic + gravity + elastic; backward
-// Euler dissipates, so it is negative.
+// simulated time. Energy drift is (E(T) − E(0)) / (m g ℓ) with ℓ = 1 m, or / |E(0)| in a scene
+// without gravity: kinetic + gravity + elastic; backward Euler dissipates, so it is negative.
 //
 // Output: a table on stdout, realtime.csv and, with --plot, realtime.png (apps/tools/
 // plot_realtime.py: strain against wall time per simulated ms, one point per configuration).
@@ -111,8 +111,9 @@ Figures measure(const json& document, const std::string& name, int repetitions) 
     const double dt = scene->settings().dt;
     const long steps = std::lround(scene->settings().duration / dt);
     const long sample_every = std::max(1L, std::lround(0.01 / dt));
-    const double scale = std::max(totalMass(*scene) * scene->settings().gravity.norm() * 1.0, 1e-300);
     const double e0 = scene->energy(scene->state()).total();
+    // m g ℓ with ℓ = 1 m; without gravity (taut string) the initial energy itself.
+    const double scale = std::max(totalMass(*scene) * scene->settings().gravity.norm() * 1.0, std::abs(e0));
     double strain = 0.0, wall = 0.0;
     for (long k = 0; k < steps; ++k) {
       const auto start = std::chrono::steady_clock::now();

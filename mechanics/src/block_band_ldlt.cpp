@@ -6,9 +6,9 @@
 
 namespace filum::mechanics {
 
-void BlockBandLdlt::resize(int size, int half_bandwidth) {
-  n_ = size / 3;
-  r_ = std::max(0, std::min(half_bandwidth / 3, n_ - 1));  // ceil((p − 2) / 3): p = 3r + 2 gives r
+void BlockBandLdlt::resize(int points, int range) {
+  n_ = points;
+  r_ = std::max(0, std::min(range, n_ - 1));
   width_ = r_ + 1;
   blocks_.assign(static_cast<std::size_t>(n_) * width_, Eigen::Matrix3d::Zero());
   work_.assign(width_, Eigen::Matrix3d::Zero());

@@ -13,7 +13,7 @@ namespace filum::mechanics {
 struct SparseLdlt::Impl {
   // Supernodal LLᵀ is CHOLMOD's fastest path but needs a positive definite matrix; an implicit
   // step with a compressed (negative) stiffness may not be, then CHOLMOD's simplicial LDLᵀ
-  // (no pivoting, like BandedLdlt) takes over for the rest of the run.
+  // (no pivoting, like BlockBandLdlt) takes over for the rest of the run.
   Eigen::CholmodDecomposition<SparseLdlt::Matrix, Eigen::Lower> solver;
   bool ldlt = false;
 

@@ -59,8 +59,8 @@ void StepMatrix::analyse(const Scene& scene) {
     block.band = choice_ == LinearSolverChoice::Band ||
                  (choice_ == LinearSolverChoice::Auto && halfBandwidth(block.range) <= kAutoBandLimit);
     if (block.band) {
-      block.band_factor.resize(3 * block.points, halfBandwidth(block.range));
-      block.constant.resize(3 * block.points, halfBandwidth(block.range));
+      block.band_factor.resize(block.points, block.range);
+      block.constant.resize(block.points, block.range);
     }
     body_block_[b] = b;
   }

@@ -1,4 +1,4 @@
-// The matrices of implicit steps, A = M − θh D − κh² K (step_matrix.hpp): the band LDLᵀ, the
+// The matrices of implicit steps, A = M − θh D − κh² K (step_matrix.hpp): the 3 × 3-block band LDLᵀ, the
 // sparse path (CHOLMOD, or Eigen SimplicialLDLT without SuiteSparse) and the coupled-bodies path
 // all solve like a dense factorization of the same symmetrised matrix; implicit integrators keep
 // constraints through it.
@@ -13,7 +13,7 @@
 
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/spline_curve.hpp"
-#include "filum/mechanics/banded_ldlt.hpp"
+#include "filum/mechanics/block_band_ldlt.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
 #include "filum/mechanics/implicit_euler.hpp"
 #include "filum/mechanics/step_matrix.hpp"
@@ -26,7 +26,7 @@ namespace {
 
 using nlohmann::json;
 
-TEST(BandedLdlt, SolvesSymmetricBandMatricesIncludingIndefiniteOnes) {
+TEST(BlockBandLdlt, SolvesSymmetricBandMatricesIncludingIndefiniteOnes) {
   // A random symmetric band matrix (half bandwidth 11, n = 60), once shifted to be positive
   // definite and once indefinite; compared with a dense LU.
   const int n = 60, p = 11;
@@ -37,8 +37,8 @@ TEST(BandedLdlt, SolvesSymmetricBandMatricesIncludingIndefiniteOnes) {
     for (int j = std::max(0, i - p); j <= i; ++j) A(i, j) = A(j, i) = noise.data()[k++];
   for (double shift : {30.0, 0.5}) {
     const MatX S = A + shift * MatX::Identity(n, n);
-    mechanics::BandedLdlt band;
-    band.resize(n, p);
+    mechanics::BlockBandLdlt band;
+    band.resize(n / 3, (p + 2) / 3);  // scalar entries |i − j| <= 11 reach 4 blocks away
     for (int i = 0; i < n; ++i)
       for (int j = std::max(0, i - p); j <= i; ++j) band.addLower(i, j, S(i, j));
     ASSERT_EQ(band.factor(), "");
@@ -51,9 +51,9 @@ TEST(BandedLdlt, SolvesSymmetricBandMatricesIncludingIndefiniteOnes) {
   }
 }
 
-TEST(BandedLdlt, ReportsAZeroPivot) {
-  mechanics::BandedLdlt band;
-  band.resize(3, 1);
+TEST(BlockBandLdlt, ReportsAZeroPivot) {
+  mechanics::BlockBandLdlt band;
+  band.resize(1, 0);
   band.addLower(0, 0, 1.0);
   band.addLower(1, 0, 1.0);
   band.addLower(1, 1, 1.0);  // second pivot 1 − 1·1 = 0

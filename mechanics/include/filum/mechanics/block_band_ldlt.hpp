@@ -5,17 +5,15 @@
 // diagonal (3 × 3 symmetric blocks). For block rows i, j < i:
 //   W_ij = A_ij − Σ_{k<j} W_ik L_jkᵀ,   L_ij = W_ij D_j⁻¹,   D_i = A_ii − Σ_{k<i} W_ik L_ikᵀ,
 // (W_ik = L_ik D_k), k over the band only: O(n r²) fixed-size 3 × 3 products, each D_j factored
-// by its own scalar LDLᵀ. The same arithmetic
-// as the scalar band LDLᵀ (BandedLdlt) with 3 × 3 pivots, but each step is a dozen independent
-// multiply-adds instead of one long dependent dot product: several times faster for the 3n × 3n
-// interleaved matrices of this library.
+// by its own scalar LDLᵀ. The arithmetic is that of a scalar band LDLᵀ of half bandwidth 3r + 2,
+// but each step is a dozen independent multiply-adds instead of one long dependent dot product.
 //
 // No pivoting: A is symmetric and, for the step sizes an implicit scheme takes, dominated by the
 // positive definite M; a stiffness with negative eigenvalues (a compressed thread) makes A
-// indefinite, which a 3 × 3 pivot block handles unless it is singular (factor() reports it).
+// indefinite; LDLᵀ still goes through unless a pivot vanishes, which factor() reports.
 //
-// The scalar interface (addLower on interleaved coordinates 3i + axis) is BandedLdlt's, so the
-// step matrix fills either. Storage is allocated by resize() and reused.
+// The step matrix adds whole blocks (block()); addLower takes one scalar entry on interleaved
+// coordinates 3i + axis. Storage is allocated by resize() and reused.
 #pragma once
 
 #include <string>
@@ -29,13 +27,13 @@ namespace filum::mechanics {
 
 class BlockBandLdlt {
  public:
-  /// size × size matrix (size a multiple of 3) with entries for |i − j| <= half_bandwidth, whose
-  /// blocks reach r = (half_bandwidth − 2) / 3 block diagonals, rounded up; sets it to zero.
-  void resize(int size, int half_bandwidth);
+  /// A matrix of `points` × `points` blocks of 3 × 3 (size 3 points) whose block (i, j) may be
+  /// non-zero for |i − j| <= range; sets it to zero.
+  void resize(int points, int range);
   void setZero();
   /// Copies the entries of another unfactored matrix of the same size and bandwidth.
   void assign(const BlockBandLdlt& other) { blocks_ = other.blocks_; }
-  /// a_ij += value for i >= j (lower triangle, coordinates 3·point + axis). |i/3 − j/3| <= r.
+  /// a_ij += value for i >= j (lower triangle, coordinates 3·point + axis), |i/3 − j/3| <= range.
   void addLower(int i, int j, double value) {
     block(i / 3, j / 3)(i % 3, j % 3) += value;
   }
