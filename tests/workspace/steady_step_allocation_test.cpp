@@ -40,11 +40,16 @@ void noteAllocation() {
   counting = true;
 }
 
-void* allocate(std::size_t size, std::size_t alignment = 0) {
+/// Counts and allocates; nullptr when memory is exhausted (the throwing forms throw then).
+void* allocateOrNull(std::size_t size, std::size_t alignment = 0) noexcept {
   if (counting.load(std::memory_order_relaxed)) noteAllocation();
   if (size == 0) size = 1;
-  void* p = alignment > alignof(std::max_align_t) ? std::aligned_alloc(alignment, (size + alignment - 1) / alignment * alignment)
-                                                  : std::malloc(size);
+  return alignment > alignof(std::max_align_t) ? std::aligned_alloc(alignment, (size + alignment - 1) / alignment * alignment)
+                                               : std::malloc(size);
+}
+
+void* allocate(std::size_t size, std::size_t alignment = 0) {
+  void* p = allocateOrNull(size, alignment);
   if (!p) throw std::bad_alloc();
   return p;
 }
@@ -54,20 +59,8 @@ void* operator new(std::size_t size) { return allocate(size); }
 void* operator new[](std::size_t size) { return allocate(size); }
 void* operator new(std::size_t size, std::align_val_t a) { return allocate(size, static_cast<std::size_t>(a)); }
 void* operator new[](std::size_t size, std::align_val_t a) { return allocate(size, static_cast<std::size_t>(a)); }
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  try {
-    return allocate(size);
-  } catch (...) {
-    return nullptr;
-  }
-}
-void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
-  try {
-    return allocate(size);
-  } catch (...) {
-    return nullptr;
-  }
-}
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return allocateOrNull(size); }
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return allocateOrNull(size); }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
