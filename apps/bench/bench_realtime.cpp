@@ -51,7 +51,7 @@ struct Figures {
   double energy_drift = 0.0;  // (E(T) − E(0)) / (m g ℓ)
   double dt = 0.0;
   double simulated = 0.0;
-  long corrections = -1, estimates = -1, halvings = -1;  // implicit solvers only
+  long corrections = -1, estimates = -1, halvings = -1, reuses = -1;  // implicit solvers only
   std::string failure;
 };
 
@@ -135,6 +135,7 @@ Figures measure(const json& document, const std::string& name, int repetitions) 
         figures.corrections = solver->corrections();
         figures.estimates = solver->estimates();
         figures.halvings = solver->halvings();
+        figures.reuses = solver->reuses();
       }
     }
   }
@@ -146,16 +147,17 @@ Figures measure(const json& document, const std::string& name, int repetitions) 
 void printRow(std::FILE* csv, const std::string& problem, int n, const std::string& scheme, const Figures& f) {
   if (!f.failure.empty()) {
     std::printf("%-22s %5d  %-26s FAILED: %s\n", problem.c_str(), n, scheme.c_str(), f.failure.c_str());
-    std::fprintf(csv, "%s,%d,%s,%g,,,,,,,failed\n", problem.c_str(), n, scheme.c_str(), f.dt);
+    std::fprintf(csv, "%s,%d,%s,%g,,,,,,,,failed\n", problem.c_str(), n, scheme.c_str(), f.dt);
     return;
   }
   std::printf("%-22s %5d  %-26s dt %-8.2g %9.4f ms/ms  strain %.2e  drift %+.2e", problem.c_str(), n, scheme.c_str(), f.dt,
               f.wall_ms_per_sim_ms, f.max_strain, f.energy_drift);
   if (f.estimates >= 0) std::printf("  corrected %ld/%ld halved %ld", f.corrections, f.estimates, f.halvings);
+  if (f.reuses > 0) std::printf(" reused %ld", f.reuses);
   std::printf("\n");
   std::fflush(stdout);
-  std::fprintf(csv, "%s,%d,%s,%g,%g,%.6g,%.6g,%.6g,%ld,%ld,ok\n", problem.c_str(), n, scheme.c_str(), f.dt, f.simulated,
-               f.wall_ms_per_sim_ms, f.max_strain, f.energy_drift, f.corrections, f.halvings);
+  std::fprintf(csv, "%s,%d,%s,%g,%g,%.6g,%.6g,%.6g,%ld,%ld,%ld,ok\n", problem.c_str(), n, scheme.c_str(), f.dt,
+               f.simulated, f.wall_ms_per_sim_ms, f.max_strain, f.energy_drift, f.corrections, f.halvings, f.reuses);
 }
 
 }  // namespace
@@ -183,10 +185,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "error: cannot write %s\n", csv_path.c_str());
     return 4;
   }
-  std::fprintf(csv, "problem,n,scheme,dt,simulated_s,wall_ms_per_sim_ms,max_strain,energy_drift,corrections,halvings,status\n");
+  std::fprintf(csv, "problem,n,scheme,dt,simulated_s,wall_ms_per_sim_ms,max_strain,energy_drift,corrections,halvings,reuses,status\n");
 
   const std::vector<Scheme> implicit_schemes = {
       {"implicit Euler linearized", {{"type", "ImplicitEuler"}}},
+      {"implicit Euler lin. reuse", {{"type", "ImplicitEuler"}, {"reuse_factorization", true}}},
       {"implicit Euler B-W only", {{"type", "ImplicitEuler"}, {"newton_iterations", 1}}},
       {"implicit Euler Newton", {{"type", "ImplicitEuler"}, {"solve", "newton"}}},
       {"implicit midpoint lin.", {{"type", "ImplicitMidpoint"}}},

@@ -17,6 +17,7 @@ NewtonSettings NewtonSettings::fromParams(const Params& p) {
   settings.tolerance = p.nonNegative("newton_tolerance", settings.tolerance);
   if (settings.linearized) {
     settings.linearization_tolerance = p.positive("linearization_tolerance", settings.linearization_tolerance);
+    settings.reuse_factorization = p.boolean("reuse_factorization", settings.reuse_factorization);
   } else {
     const std::string update = p.string("jacobian_update", "every_iteration");
     if (update != "every_iteration" && update != "every_step")
@@ -57,11 +58,13 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
 
     // A = M − θh D − κh² K at the iterate, factored: at every Newton iterate, at the first only
     // for the chord method; in linearized mode not for the estimate (k = 1).
-    const bool refactor = settings_.linearized ? k != 1 : (k == 0 || settings_.refactor_every_iteration);
-    if (refactor) {
-      failure_ = matrix_.assemble(scene, eval_, -kappa * h * h, -theta * h);
-      if (!failure_.empty()) return Status::kFailed;
+    bool refactor = settings_.linearized ? k != 1 : (k == 0 || settings_.refactor_every_iteration);
+    if (k == 0 && settings_.linearized && settings_.reuse_factorization && matrix_valid_ && matrix_key_[0] == h &&
+        matrix_key_[1] == theta && matrix_key_[2] == kappa && matrix_.laidOutFor(scene)) {
+      refactor = false;  // a chord step on an earlier factorization; the estimate guards it
+      ++reuses_;
     }
+    if (refactor && !assembleAt(scene, h, theta, kappa)) return Status::kFailed;
 
     // a_t = a + A⁻¹ r, then the constraints through A⁻¹.
     const bool estimate = settings_.linearized && k == 1;
@@ -78,8 +81,7 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
       if (kappa * h * h * change <= settings_.linearization_tolerance * std::max(displacement, floor))
         return Status::kConverged;
       ++corrections_;
-      failure_ = matrix_.assemble(scene, eval_, -kappa * h * h, -theta * h);
-      if (!failure_.empty()) return Status::kFailed;
+      if (!assembleAt(scene, h, theta, kappa)) return Status::kFailed;
       force_ = residual_;
       if (!update(scene, s0, a, k)) return Status::kFailed;
       change = (next_ - a).lpNorm<Eigen::Infinity>();
@@ -107,6 +109,15 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
     previous_change = change;
   }
   return fixed_count ? Status::kConverged : Status::kNotConverged;
+}
+
+bool ImplicitStepSolver::assembleAt(const Scene& scene, double h, double theta, double kappa) {
+  failure_ = matrix_.assemble(scene, eval_, -kappa * h * h, -theta * h);
+  matrix_valid_ = failure_.empty();
+  matrix_key_[0] = h;
+  matrix_key_[1] = theta;
+  matrix_key_[2] = kappa;
+  return matrix_valid_;
 }
 
 bool ImplicitStepSolver::update(Scene& scene, const SceneState& s0, const VecX& a, int k) {

@@ -211,11 +211,14 @@ bool StepMatrix::fill(const Scene& scene, const SceneState& s, double k_factor, 
   return fits_;
 }
 
+bool StepMatrix::laidOutFor(const Scene& scene) const {
+  return static_cast<int>(point_body_.size()) == scene.dofPointCount() && body_first_.size() == scene.bodies().size() &&
+         !blocks_.empty();
+}
+
 std::string StepMatrix::assemble(const Scene& scene, const SceneState& s, double k_factor, double d_factor) {
   ++revision_;
-  const bool same_scene = static_cast<int>(point_body_.size()) == scene.dofPointCount() &&
-                          body_first_.size() == scene.bodies().size() && !blocks_.empty();
-  if (!same_scene) {
+  if (!laidOutFor(scene)) {
     point_body_.clear();  // a new scene: forget what earlier assemblies needed
     analyse(scene);
   }

@@ -119,6 +119,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   void assembleSeparable(const Scene& scene, const ConstraintRows& rows);
   void assembleGeneral(const Scene& scene, const ConstraintRows& rows);
   void storeEntry(int r, int k, double value);
+  /// a += A⁻¹ Lᵀ λ by scattering Lᵀ λ and one solve per touched body.
+  void scatterForces(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a);
   void factorAndSolve();
 
   Options options_;

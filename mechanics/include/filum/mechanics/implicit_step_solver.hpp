@@ -30,6 +30,12 @@
 // implicit_integrators_test) buckled differently and settled elsewhere (the snapping thread's
 // |a| is huge); with the position measure its rest states match full Newton's to the digit.
 // estimates(), corrections() and halvings() count how often each happens.
+//
+// Reusing the factorization ("reuse_factorization": true, linearized mode): the first iteration
+// of a step solves with the matrix factored in an earlier step (same h, θ, κ) instead of
+// assembling a new one — a chord step from a Jacobian a few steps old. The same estimate guards
+// it: when the stale matrix makes the step inaccurate, A is assembled at a_1 and Newton goes on,
+// which also refreshes the matrix for the next steps. reuses() counts the steps that reused it.
 // max_iterations = 1 skips the estimate: Baraff & Witkin's step, always accepted.
 //
 // Robustness. Far from equilibrium with a large step the Newton iteration may not converge: a
@@ -59,6 +65,7 @@ namespace filum::mechanics {
 struct NewtonSettings {
   bool linearized = true;                // "solve": "linearized" (default) or "newton"
   double linearization_tolerance = 1e-3;  // relative, see above
+  bool reuse_factorization = false;       // "reuse_factorization" (linearized mode), see above
   int max_iterations = 10;
   double tolerance = 1e-10;
   int max_halvings = 10;
@@ -104,6 +111,8 @@ class ImplicitStepSolver {
   /// Linearized solves whose error was estimated, and those the estimate sent on to Newton.
   long estimates() const { return estimates_; }
   long corrections() const { return corrections_; }
+  /// Steps whose first iteration reused an earlier factorization.
+  long reuses() const { return reuses_; }
   const std::string& lastFailure() const { return failure_; }
   const StepMatrix& matrix() const { return matrix_; }
 
@@ -125,6 +134,11 @@ class ImplicitStepSolver {
   long halvings_ = 0;
   long estimates_ = 0;
   long corrections_ = 0;
+  long reuses_ = 0;
+  /// Assembles and factors A at eval_ for (h, θ, κ); remembers them for reuse.
+  bool assembleAt(const Scene& scene, double h, double theta, double kappa);
+  bool matrix_valid_ = false;        // matrix_ holds a factorization for matrix_key_
+  double matrix_key_[3] = {0, 0, 0};  // h, θ, κ of that factorization
 };
 
 }  // namespace filum::mechanics

@@ -77,6 +77,9 @@ class StepMatrix final : public BlockInverse, public JacobianAccumulator {
   void addIsotropic(int i, int j, double value) override;
   void addRankOne(int first, ConstPointsRef u, double factor) override;
 
+  /// True when the last assembly was laid out for this scene's bodies and points.
+  bool laidOutFor(const Scene& scene) const;
+
   /// How the blocks are factored, e.g. "band (half bandwidth 11)" or "CHOLMOD supernodal LLt".
   std::string method() const;
   /// Times the layout was worked out (1 in a steady run: the first assembly).
