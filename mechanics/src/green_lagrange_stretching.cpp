@@ -1,5 +1,6 @@
 #include "filum/mechanics/green_lagrange_stretching.hpp"
 
+
 #include "filum/geometry/spline_curve.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
 #include "filum/mechanics/support_jacobian.hpp"
@@ -49,19 +50,53 @@ double GreenLagrangeStretching::potentialEnergy(const SceneState& s) const {
 
 void GreenLagrangeStretching::addJacobian(const SceneState& s, double k_factor, double /*d_factor*/,
                                           JacobianAccumulator& out) const {
-  // Elastic: D = 0. K = −∇²E, so k_factor·K is the Hessian scaled by −k_factor.
+  // Elastic: D = 0. K = −∇²E, so k_factor·K is the Hessian scaled by −k_factor. Per piece of the
+  // spline (its nodes share one support), block (a, b) of the Hessian is
+  //   Σ_g b'_a b'_b c_g (ε_g I + x_g x_gᵀ / a0²) = (Σ_g p_g ε_g c_g) I + Σ_g p_g (c_g / a0²) x_g x_gᵀ,
+  // p_g = b'_a(s_g) b'_b(s_g): 6 distinct entries of a symmetric outer product and one isotropic
+  // term per node and pair a >= b, instead of a full 3 × 3 product per node and pair.
   if (k_factor == 0.0) return;
   const ConstPointsMap q = body().block(s.q);
   const auto& nodes = quadrature_.nodes();
-  SupportJacobian jacobian(out, body().offset(), -k_factor);
-  for (std::size_t g = 0; g < nodes.size(); ++g) {
-    const QuadratureNode& node = nodes[g];
-    const Vec3 x = geometry::curveTangent(node.row, q);
-    const double a0sq = node.rest_speed * node.rest_speed;
-    const double strain = (x.squaredNorm() - a0sq) / (2.0 * a0sq);
-    const Eigen::Matrix3d H = c_[g] * (strain * Eigen::Matrix3d::Identity() + x * x.transpose() / a0sq);
-    jacobian.begin(node.row);
-    jacobian.addSymmetric(node.row.d1, H);
+  constexpr int kMax = geometry::BasisRow::kMaxSupport;
+  constexpr int kPairs = kMax * (kMax + 1) / 2;
+  // Column k of `sums`: pair k = (a, b <= a) of the piece; rows xx xy xz yy yz zz, isotropic, 0.
+  Eigen::Matrix<double, 8, kPairs> sums;
+  Eigen::Matrix<double, 8, 1> outer;
+  Eigen::Matrix<double, 1, kPairs> products;
+  const double scale = -k_factor;
+  const int base = body().offset();
+  std::size_t g = 0;
+  while (g < nodes.size()) {
+    const int first = nodes[g].row.first, count = nodes[g].row.count, pairs = count * (count + 1) / 2;
+    sums.leftCols(pairs).setZero();
+    for (; g < nodes.size() && nodes[g].row.first == first && nodes[g].row.count == count; ++g) {
+      const QuadratureNode& node = nodes[g];
+      const Vec3 x = geometry::curveTangent(node.row, q);
+      const double a0sq = node.rest_speed * node.rest_speed;
+      const double beta = c_[g] / a0sq;
+      outer << beta * x.x() * x.x(), beta * x.x() * x.y(), beta * x.x() * x.z(), beta * x.y() * x.y(),
+          beta * x.y() * x.z(), beta * x.z() * x.z(), c_[g] * (x.squaredNorm() - a0sq) / (2.0 * a0sq), 0.0;  // c ε
+      int k = 0;
+      for (int a = 0; a < count; ++a)
+        for (int b = 0; b <= a; ++b) products[k++] = node.row.d1[a] * node.row.d1[b];
+      if (pairs == 10)  // the cubic B-spline: fixed sizes, unrolled
+        sums.leftCols<10>().noalias() += outer * products.leftCols<10>();
+      else
+        sums.leftCols(pairs).noalias() += outer * products.leftCols(pairs);  // rank-one update
+    }
+    int k = 0;
+    for (int a = 0; a < count; ++a)
+      for (int b = 0; b <= a; ++b, ++k) {
+        const auto m = sums.col(k);
+        Eigen::Matrix3d block;
+        block << m[0] + m[6], m[1], m[2], m[1], m[3] + m[6], m[4], m[2], m[4], m[5] + m[6];
+        block *= scale;
+        if (a == b)
+          out.addBlock(base + first + a, base + first + a, block);
+        else
+          out.addBlockPair(base + first + a, base + first + b, block);
+      }
   }
 }
 
