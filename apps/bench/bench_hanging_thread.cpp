@@ -1,5 +1,5 @@
-// bench_hanging_thread: wall-clock time per simulated millisecond of the headline scene,
-// apps/scenes/hanging_thread.json (explicit RK4, springs, viscous damping, one fixed point by
+// bench_hanging_thread: wall-clock time per simulated millisecond of the soft-spring thread,
+// apps/scenes/paper_hanging_thread.json (explicit RK4, springs, viscous damping, one fixed point by
 // Lagrange multipliers), for n = 30 control points (the file as it is) and n = 165. Why: the
 // paper's claim is real time for a suture thread; real time means wall_ms_per_sim_ms <= 1.
 //
@@ -60,7 +60,7 @@ nlohmann::json* findComponent(nlohmann::json& components, const std::string& typ
 }
 
 void hangingThread(benchmark::State& state, Variant variant) {
-  const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/hanging_thread.json";
+  const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/paper_hanging_thread.json";
   nlohmann::json document = filum::readJsonFile(path);
   nlohmann::json& thread = document["nodes"][0]["components"];
   thread[0]["control_points"]["count"] = variant.control_points;

@@ -30,7 +30,11 @@ TEST(ViewCommand, MouseGrabsAndPullsTheThread) {
   const fs::path out = fs::path(FILUM_BINARY_DIR) / "test_output" / "view";
   fs::create_directories(out);
   ViewOptions options;
-  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/hanging_thread.json";
+  // The soft-spring thread, whose middle can follow a probe dragged 3 cm away. On the headline
+  // suture (implicit, dt = 1 ms) the grab spring is capped at ω dt = 0.5 for explicit stability
+  // (interactive_probe.cpp, kGrabOmegaDt): ~0.03 N/m on its 1e-7 kg, too soft to fold the stiff
+  // thread towards the probe — a cap an implicit step does not need (noted in issue 12's note).
+  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/paper_hanging_thread.json";
   options.frames = 24;
   options.fixed_step = 0.02;  // 20 ms of simulation per frame, whatever the machine's speed
   options.screenshot = (out / "view_last_frame.png").string();

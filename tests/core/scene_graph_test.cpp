@@ -176,18 +176,18 @@ TEST(SceneLoader, HangingThreadLoadsAndSteps) {
   const auto scene = loadScene(path, app::makeFactory());
   EXPECT_EQ(scene->settings().name, "hanging thread");
   EXPECT_EQ(scene->settings().source, path);
-  EXPECT_DOUBLE_EQ(scene->settings().dt, 1e-4);
+  EXPECT_DOUBLE_EQ(scene->settings().dt, 1e-3);
   EXPECT_DOUBLE_EQ(scene->settings().duration, 2.0);
   EXPECT_EQ(scene->settings().gravity, Vec3(0.0, 0.0, -9.81));
   ASSERT_EQ(scene->bodies().size(), 1u);
   EXPECT_EQ(scene->bodies().front()->pointCount(), 30);
   EXPECT_EQ(scene->bodyAt("thread"), scene->bodies().front());
-  EXPECT_EQ(scene->forceFields().size(), 2u);   // springs, viscous damping
+  EXPECT_EQ(scene->forceFields().size(), 3u);   // stretching, bending, viscous damping
   EXPECT_EQ(scene->constraints().size(), 1u);   // the held end
-  EXPECT_EQ(scene->integrator().typeName(), "RungeKutta4");
+  EXPECT_EQ(scene->integrator().typeName(), "ImplicitEuler");
   EXPECT_EQ(scene->dofPointCount(), 30);
   // Components remember where they were declared, for later messages.
-  EXPECT_EQ(scene->constraints().front()->origin(), path + ": /nodes/0/components/3");
+  EXPECT_EQ(scene->constraints().front()->origin(), path + ": /nodes/0/components/4");
   const StepReport report = scene->step();
   EXPECT_TRUE(report.ok) << report.message;
   EXPECT_EQ(scene->stepCount(), 1);
