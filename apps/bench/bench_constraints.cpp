@@ -3,7 +3,7 @@
 //
 // 1. slides/...: the slides' table — 30 control points + 6 constraint rows, 30 + 9, 50 + 9:
 //    4.5, 6.1 and 10.7 ms of computation per simulated ms on a 1.7 GHz Pentium 4 (implicit
-//    Euler, springs). Scene: apps/scenes/constraints.json (paper Fig. 1a: fixed point 3 rows,
+//    Euler, springs). Scene: apps/scenes/paper_constraints.json (paper Fig. 1a: fixed point 3 rows,
 //    point on axis 2, point on plane 1, probe 3), without the probe for 6 rows, its probe kept
 //    on (no "release_at") for 9, its control point count patched to 50 for the last line. We
 //    integrate with explicit RK4 (4 force and constraint evaluations per step; the scene's
@@ -75,7 +75,7 @@ void runScene(benchmark::State& state, const json& document, const std::string& 
 // 1. The slides' table.
 
 json figure1a(int control_points, bool probe, const std::string& integrator) {
-  const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/constraints.json";
+  const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/paper_constraints.json";
   json document = filum::readJsonFile(path);
   json& components = document["nodes"][0]["components"];
   components[0]["control_points"]["count"] = control_points;
