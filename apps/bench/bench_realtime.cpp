@@ -15,10 +15,14 @@
 // plot_realtime.py: strain against wall time per simulated ms, one point per configuration).
 //   build/apps/bench/bench_realtime [--quick] [--repetitions R] [--duration T] [--out DIR] [--plot]
 // --quick: n = 30 and 165 only, 1 s, 3 repetitions, no explicit schemes nor reference scenes.
+// Built with -DFILUM_WITH_PEERS=ON it also runs the same rope in Bullet at 4 and 64 solver
+// iterations and in MuJoCo (n <= 165) — apps/bench/peers/ — and adds their rows to the CSV and
+// the plot.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -232,6 +236,28 @@ int main(int argc, char** argv) {
     }
   }
   std::fclose(csv);
+#ifdef FILUM_PEER_BULLET
+  // The peers append their rows to the same CSV (built with -DFILUM_WITH_PEERS=ON).
+  std::printf("peers (same rope, same machine, same run)\n");
+  std::fflush(stdout);
+  for (int n : sizes)
+    for (int iterations : {4, 64}) {
+      const std::string command = std::string(FILUM_PEER_BULLET) + " --nodes " + std::to_string(n) + " --iterations " +
+                                  std::to_string(iterations) + " --repetitions " + std::to_string(repetitions) +
+                                  " --duration " + std::to_string(duration) + " --csv " + csv_path;
+      if (std::system(command.c_str()) != 0) std::fprintf(stderr, "warning: %s failed\n", command.c_str());
+    }
+#endif
+#ifdef FILUM_PEER_MUJOCO
+  // MuJoCo 2.2 factors the chain's dense joint-space mass matrix: O(n³), 28 ms per simulated ms
+  // at 165 bodies already; 1000 would take hours.
+  for (int n : sizes) {
+    if (n > 165) continue;
+    const std::string command = std::string(FILUM_PEER_MUJOCO) + " --bodies " + std::to_string(n) + " --repetitions " +
+                                std::to_string(repetitions) + " --duration " + std::to_string(duration) + " --csv " + csv_path;
+    if (std::system(command.c_str()) != 0) std::fprintf(stderr, "warning: %s failed\n", command.c_str());
+  }
+#endif
   std::printf("wrote %s\n", csv_path.c_str());
   if (plot) {
     const std::string command = "/usr/bin/python3 " + std::string(FILUM_SOURCE_DIR) + "/apps/tools/plot_realtime.py " + out;

@@ -22,6 +22,9 @@ SCHEME_COLOURS = {
     "implicit midpoint lin.": "tab:green",
     "symplectic Euler": "tab:orange",
     "RK4": "tab:blue",
+    "Bullet 4 it.": "tab:olive",
+    "Bullet 64 it.": "tab:cyan",
+    "MuJoCo rope": "black",
 }
 MARKERS = {30: "o", 50: "s", 165: "D", 1000: "^"}
 

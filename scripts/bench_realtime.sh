@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# The real-time benchmark of issue 12 with its peers: installs what is missing (the quick start's
+# packages, plus Debian's libbullet-dev and libmujoco-dev for the peer programs), builds with
+# -DFILUM_WITH_PEERS=ON and runs bench_realtime, writing apps/bench/results/realtime/
+# (realtime.csv, realtime.png, the printed log). About 15 minutes on 2 cores.
+# Arguments are passed to bench_realtime, e.g. --quick or --repetitions 3 --duration 2.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+"$root/scripts/setup.sh"
+missing=()
+for p in libbullet-dev libmujoco-dev pkg-config; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  echo "installing: ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+cmake -S "$root" -B "$root/build" -DFILUM_WITH_PEERS=ON
+cmake --build "$root/build" -j"$(nproc)" --target bench_realtime
+out="$root/apps/bench/results/realtime"
+mkdir -p "$out"
+cd "$root"
+./build/apps/bench/bench_realtime --out "$out" --plot "$@" | tee "$out/bench_realtime.log"
