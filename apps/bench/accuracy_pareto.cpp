@@ -4,6 +4,8 @@
 // per simulated second. Writes pareto_<problem>.csv and, through apps/tools/plot_pareto.py
 // (Debian python3-matplotlib), pareto_<problem>.png: log-log error against cost, one colour per
 // integrator, one marker per n, the Pareto front (no run both cheaper and more accurate) drawn.
+// Implicit schemes twice: "ImplicitEuler" / "ImplicitMidpoint" are the linearized default with its
+// error estimate, ".../newton" the same schemes solved by Newton (issue 12).
 //
 //   build-mech/apps/bench/accuracy_pareto [--quick] [--out DIR] [--no-plot] [--problem NAME]
 //
@@ -59,6 +61,14 @@ struct Row {
 
 bool isImplicit(const std::string& type) { return type.rfind("Implicit", 0) == 0; }
 
+/// The integrator block of a label: "ImplicitEuler" is the default (linearized, with its error
+/// estimate), "ImplicitEuler/newton" the same scheme solved by Newton to its tolerance.
+nlohmann::json integratorFor(const std::string& label) {
+  const auto slash = label.find('/');
+  if (slash == std::string::npos) return {{"type", label}};
+  return {{"type", label.substr(0, slash)}, {"solve", label.substr(slash + 1)}};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -91,8 +101,9 @@ int main(int argc, char** argv) {
                         quick ? Grid{{10, 30}, {5e-4, 1e-4}, {5e-7}, 30, 1e-2}
                               : Grid{{10, 20, 30, 40, 60}, {1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2e-5, 1e-5},
                                      {1e-6, 5e-7, 2.5e-7}, 60, 1e-2});
-  const std::vector<std::string> integrators = {"ExplicitEuler", "SymplecticEuler", "RungeKutta4", "ImplicitEuler",
-                                                "ImplicitMidpoint"};
+  const std::vector<std::string> integrators = {"ExplicitEuler",        "SymplecticEuler",  "RungeKutta4",
+                                                "ImplicitEuler",        "ImplicitMidpoint", "ImplicitEuler/newton",
+                                                "ImplicitMidpoint/newton"};
 
   for (auto& [problem, grid] : problems) {
     if (!only.empty() && problem->name() != only) continue;
@@ -104,12 +115,12 @@ int main(int argc, char** argv) {
         if (!isImplicit(type) && n > grid.explicit_max_points) continue;
         for (double dt : isImplicit(type) ? grid.implicit_dt : grid.explicit_dt) {
           RunSettings settings;
-          settings.integrator = {{"type", type}};
+          settings.integrator = integratorFor(type);
           settings.dt = dt;
           settings.control_points = n;
           settings.wall_budget = quick ? 0.0 : kWallBudget;
           Row row{type, dt, n, filum::validation::runProblem(*problem, settings)};
-          std::printf("  %-16s n = %2d dt = %.2e: %s error %.3e, %.3e s wall per simulated s\n", type.c_str(), n, dt,
+          std::printf("  %-23s n = %2d dt = %.2e: %s error %.3e, %.3e s wall per simulated s\n", type.c_str(), n, dt,
                       row.result.over_budget ? "TOO SLOW" : row.result.stable ? "        " : "UNSTABLE",
                       row.result.error, row.result.wallPerSimulatedSecond());
           std::fflush(stdout);

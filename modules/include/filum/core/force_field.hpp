@@ -22,7 +22,7 @@ class ForceField : public BodyComponent {
 
   /// Adds k_factor·K + d_factor·D at state s, K = ∂Q/∂q (N/m), D = ∂Q/∂q̇ (N·s/m), into `out`
   /// over the scene's global points (offset() + i), block by block. Implicit steps pass
-  /// k_factor = −θh², d_factor = −θh to build M − θh D − κh² K. Must not allocate.
+  /// k_factor = −κh², d_factor = −θh to build M − θh D − κh² K. Must not allocate.
   /// Only called when hasJacobian().
   virtual void addJacobian(const SceneState& /*s*/, double /*k_factor*/, double /*d_factor*/,
                            JacobianAccumulator& /*out*/) const {}
