@@ -6,7 +6,7 @@
 //    whose side grows like n^(1/3), so that the density — the number of neighbours per sphere —
 //    stays the same from 10^3 to 10^5 spheres. Linear time means ns_per_sphere stays constant.
 //    BruteForce/1000 tests all n(n − 1)/2 pairs, for scale.
-//  - Scene/knot, Scene/threads: wall time per simulated millisecond of apps/scenes/knot.json
+//  - Scene/knot, Scene/threads: wall time per simulated millisecond of apps/scenes/paper_knot.json
 //    (paper Fig. 1b: 5.7 ms on a 1.7 GHz Pentium 4) and apps/scenes/threads.json (Fig. 1c:
 //    16 ms). One iteration = the steps of one simulated ms, the whole pipeline (detection,
 //    contacts, constraints, RK4), no output; a fixed number of iterations from the scene's start
@@ -112,7 +112,7 @@ void Scene(benchmark::State& state, const std::string& file) {
   state.counters["contacts"] = contacts / std::max(steps, 1L);
   state.counters["spheres"] = spheres / std::max(steps, 1L);
 }
-BENCHMARK_CAPTURE(Scene, knot, std::string("knot.json"))->Iterations(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(Scene, knot, std::string("paper_knot.json"))->Iterations(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(Scene, threads, std::string("threads.json"))->Iterations(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
 #ifdef FILUM_WITH_CGAL
 BENCHMARK_CAPTURE(Scene, organ, std::string("organ.json"))->Iterations(1000)->Unit(benchmark::kMillisecond)->UseRealTime();

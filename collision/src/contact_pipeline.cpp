@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "filum/collision/segment_continuous_collision.hpp"
+#include "filum/constraints/projected_point_constraint.hpp"
 #include "filum/core/node.hpp"
 #include "filum/core/scene.hpp"
 
@@ -24,10 +26,8 @@ std::unique_ptr<ContactPipeline> ContactPipeline::fromParams(const Params& p) {
   s.margin = p.nonNegative("margin", s.margin);
   s.continuous = p.boolean("continuous", s.continuous);
   s.cell_size = p.nonNegative("cell_size", s.cell_size);
-  s.unilateral.stabilization = p.positive("stabilization", 0.0);
-  s.unilateral.friction_rate = p.positive("friction_rate", 0.0);
-  s.unilateral.iterations = p.integer("iterations", 1, s.unilateral.iterations);
-  s.unilateral.tolerance = p.positive("tolerance", s.unilateral.tolerance);
+  s.stabilization = p.positive("stabilization", 0.0);
+  s.friction_rate = p.positive("friction_rate", 0.0);
   return std::make_unique<ContactPipeline>(s);
 }
 
@@ -43,15 +43,18 @@ void ContactPipeline::init(const Scene& scene) {
   for (const SphereCollisionModel* m : models_) smallest = std::min(smallest, m->radius());
   margin_ = settings_.margin >= 0.0 ? settings_.margin : (std::isfinite(smallest) ? 0.5 * smallest : 0.0);
   // Baumgarte ω of contact rows: critically damped over two steps by default.
-  unilateral_ = settings_.unilateral;
-  if (!(unilateral_.stabilization > 0.0)) unilateral_.stabilization = 0.5 / time_step_;
-  if (!(unilateral_.friction_rate > 0.0)) unilateral_.friction_rate = unilateral_.stabilization;
+  stabilization_ = settings_.stabilization > 0.0 ? settings_.stabilization : 0.5 / time_step_;
+  friction_rate_ = settings_.friction_rate > 0.0 ? settings_.friction_rate : stabilization_;
   broad_phase_ = UniformGridBroadPhase(settings_.cell_size);
   contacts_.clear();
-  solver_.resetWarmStart();
 }
 
-void ContactPipeline::beginStep(const Scene& /*scene*/, const SceneState& s) {
+void ContactPipeline::beginStep(const Scene& /*scene*/, const SceneState& s, double h) {
+  // Baumgarte ω of contact rows: critically damped over two steps of the step about to be taken
+  // (ω h = ½: the normal row then keeps g1 >= ¾ g0 over the step, to first order).
+  time_step_ = h;
+  stabilization_ = settings_.stabilization > 0.0 ? settings_.stabilization : 0.5 / h;
+  friction_rate_ = settings_.friction_rate > 0.0 ? settings_.friction_rate : stabilization_;
   // 1. Spheres on the current curves, centres and velocities mapped down.
   stats_ = Statistics();
   for (SphereCollisionModel* m : models_) {
@@ -60,7 +63,6 @@ void ContactPipeline::beginStep(const Scene& /*scene*/, const SceneState& s) {
   }
   for (Obstacle* o : obstacles_) o->moveTo(s.time);
   contacts_.clear();
-  solver_.resetWarmStart();
 
   NarrowPhaseSettings narrow;
   narrow.margin = margin_;
@@ -78,7 +80,7 @@ void ContactPipeline::beginStep(const Scene& /*scene*/, const SceneState& s) {
   // 3. Thread–thread: chords in bounding spheres of their start and predicted end positions.
   chords_.clear();
   chord_owner_.clear();
-  const double h = narrow.time_step;
+  const double sweep = narrow.time_step;
   for (int m = 0; m < model_count; ++m) {
     const SphereCollisionModel& model = *models_[m];
     if (model_count == 1 && !model.selfCollision()) continue;
@@ -86,7 +88,7 @@ void ContactPipeline::beginStep(const Scene& /*scene*/, const SceneState& s) {
     const Points& v = model.velocities();
     for (int k = 0; k + 1 < model.sphereCount(); ++k) {
       const Vec3 a0 = x.row(k).transpose(), a1 = x.row(k + 1).transpose();
-      const Vec3 b0 = a0 + h * v.row(k).transpose(), b1 = a1 + h * v.row(k + 1).transpose();
+      const Vec3 b0 = a0 + sweep * v.row(k).transpose(), b1 = a1 + sweep * v.row(k + 1).transpose();
       BoundingSphere bound;
       bound.center = 0.25 * (a0 + a1 + b0 + b1);
       const double reach = std::max({(a0 - bound.center).norm(), (a1 - bound.center).norm(),
@@ -134,20 +136,92 @@ void ContactPipeline::addJacobian(const SceneState& s, double k_factor, double d
   }
 }
 
-bool ContactPipeline::solveContacts(const Scene& scene, const SceneState& s, const ConstraintRows& bilateral,
-                                    const BlockInverse& inverse, VecX& a) {
-  if (settings_.response != Response::kUnilateral || contacts_.empty()) return false;
-  solver_.solve(scene, s, bilateral, contacts_, inverse, unilateral_, a);
-  return true;
+int ContactPipeline::addContactRows(const SceneState& s, ConstraintRows& rows) {
+  if (settings_.response != Response::kUnilateral) return 0;
+  const int first = rows.rows();
+  const int count = static_cast<int>(contacts_.size());
+  normal_row_.resize(count);
+  tangent1_.resize(count);
+  tangent2_.resize(count);
+  const double w = stabilization_, wf = friction_rate_;
+  for (int i = 0; i < count; ++i) {
+    const Contact& c = contacts_[i];
+    const ContactKinematics k = contactKinematics(c, s);
+    rows.beginAnchor();
+    for (int j = 0; j < c.a.count; ++j) rows.addAnchorPoint(c.offset_a + c.a.point[j], c.a.weight[j]);
+    if (!c.againstObstacle())
+      for (int j = 0; j < c.b.count; ++j) rows.addAnchorPoint(c.offset_b + c.b.point[j], -c.b.weight[j]);
+    // n·(a_A − a_B) >= −2ω ġ − ω² g (the obstacle surface moves at constant velocity over the
+    // step); t_j·(a_A − a_B) = −ω_f t_j·(v_A − v_B).
+    const auto [t1, t2] = constraints::orthonormalComplement(c.normal);
+    const Vec3 v = k.v_a - k.v_b;
+    tangent1_[i] = t1;
+    tangent2_[i] = t2;
+    normal_row_[i] = rows.addContactRows(c.normal, -2.0 * w * k.gap_rate - w * w * k.gap, c.friction, t1,
+                                         -wf * t1.dot(v), t2, -wf * t2.dot(v)) - first;
+  }
+  return rows.rows() - first;
+}
+
+void ContactPipeline::takeMultipliers(Eigen::Ref<const VecX> lambda, int first) {
+  // Force on thread point A: λ_n n + λ_t1 t1 + λ_t2 t2.
+  const int count = static_cast<int>(contacts_.size());
+  contact_force_.resize(count);
+  for (int i = 0; i < count; ++i) {
+    const int r = first + normal_row_[i];
+    contact_force_[i] = lambda[r] * contacts_[i].normal;
+    if (contacts_[i].friction > 0.0) contact_force_[i] += lambda[r + 1] * tangent1_[i] + lambda[r + 2] * tangent2_[i];
+  }
 }
 
 Vec3 ContactPipeline::contactForce(int i, const SceneState& s) const {
-  if (settings_.response == Response::kUnilateral) {
-    const auto& forces = solver_.contactForces();
-    return i < static_cast<int>(forces.size()) ? forces[i] : Vec3::Zero();
-  }
+  if (settings_.response == Response::kUnilateral)
+    return i < static_cast<int>(contact_force_.size()) ? contact_force_[i] : Vec3::Zero();
   const Contact& c = contacts_[i];
   return penaltyForce(c, contactKinematics(c, s), settings_.penalty).force;
+}
+
+bool ContactPipeline::passedThrough(const SceneState& after) {
+  if (settings_.response != Response::kUnilateral) return false;
+  const int model_count = static_cast<int>(models_.size());
+  if (static_cast<int>(after_centers_.size()) != model_count) after_centers_.resize(model_count);
+  chords_.clear();
+  chord_owner_.clear();
+  for (int m = 0; m < model_count; ++m) {
+    const SphereCollisionModel& model = *models_[m];
+    if (model_count == 1 && !model.selfCollision()) continue;
+    Points& end = after_centers_[m];
+    if (end.rows() != model.sphereCount()) end.resize(model.sphereCount(), 3);
+    model.mapping().apply(model.spline().block(after.q), end);
+    const Points& start = model.centers();
+    for (int k = 0; k + 1 < model.sphereCount(); ++k) {
+      const Vec3 a0 = start.row(k).transpose(), a1 = start.row(k + 1).transpose();
+      const Vec3 b0 = end.row(k).transpose(), b1 = end.row(k + 1).transpose();
+      BoundingSphere bound;
+      bound.center = 0.25 * (a0 + a1 + b0 + b1);
+      bound.radius = std::max({(a0 - bound.center).norm(), (a1 - bound.center).norm(), (b0 - bound.center).norm(),
+                               (b1 - bound.center).norm()});
+      chords_.push_back(bound);
+      chord_owner_.emplace_back(m, k);
+    }
+  }
+  if (chords_.size() < 2) return false;
+  broad_phase_.findPairs(chords_, pairs_);
+  for (const IndexPair& pair : pairs_) {
+    const auto [ma, k] = chord_owner_[pair.first];
+    const auto [mb, l] = chord_owner_[pair.second];
+    const SphereCollisionModel& a = *models_[ma];
+    const SphereCollisionModel& b = *models_[mb];
+    if (ma == mb && (std::abs(k - l) + 1) * a.mapping().spacing() < a.exclusion()) continue;  // as in beginStep
+    MovingSegment sa{a.centers().row(k).transpose(), a.centers().row(k + 1).transpose(),
+                     after_centers_[ma].row(k).transpose(), after_centers_[ma].row(k + 1).transpose()};
+    MovingSegment sb{b.centers().row(l).transpose(), b.centers().row(l + 1).transpose(),
+                     after_centers_[mb].row(l).transpose(), after_centers_[mb].row(l + 1).transpose()};
+    // Centre lines meet: closer than a thousandth of the radius at a coplanarity root (strands in
+    // contact stay two radii apart; only a pass-through brings the lines together).
+    if (firstSegmentContact(sa, sb, 1e-3 * std::min(a.radius(), b.radius()))) return true;
+  }
+  return false;
 }
 
 Vec3 ContactPipeline::obstacleForce(int o, const SceneState& s) const {

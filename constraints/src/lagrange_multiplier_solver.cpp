@@ -106,7 +106,7 @@ struct LagrangeMultiplierSolver::SparseFactor {
     return ok;
   }
 
-  void solve(const VecX& rhs, VecX& x) {
+  void solve(Eigen::Ref<const VecX> rhs, Eigen::Ref<VecX> x) {
 #ifdef FILUM_WITH_SUITESPARSE
     if (backend == SparseBackend::kCholmod) {
       x = cholmod.solve(rhs);
@@ -142,6 +142,8 @@ std::unique_ptr<LagrangeMultiplierSolver> LagrangeMultiplierSolver::fromParams(c
     p.fail("drop_tolerance", "a relative tolerance in [0, 1e-6] (entries of W below round-off, see "
                              "lagrange_multiplier_solver.hpp; larger values change the solution)");
   o.reuse = p.boolean("reuse", o.reuse);
+  o.contact_iterations = p.integer("contact_iterations", 1, o.contact_iterations);
+  o.contact_tolerance = p.positive("contact_tolerance", o.contact_tolerance);
   if (p.has("sparse_solver")) {
     const std::string name = p.string("sparse_solver");
     if (name == "cholmod") {
@@ -311,7 +313,7 @@ void LagrangeMultiplierSolver::assembleSeparable(const Scene& scene, const Const
   const auto& bodies = scene.bodies();
 
   // G_ab = w_aᵀ y_b = Σ_j w_{a,j} y_b(p_j) for a >= b (0 when they share no body).
-  g_.resize(anchors, anchors);
+  if (g_.rows() < anchors) g_.resize(anchors, anchors);  // grows only: no allocation in steady steps
   for (int a = 0; a < anchors; ++a) {
     const Column& ca = current_[a];
     for (int b = 0; b <= a; ++b) {
@@ -338,7 +340,6 @@ void LagrangeMultiplierSolver::assembleSeparable(const Scene& scene, const Const
       }
     return sum;
   };
-  diagonal_.resize(c);
   for (int r = 0; r < c; ++r) diagonal_[r] = entry(r, r);
   for (int r = 0; r < c; ++r)
     for (int k = 0; k <= r; ++k) storeEntry(r, k, k == r ? diagonal_[r] : entry(r, k));
@@ -360,40 +361,163 @@ void LagrangeMultiplierSolver::assembleGeneral(const Scene& scene, const Constra
     }
     return sum;
   };
-  diagonal_.resize(c);
   for (int r = 0; r < c; ++r) diagonal_[r] = entry(r, r);
   for (int r = 0; r < c; ++r)
     for (int k = 0; k <= r; ++k) storeEntry(r, k, k == r ? diagonal_[r] : entry(r, k));
 }
 
 void LagrangeMultiplierSolver::factorAndSolve() {
-  const int c = static_cast<int>(rhs_.size());
+  const int c = c_;
   if (!stats_.sparse) {
     // Dense LDLᵀ of the lower triangle, kept while W is unchanged.
     bool same = w_factored_.rows() == c;
     for (int k = 0; k < c && same; ++k)
       for (int r = k; r < c && same; ++r) same = w_factored_(r, k) == w_(r, k);
     if (!same) {
-      ldlt_.compute(w_);
-      w_factored_ = w_;
+      w_factored_ = w_.topLeftCorner(c, c);
+      ldlt_.compute(w_factored_);
       stats_.refactored = true;
     }
     if (ldlt_.info() != Eigen::Success) {
-      lambda_.setConstant(c, std::numeric_limits<double>::quiet_NaN());  // reported by the scene
+      lambda_.head(c).setConstant(std::numeric_limits<double>::quiet_NaN());  // reported by the scene
       return;
     }
-    lambda_ = ldlt_.solve(rhs_);
+    lambda_.head(c) = ldlt_.solve(rhs_.head(c));
     return;
   }
   sparse_->assemble(c);
   bool refactored = false;
   if (!sparse_->factor(refactored)) {
-    lambda_.setConstant(c, std::numeric_limits<double>::quiet_NaN());
+    lambda_.head(c).setConstant(std::numeric_limits<double>::quiet_NaN());
     stats_.refactored = refactored;
     return;
   }
   stats_.refactored = refactored;
-  sparse_->solve(rhs_, lambda_);
+  sparse_->solve(rhs_.head(c), lambda_.head(c));
+}
+
+void LagrangeMultiplierSolver::buildAdjacency(int c) {
+  // Full symmetric rows of W from its lower triangle: entry (r, k), k <= r, serves row r at k and
+  // row k at r. Counting pass, then fill (capacity kept from call to call).
+  adjacency_start_.assign(c + 1, 0);
+  auto count = [&](int r, int k) {
+    ++adjacency_start_[r + 1];
+    if (r != k) ++adjacency_start_[k + 1];
+  };
+  if (stats_.sparse) {
+    for (const auto& t : sparse_->triplets) count(t.row(), t.col());
+  } else {
+    for (int k = 0; k < c; ++k)
+      for (int r = k; r < c; ++r) count(r, k);
+  }
+  for (int r = 0; r < c; ++r) adjacency_start_[r + 1] += adjacency_start_[r];
+  adjacency_column_.resize(adjacency_start_[c]);
+  adjacency_value_.resize(adjacency_start_[c]);
+  cursor_.assign(adjacency_start_.begin(), adjacency_start_.end() - 1);
+  auto put = [&](int r, int k, double value) {
+    adjacency_column_[cursor_[r]] = k;
+    adjacency_value_[cursor_[r]++] = value;
+    if (r == k) return;
+    adjacency_column_[cursor_[k]] = r;
+    adjacency_value_[cursor_[k]++] = value;
+  };
+  if (stats_.sparse) {
+    for (const auto& t : sparse_->triplets) put(t.row(), t.col(), t.value());
+  } else {
+    for (int k = 0; k < c; ++k)
+      for (int r = k; r < c; ++r) put(r, k, w_(r, k));
+  }
+}
+
+double LagrangeMultiplierSolver::delassusRow(int r) const {
+  double sum = 0.0;
+  for (int i = adjacency_start_[r]; i < adjacency_start_[r + 1]; ++i) sum += adjacency_value_[i] * lambda_[adjacency_column_[i]];
+  return sum;
+}
+
+void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows) {
+  const int c = rows.rows();
+  buildAdjacency(c);
+  // W_rr (the sparse path's diagonal_ is current only when W was reassembled).
+  for (int r = 0; r < c; ++r) {
+    diagonal_[r] = 0.0;
+    for (int i = adjacency_start_[r]; i < adjacency_start_[r + 1]; ++i)
+      if (adjacency_column_[i] == r) diagonal_[r] = adjacency_value_[i];
+  }
+  // Warm start: λ of the previous call when its rows were of the same kinds (an earlier stage of
+  // the same step, same contact set); else λ = 0.
+  bool warm = static_cast<int>(last_kinds_.size()) == c;
+  for (int r = 0; warm && r < c; ++r) warm = last_kinds_[r] == rows.kind(r);
+  if (!warm) lambda_.head(c).setZero();
+  last_kinds_.resize(c);
+  for (int r = 0; r < c; ++r) last_kinds_[r] = rows.kind(r);
+
+  // The equality block W_BB, factored once.
+  equality_rows_.clear();
+  for (int r = 0; r < c; ++r)
+    if (rows.kind(r) == ConstraintRows::Kind::kEquality) equality_rows_.push_back(r);
+  const int nb = static_cast<int>(equality_rows_.size());
+  if (nb > 0) {
+    w_bb_.setZero(nb, nb);
+    for (int i = 0; i < nb; ++i) {
+      const int r = equality_rows_[i];
+      for (int e = adjacency_start_[r]; e < adjacency_start_[r + 1]; ++e) {
+        const int k = adjacency_column_[e];
+        if (rows.kind(k) != ConstraintRows::Kind::kEquality) continue;
+        const int j = static_cast<int>(std::lower_bound(equality_rows_.begin(), equality_rows_.end(), k) - equality_rows_.begin());
+        w_bb_(i, j) = adjacency_value_[e];
+      }
+    }
+    ldlt_bb_.compute(w_bb_);
+    residual_bb_.resize(nb);
+  }
+  const double threshold = options_.contact_tolerance * std::max(rhs_.head(c).lpNorm<Eigen::Infinity>(), 1e-300);
+  auto residual = [&](int r) { return rhs_[r] - delassusRow(r); };
+
+  stats_.sweeps = 0;
+  for (int sweep = 0; sweep < options_.contact_iterations; ++sweep) {
+    double change = 0.0;
+    // Equality block exactly: Δλ_B = W_BB⁻¹ (β − W λ)_B.
+    if (nb > 0) {
+      for (int i = 0; i < nb; ++i) residual_bb_[i] = residual(equality_rows_[i]);
+      delta_bb_ = ldlt_bb_.solve(residual_bb_);
+      for (int i = 0; i < nb; ++i) {
+        const int r = equality_rows_[i];
+        change = std::max(change, std::abs(diagonal_[r] * delta_bb_[i]));
+        lambda_[r] += delta_bb_[i];
+      }
+    }
+    // Contact rows in order: a normal λ_n >= 0, then its friction pair in μ λ_n's disc.
+    for (int r = 0; r < c; ++r) {
+      const ConstraintRows::Kind kind = rows.kind(r);
+      if (kind == ConstraintRows::Kind::kEquality || !(diagonal_[r] > 0.0)) continue;
+      if (kind == ConstraintRows::Kind::kNormal) {
+        const double next = std::max(0.0, lambda_[r] + residual(r) / diagonal_[r]);
+        change = std::max(change, diagonal_[r] * std::abs(next - lambda_[r]));
+        lambda_[r] = next;
+        continue;
+      }
+      const int r2 = r + 1;  // friction rows come in pairs (t1, t2) after their normal row
+      const double old1 = lambda_[r], old2 = lambda_[r2];
+      lambda_[r] = old1 + residual(r) / diagonal_[r];
+      double l2 = diagonal_[r2] > 0.0 ? old2 + residual(r2) / diagonal_[r2] : old2;
+      double l1 = lambda_[r];
+      const double bound = rows.friction(r) * lambda_[r - 1];
+      const double norm = std::hypot(l1, l2);
+      if (norm > bound) {
+        const double shrink = norm > 0.0 ? bound / norm : 0.0;
+        l1 *= shrink;
+        l2 *= shrink;
+      }
+      change = std::max({change, diagonal_[r] * std::abs(l1 - old1), diagonal_[r2] * std::abs(l2 - old2)});
+      lambda_[r] = l1;
+      lambda_[r2] = l2;
+      ++r;
+    }
+    stats_.sweeps = sweep + 1;
+    stats_.change = change;
+    if (change <= threshold) break;
+  }
 }
 
 bool LagrangeMultiplierSolver::sameRowsAsLastCall(const ConstraintRows& rows) const {
@@ -448,6 +572,13 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   stats_.rows = c;
   stats_.columns = separable ? rows.anchors() : c;
   stats_.sparse = c > options_.sparse_above;
+  // Row-sized buffers grow only (the contact rows change in number from step to step).
+  c_ = c;
+  if (rhs_.size() < c) {
+    rhs_.resize(2 * c);
+    diagonal_.resize(2 * c);
+    lambda_.conservativeResize(2 * c);
+  }
 
   // 1. Columns of M⁻¹ Lᵀ (per anchor or per row), kept or solved. Through an operator that mixes
   // the axes the columns are kept whole when the operator (its revision) and the rows did not
@@ -476,7 +607,7 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
     if (stats_.sparse) {
       sparse_->triplets.clear();
     } else {
-      w_.resize(c, c);
+      if (w_.rows() < c) w_.resize(c, c);  // grows only (entries r, k < c are used)
     }
     if (separable) {
       assembleSeparable(scene, rows);
@@ -490,21 +621,26 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   }
 
   // 3. E − L A_t.
-  rhs_.resize(c);
   for (int r = 0; r < c; ++r) rhs_[r] = rows.rhs(r) - rows.dot(r, a);
 
-  // 4. λ = W⁻¹ (E − L A_t).
-  if (unchanged) {
+  // 4. λ = W⁻¹ (E − L A_t), or with contact rows the projected Gauss–Seidel solution.
+  stats_.inequalities = rows.inequalityCount();
+  if (stats_.inequalities > 0) {
+    if (stats_.sparse) sparse_->assemble(c);  // the matrix of the triplets (kept if unchanged)
+    solveWithContacts(rows);
+    factored_last_call_ = false;
+  } else if (unchanged && factored_last_call_) {
     if (stats_.sparse) {
-      sparse_->solve(rhs_, lambda_);
+      sparse_->solve(rhs_.head(c), lambda_.head(c));
     } else {
-      lambda_ = ldlt_.solve(rhs_);
+      lambda_.head(c) = ldlt_.solve(rhs_.head(c));
     }
   } else {
     factorAndSolve();
+    factored_last_call_ = true;
   }
   // Remember the structure W was built from (mass operator only: nothing else is kept).
-  have_factorization_ = separable && lambda_.allFinite();
+  have_factorization_ = separable && lambda_.head(c).allFinite();
   last_sparse_ = stats_.sparse;
   last_factor_start_.resize(c + 1);
   for (int r = 0; r < c; ++r) last_factor_start_[r] = rows.factorBegin(r);
@@ -551,7 +687,7 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
     cached_size_ = scene.state().q.size();
   } else {
     previous_index_.clear();
-    have_general_ = lambda_.allFinite() && inverse.revision() >= 0;
+    have_general_ = lambda_.head(c).allFinite() && inverse.revision() >= 0;
     if (!general_kept) rememberRows(rows);
     cached_inverse_ = &inverse;
     cached_revision_ = inverse.revision();

@@ -30,16 +30,20 @@ NewtonSettings NewtonSettings::fromParams(const Params& p) {
 
 ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneState& s0, double h, double theta,
                                                      double kappa, VecX& a) {
+  // a holds the 3N point accelerations, then those of the constraints' extra DOFs (a sliding
+  // point's s̈): these follow from the constrained point accelerations (Scene::applyConstraints,
+  // stage 3d), so the Newton system and its convergence test are on the points only.
   const Eigen::Index size = s0.q.size();
+  const Eigen::Index n3 = 3 * scene.dofPointCount();
   a.setZero(size);  // a_0 = 0: the first iterate evaluates forces at (q0 + θh v0, v0)
   eval_.time = s0.time + theta * h;
   eval_.steps = s0.steps;
-  ma_.resize(size);
+  ma_.resize(n3);
   const double gravity = scene.settings().gravity.norm();
   const bool fixed_count = settings_.max_iterations == 1 || (!settings_.linearized && settings_.tolerance == 0.0);
   // ℓ: the extent of the scene (largest side of the points' bounding box), the length scale of
   // the round-off test below.
-  const Eigen::Index points = size / 3;
+  const Eigen::Index points = n3 / 3;
   const auto coordinates = Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>>(s0.q.data(), 3, points);
   const double extent = points > 0 ? (coordinates.rowwise().maxCoeff() - coordinates.rowwise().minCoeff()).maxCoeff() : 0.0;
   ++solves_;
@@ -70,13 +74,13 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
     const bool estimate = settings_.linearized && k == 1;
     if (estimate) residual_ = force_;
     if (!update(scene, s0, a, k)) return Status::kFailed;
-    double change = (next_ - a).lpNorm<Eigen::Infinity>();
+    double change = (next_ - a).head(n3).lpNorm<Eigen::Infinity>();
     if (estimate) {
       // The error estimate of the linearized step a_1 (one chord iteration): a_1 is accepted as
       // it is when small enough; else this iteration becomes a Newton one from a_1, with A
       // assembled at a_1 and the residual already evaluated there.
       ++estimates_;
-      const double displacement = (eval_.q - s0.q).lpNorm<Eigen::Infinity>();  // θh v0 + κh² a_1
+      const double displacement = (eval_.q - s0.q).head(n3).lpNorm<Eigen::Infinity>();  // θh v0 + κh² a_1
       const double floor = settings_.tolerance * extent;  // round-off level of positions (see Newton's test)
       if (kappa * h * h * change <= settings_.linearization_tolerance * std::max(displacement, floor))
         return Status::kConverged;
@@ -84,7 +88,7 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
       if (!assembleAt(scene, h, theta, kappa)) return Status::kFailed;
       force_ = residual_;
       if (!update(scene, s0, a, k)) return Status::kFailed;
-      change = (next_ - a).lpNorm<Eigen::Infinity>();
+      change = (next_ - a).head(n3).lpNorm<Eigen::Infinity>();
     }
     a.swap(next_);
     ++last_iterations_;
@@ -92,7 +96,7 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
     if (fixed_count) continue;
     // Newton's convergence test (in linearized mode after a failed estimate: the estimate was a
     // chord iteration, and Newton goes on to the full tolerance, as in "newton" mode).
-    const double scale = std::max(a.lpNorm<Eigen::Infinity>(), gravity);
+    const double scale = std::max(a.head(n3).lpNorm<Eigen::Infinity>(), gravity);
     if (change <= settings_.tolerance * scale) return Status::kConverged;
     // Newton contracts quadratically; the chord method linearly, at a rate below 1.
     const double contraction = settings_.refactor_every_iteration ? 0.5 : 1.0;
@@ -121,9 +125,13 @@ bool ImplicitStepSolver::assembleAt(const Scene& scene, double h, double theta, 
 }
 
 bool ImplicitStepSolver::update(Scene& scene, const SceneState& s0, const VecX& a, int k) {
-  // next = a + A⁻¹ r (r in force_, solved in place), then constrained through A⁻¹.
+  // next = a + A⁻¹ r (r in force_, solved in place), then constrained through A⁻¹ (which also
+  // sets the extra DOFs' accelerations after the points).
   matrix_.solveAll(force_);
-  next_ = a + force_;
+  const Eigen::Index n3 = force_.size();
+  next_.resize(a.size());
+  next_.head(n3) = a.head(n3) + force_;
+  next_.tail(a.size() - n3).setZero();
   scene.applyConstraints(s0, matrix_, next_);
   if (next_.allFinite()) return true;
   failure_ = "Newton iteration " + std::to_string(k + 1) + " produced non-finite accelerations";

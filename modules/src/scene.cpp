@@ -84,11 +84,6 @@ void Scene::init() {
     c->setExtraIndex(3 * point_count_ + extra_count_);
     extra_count_ += c->extraDofCount();
   }
-  if (extra_count_ > 0 && integrator_->needsJacobians())
-    for (const Constraint* c : constraints_)
-      if (c->extraDofCount() > 0)
-        throw SceneError(c->origin(), integrator_->typeName() + " does not advance the extra degrees of freedom of " +
-                                          c->describe() + " (use an explicit integrator such as RungeKutta4)");
   state_.q.conservativeResize(3 * point_count_ + extra_count_);
   state_.v.setZero(3 * point_count_ + extra_count_);
   for (const Constraint* c : constraints_) c->initialExtra(state_.q);
@@ -115,6 +110,8 @@ void Scene::init() {
                        "none");
     collision_ = pipelines.front();
     collision_->init(*this);
+    // Contacts as constraint rows need the constraint solver: the pipeline's own by default.
+    if (!constraint_solver_ && collision_->addsContactRows()) constraint_solver_ = collision_->defaultConstraintSolver();
     if (integrator_->needsJacobians() && !collision_->hasJacobian())
       throw SceneError(collision_->origin(), integrator_->typeName() + " needs the contact force Jacobian, but " +
                                                  collision_->describe() + " does not provide one");
@@ -122,6 +119,8 @@ void Scene::init() {
 
   force_.setZero(3 * point_count_);
   last_good_ = state_;
+  substep_start_.assign(kMaxPassThroughHalvings + 1, state_);
+  pass_through_halvings_ = 0;
   step_count_ = 0;
   initialized_ = true;
 }
@@ -154,23 +153,23 @@ void Scene::computeForce(const SceneState& s, VecX& B) {
 }
 
 void Scene::applyConstraints(const SceneState& s, const BlockInverse& inverse, VecX& a) {
-  // Stage 3c: constrained accelerations (paper §4, acceleration decomposition).
-  if (!constraint_solver_ && !collision_) return;
+  // Stage 3c: constrained accelerations (paper §4, acceleration decomposition): the active
+  // constraints' rows, then the step's unilateral contacts as inequality rows, solved together
+  // by the one constraint solver.
+  if (!constraint_solver_) return;
   rows_.clear();
   for (const Constraint* c : constraints_)
     if (c->active()) c->buildRows(s, rows_);
-  // Unilateral contacts of the step are solved together with the bilateral rows by the collision
-  // pipeline; without any, the scene's constraint solver takes the bilateral rows alone.
-  const bool contacts = collision_ && collision_->solveContacts(*this, s, rows_, inverse, a);
-  if (!contacts && constraint_solver_ && rows_.rows() > 0) constraint_solver_->solve(*this, rows_, inverse, a);
+  const int first_contact_row = rows_.rows();
+  const int contact_rows = collision_ ? collision_->addContactRows(s, rows_) : 0;
+  if (rows_.rows() > 0) constraint_solver_->solve(*this, rows_, inverse, a);
+  if (contact_rows > 0) collision_->takeMultipliers(constraint_solver_->multipliers(), first_contact_row);
   // Stage 3d: accelerations of the constraints' extra DOFs (a sliding point's s̈ by the direct
   // relation of talk 002), from the constrained point accelerations.
   if (extra_count_ > 0 && a.size() == 3 * point_count_ + extra_count_)
     for (const Constraint* c : constraints_)
       if (c->extraDofCount() > 0) c->extraAcceleration(s, a);
-  if (fault_.empty() && !a.allFinite())
-    fault_ = (contacts ? collision_->describe() : constraint_solver_ ? constraint_solver_->describe() : "the scene") +
-             " produced non-finite accelerations";
+  if (fault_.empty() && !a.allFinite()) fault_ = constraint_solver_->describe() + " produced non-finite accelerations";
 }
 
 void Scene::computeAcceleration(const SceneState& s, VecX& a) {
@@ -211,9 +210,7 @@ StepReport Scene::step() {
   fault_.clear();
   // Scheduled releases (cuts) take effect at the first step that starts at or after their time.
   for (Constraint* c : constraints_) c->updateRelease(state_);
-  // Stage 2: collision detection at the step's start state, only if collision models exist.
-  if (collision_) collision_->beginStep(*this, state_);
-  integrator_->step(*this, state_, settings_.dt);
+  advance(settings_.dt, 0);
 
   std::string culprit = fault_;
   if (culprit.empty() && !state_.allFinite()) {
@@ -240,6 +237,26 @@ StepReport Scene::step() {
   ++step_count_;
   state_.time = static_cast<double>(++state_.steps) * settings_.dt;
   return report;
+}
+
+void Scene::advance(double h, int depth) {
+  // Stage 2: collision detection at the (sub-)step's start state, only if collision models exist.
+  if (collision_) collision_->beginStep(*this, state_, h);
+  substep_start_[depth] = state_;  // preallocated: no allocation
+  integrator_->step(*this, state_, h);
+  if (!fault_.empty() || !collision_ || !collision_->passedThrough(state_)) return;
+  // The contact set of the start did not hold the motion (a strand moved through another within
+  // the step): redo it as two halves, each with its own detection (Bridson et al. 2002 stop a
+  // step at the first such event; halving keeps the step pipeline as it is).
+  if (depth == kMaxPassThroughHalvings) {
+    noteFault(collision_->describe() + ": a thread passed through another even in " +
+              std::to_string(1 << depth) + " sub-steps of " + std::to_string(h) + " s");
+    return;
+  }
+  ++pass_through_halvings_;
+  state_ = substep_start_[depth];
+  advance(0.5 * h, depth + 1);
+  if (fault_.empty()) advance(0.5 * h, depth + 1);
 }
 
 void Scene::MassInverse::solveBlock(int body, Eigen::Ref<VecX> x) const {

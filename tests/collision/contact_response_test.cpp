@@ -48,7 +48,7 @@ TEST(PenaltyContact, AnalyticJacobianMatchesFiniteDifferences) {
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> u(-3e-3, 3e-3);
   for (Eigen::Index i = 0; i < s.v.size(); ++i) s.v[i] = u(rng);
-  pipeline.beginStep(*scene, s);
+  pipeline.beginStep(*scene, s, scene->settings().dt);
   ASSERT_GT(test::pipelineOf(*scene).statistics().thread_contacts, 0);
   ASSERT_GT(test::pipelineOf(*scene).statistics().obstacle_contacts, 0);
   const Eigen::Index n = s.q.size();

@@ -1,4 +1,4 @@
-// The knot of apps/scenes/knot.json (paper Fig. 1b) holds: it is still an overhand knot (knot
+// The knot of apps/scenes/paper_knot.json (paper Fig. 1b, springs) holds: it is still an overhand knot (knot
 // determinant 3 once the thread is closed far away) after 10 s under its own weight — which
 // tightens it — and after one end is pulled 10 cm away at 5 m/s, a pull that unties the same
 // knot with the paper's penalty contacts; the tightness (thread held in the knot) is reported.
@@ -12,7 +12,7 @@
 namespace filum::collision {
 namespace {
 
-const std::string kKnotScene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/knot.json";
+const std::string kKnotScene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/paper_knot.json";
 
 /// Prints the knot's state: determinant, contacts, and the thread it holds pressed (length and
 /// diameter of the piece between the extreme self-contacts).
@@ -33,7 +33,7 @@ void report(const Scene& scene, const std::string& when) {
 TEST(Knot, TheWeightTightensTheKnotOfKnotJsonAndItIsStillAKnotAfterTenSeconds) {
   auto scene = loadScene(kKnotScene, app::makeFactory());
   const Points start = test::sampledCurve(*scene, 0, scene->state());
-  ASSERT_EQ(test::openKnotDeterminant(start), 3) << "knot.json does not start as an overhand knot";
+  ASSERT_EQ(test::openKnotDeterminant(start), 3) << "paper_knot.json does not start as an overhand knot";
   report(*scene, "at start");
   const SceneState initial = scene->state();
   const long steps = std::lround(10.0 / scene->settings().dt);
@@ -57,7 +57,7 @@ TEST(Knot, TheWeightTightensTheKnotOfKnotJsonAndItIsStillAKnotAfterTenSeconds) {
   RecordProperty("knot_thread_cm_after_10s", std::to_string(test::threadLength(*scene, 0, scene->state(), lo, hi) * 100));
 }
 
-/// knot.json with the right end pulled 10 cm further right at 5 m/s after 1 s of settling, and
+/// paper_knot.json with the right end pulled 10 cm further right at 5 m/s after 1 s of settling, and
 /// the given "collision" block (null: the file's).
 std::unique_ptr<Scene> pulledKnot(const nlohmann::json& collision) {
   nlohmann::json document = readJsonFile(kKnotScene);

@@ -71,15 +71,15 @@ TEST_P(NoPassThrough, TwoThreadsDrivenAcrossEachOtherAtTwoMetresPerSecondNeverCr
 }
 
 TEST_P(NoPassThrough, AKnotPulledTightAtTwoMetresPerSecondNeverCrossesItself) {
-  // The open overhand knot of apps/scenes/knot.json, its right end pulled 6 cm away at 2 m/s
+  // The open overhand knot of apps/scenes/paper_knot.json, its right end pulled 6 cm away at 2 m/s
   // from the start: the knot closes on itself at once, strands pressed against strands.
-  nlohmann::json document = readJsonFile(std::string(FILUM_SOURCE_DIR) + "/apps/scenes/knot.json");
+  nlohmann::json document = readJsonFile(std::string(FILUM_SOURCE_DIR) + "/apps/scenes/paper_knot.json");
   document["collision"] = pipelineSettings(GetParam());
   for (auto& c : document["nodes"][0]["components"])
     if (c.value("name", "") == "right end")
       c["path"] = {{{"time", 0.0}, {"position", {0.0416, -0.0075, 0.0185}}},
                    {{"time", 0.03}, {"position", {0.1016, -0.0075, 0.0185}}}};
-  auto scene = loadScene(document, "knot.json pulled at 2 m/s", app::makeFactory());
+  auto scene = loadScene(document, "paper_knot.json pulled at 2 m/s", app::makeFactory());
   const double r = test::pipelineOf(*scene).models().front()->radius();
   // 120 samples on 23 cm: segments less than 8 samples (1.5 cm) apart along the thread are
   // neighbours (the tightest loop of the knot is about 7 cm around).

@@ -165,18 +165,55 @@ TEST(SlidingPoint, FrictionSlowsTheSliding) {
   EXPECT_LT(braked, 0.35);
 }
 
-TEST(SlidingPoint, RefusedWithAnIntegratorThatDoesNotAdvanceExtraDofs) {
-  // Implicit steps solve for the point DOFs only; the scene says so before it starts.
+TEST(SlidingPoint, RealSutureIsPulledThroughUnderImplicitEulerAt1ms) {
+  // The same pull on a real 3-0 polypropylene suture (radius 0.1 mm, 910 kg/m³, E = 2 GPa,
+  // Green–Lagrange stretching and bending) under linearized backward Euler at dt = 1 ms, a step
+  // 50× beyond the explicit stability limit of its stretching (ω_max h ≈ 50). The abscissa s is
+  // advanced with the points (v_s += h s̈, s += h v_s) from the direct relation evaluated after
+  // the constrained point accelerations of each Newton update.
   const Factory factory = app::makeFactory();
   if (!factory.knows("ImplicitEuler")) GTEST_SKIP() << "no ImplicitEuler in this build";
-  json document = pulledThroughHole(0.5, 0.02, 0.0);
-  document["integrator"] = {{"type", "ImplicitEuler"}};
-  try {
-    loadScene(document, "implicit sliding", factory);
-    ADD_FAILURE() << "expected a SceneError";
-  } catch (const SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("extra degrees of freedom"), std::string::npos) << e.what();
+  json thread = {{"name", "thread"},
+                 {"components",
+                  {{{"type", "DynamicSpline"},
+                    {"control_points", {{"from", {0, 0, 0}}, {"to", {0.1, 0, 0}}, {"count", 30}}},
+                    {"radius", 1e-4},
+                    {"density", 910}},
+                   {{"type", "GreenLagrangeStretching"}, {"youngs_modulus", 2e9}},
+                   {{"type", "ParametricBending"}, {"youngs_modulus", 2e9}},
+                   {{"type", "ViscousDamping"}, {"coefficient", 0.5}},
+                   {{"type", "SlidingPointConstraint"}, {"name", "hole"}, {"abscissa", 0.5}},
+                   {{"type", "FixedPointConstraint"},
+                    {"name", "grip"},
+                    {"abscissa", 1.0},
+                    {"interpolation", "smooth"},
+                    {"path",
+                     {{{"time", 0.2}, {"position", {0.1, 0.0, 0.0}}},
+                      {{"time", 2.2}, {"position", {0.125, 0.0, 0.01}}}}}}}}};
+  const json document = {{"name", "implicit sliding"},
+                         {"dt", 1e-3},
+                         {"gravity", {-3.0, 0.0, 0.0}},
+                         {"integrator", {{"type", "ImplicitEuler"}}},
+                         {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}}},
+                         {"nodes", {thread}}};
+  auto scene = loadScene(document, "implicit sliding", factory);
+  const auto& h = hole(*scene);
+  double worst = 0.0;
+  for (int k = 0; k < 3000; ++k) {
+    const StepReport report = scene->step();
+    ASSERT_TRUE(report.ok) << report.message;
+    worst = std::max(worst, h.gap(scene->state()).norm());
   }
+  std::cout << "  implicit Euler, 1 ms: |P(s) - P0| <= " << worst << " m, s from 0.5 to " << h.abscissa(scene->state())
+            << "\n";
+  // The hole holds the thread: the gap stays a small fraction of the thread's radius (0.1 mm).
+  // Backward Euler's local position error is O(h² |Δa|) per step, removed by the Baumgarte
+  // terms within a few steps; for a pull at ~1 cm/s through a thread of curvature <~ 100 /m this
+  // is far below 1 µm, the bound used here (1 % of the radius).
+  EXPECT_LE(worst, 1e-6);
+  // The grip draws 2.5 cm of an inextensible 10 cm thread through: Δs ≈ −0.25, less the tail's swing.
+  EXPECT_LT(h.abscissa(scene->state()), 0.5 - 0.15);
+  EXPECT_TRUE(h.active());
 }
 
 }  // namespace

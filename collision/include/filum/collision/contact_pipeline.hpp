@@ -16,11 +16,21 @@
 // Response (stage 3), "response" in the scene file:
 //   "penalty" (paper §3): normal spring and damper, regularized Coulomb friction, added to B at
 //      every stage (penalty_contact.hpp), with their Jacobian for implicit integrators;
-//   "unilateral": contacts as inequality rows solved with the bilateral constraints by projected
-//      Gauss–Seidel on the Delassus operator (unilateral_contact_solver.hpp) — knots that hold.
-//      In a step with contacts the pipeline solves the scene's bilateral rows too, in place of
-//      its ConstraintSolver (whose multipliers and statistics are then those of its last own
-//      solve); in a step without, the ConstraintSolver runs as usual.
+//   "unilateral": contacts as inequality rows of the scene's constraint solve (addContactRows;
+//      constraints/lagrange_multiplier_solver.hpp solves them with the bilateral rows on one
+//      Delassus operator by projected Gauss–Seidel) — knots that hold, under explicit and
+//      implicit integrators alike. A scene without a ConstraintSolver gets the pipeline's own.
+//      Rows per contact, at stage state s, on the anchor w (+ on A's points, − on B's):
+//        normal   n·(a_A − a_B) >= −2ω ġ − ω² g       (Signorini at the acceleration level with
+//                 Baumgarte's critically damped correction: a resting or speculative contact —
+//                 g > 0 but closing, from continuous detection — is held at g >= 0 to within
+//                 ġ/(ω e); the contact engages before the chords touch when they close fast);
+//        friction t_j·(a_A − a_B) = −ω_f t_j·(v_A − v_B), j = 1, 2, |(λ_t1, λ_t2)| <= μ λ_n
+//                 (Coulomb's disc; sticking drives the slip speed to zero at rate ω_f).
+//      The rows hold the step's start; a step of a stiff thread can still carry a strand through
+//      another when its velocity changes much within the step (a released stiff knot springs at
+//      metres per second). After each step the pipeline checks that no centre line passed
+//      through another (passedThrough), and the scene redoes such a step in halves.
 // Continuous detection assumes each sphere centre moves in a straight line at its start
 // velocity over the step; the margin (default r/2) absorbs the curvature of the true motion,
 // ½ |a| h² (0.5 mm covers |a| < 1e5 m/s² at h = 1e-4 s).
@@ -36,7 +46,7 @@
 #include "filum/collision/penalty_contact.hpp"
 #include "filum/collision/sphere_collision_model.hpp"
 #include "filum/collision/uniform_grid_broad_phase.hpp"
-#include "filum/collision/unilateral_contact_solver.hpp"
+#include "filum/constraints/lagrange_multiplier_solver.hpp"
 #include "filum/core/collision_pipeline.hpp"
 #include "filum/core/params.hpp"
 
@@ -53,7 +63,8 @@ class ContactPipeline final : public CollisionPipeline {
     double margin = -1.0;       // m; < 0: half the smallest sphere radius
     bool continuous = true;     // sweep the detection over the step (continuous detection)
     double cell_size = 0.0;     // broad-phase cell (m); 0: twice the largest chord bound
-    UnilateralContactSolver::Settings unilateral;  // ω, ω_f (0: 0.5/dt), sweeps, tolerance
+    double stabilization = 0.0;  // ω (1/s) of the normal rows; 0: 0.5/dt
+    double friction_rate = 0.0;  // ω_f (1/s) of the friction rows; 0: ω
   };
 
   /// What the last detection found (benchmarks, tests, reports).
@@ -71,24 +82,30 @@ class ContactPipeline final : public CollisionPipeline {
   /// "damping": c (N·s/m, default 0); "friction": μ (default 0); "friction_velocity": ε (m/s,
   /// default 1e-3); "margin": m (default r/2); "continuous": bool (default true); "cell_size": m
   /// (default automatic); "stabilization": ω (1/s, default 0.5/dt); "friction_rate": ω_f (1/s,
-  /// default ω); "iterations": sweeps (default 200); "tolerance": relative (default 1e-6).
+  /// default ω). The sweeps of the unilateral solve are the constraint solver's settings
+  /// (LagrangeMultiplierSolver "contact_iterations", "contact_tolerance").
   static std::unique_ptr<ContactPipeline> fromParams(const Params& p);
 
   std::string typeName() const override { return "ContactPipeline"; }
   void init(const Scene& scene) override;
-  void beginStep(const Scene& scene, const SceneState& s) override;
+  void beginStep(const Scene& scene, const SceneState& s, double h) override;
   void addForce(const SceneState& s, VecX& B) const override;
   void addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const override;
   bool hasJacobian() const override { return true; }
-  bool solveContacts(const Scene& scene, const SceneState& s, const ConstraintRows& bilateral,
-                     const BlockInverse& inverse, VecX& a) override;
+  int addContactRows(const SceneState& s, ConstraintRows& rows) override;
+  void takeMultipliers(Eigen::Ref<const VecX> lambda, int first) override;
+  bool addsContactRows() const override { return settings_.response == Response::kUnilateral; }
+  ConstraintSolver* defaultConstraintSolver() override { return &default_solver_; }
+  /// Unilateral response: the centre lines of the step's start (the spheres of beginStep) and of
+  /// `after` (the same material points), chords moving linearly in between, tested pair by pair
+  /// for a meeting (segment_continuous_collision.hpp) after a swept broad phase.
+  bool passedThrough(const SceneState& after) override;
 
   const Settings& settings() const { return settings_; }
   const ContactSet& contacts() const { return contacts_; }
   const Statistics& statistics() const { return stats_; }
   const std::vector<SphereCollisionModel*>& models() const { return models_; }
   const std::vector<Obstacle*>& obstacles() const { return obstacles_; }
-  const UnilateralContactSolver& unilateralSolver() const { return solver_; }
 
   /// Force on thread point A of contact i at state s (N): the penalty force, or in unilateral
   /// mode the multipliers of the last solve.
@@ -100,7 +117,7 @@ class ContactPipeline final : public CollisionPipeline {
   Settings settings_;
   double margin_ = 0.0;
   double time_step_ = 0.0;
-  UnilateralContactSolver::Settings unilateral_;
+  double stabilization_ = 0.0, friction_rate_ = 0.0;  // ω, ω_f in use
   std::vector<SphereCollisionModel*> models_;
   std::vector<Obstacle*> obstacles_;
   UniformGridBroadPhase broad_phase_;
@@ -108,7 +125,13 @@ class ContactPipeline final : public CollisionPipeline {
   std::vector<std::pair<int, int>> chord_owner_;  // (model, chord) of every broad-phase entry
   std::vector<IndexPair> pairs_;
   ContactSet contacts_;
-  UnilateralContactSolver solver_;
+  // Unilateral response: row of each contact's normal relative to the first contact row, its
+  // directions (n, t1, t2), and the force of the last solve on thread point A.
+  std::vector<int> normal_row_;
+  std::vector<Vec3> tangent1_, tangent2_;
+  std::vector<Vec3> contact_force_;
+  constraints::LagrangeMultiplierSolver default_solver_;
+  std::vector<Points> after_centers_;  // passedThrough: sphere centres at the step's end, per model
   Statistics stats_;
 };
 

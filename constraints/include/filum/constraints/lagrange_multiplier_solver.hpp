@@ -1,4 +1,5 @@
-// LagrangeMultiplierSolver: bilateral constraints of every body of a scene together, by the
+// LagrangeMultiplierSolver: the constraint solver of a scene — bilateral constraints of every
+// body and unilateral contacts with Coulomb friction together, on one Delassus operator, by the
 // acceleration decomposition (paper §4, talk 002 "fallopian tubes"):
 //   M A_t = B                       (tendency acceleration, done by the scene)
 //   W λ = E − L A_t,  W = L M⁻¹ Lᵀ  (c × c Delassus system)
@@ -45,6 +46,23 @@
 // set by how many anchors lie within ~57 control points of each other: truly sparse for
 // constraints far apart on long threads, dense (and no cheaper) for many constraints on a
 // short one. τ = 0 keeps every entry (exact, sparse only across bodies).
+//
+// Contacts (ConstraintRows::Kind; the rows are built by collision/contact_pipeline.hpp). With
+// inequality rows the same W and β = E − L A_t give a mixed complementarity problem (talk 002,
+// catheter: "Signorini's law 0 <= d ⊥ f >= 0 ... Delassus operator W = H C Hᵀ"):
+//   equality rows B:  (W λ − β)_B = 0,                   λ_B free;
+//   normal rows:      (W λ − β)_n >= 0, λ_n >= 0,         λ_n (W λ − β)_n = 0;
+//   friction pairs:   (W λ − β)_t = 0 inside the disc    |(λ_t1, λ_t2)| <= μ λ_n.
+// Solved by projected block Gauss–Seidel: each sweep solves the equality block exactly,
+// Δλ_B = W_BB⁻¹ (β − W λ)_B (W_BB factored once per call by LDLᵀ), then every contact row in
+// order, λ_r ← proj(λ_r + (β − W λ)_r / W_rr), a friction pair projected on its disc after both
+// rows moved. It is block coordinate descent on the convex problem min ½ λᵀWλ − βᵀλ over the
+// admissible set, so it converges for W positive semi-definite — also with redundant contacts (a
+// thread lying on a plane has more contacts than degrees of freedom). It stops when no row's
+// acceleration changes by more than contact_tolerance · |β|∞ (W_rr |Δλ_r|, m/s²) or after
+// contact_iterations sweeps; λ starts from the previous call's when the rows are of the same
+// kinds (the stages of one step). W is the matrix assembled above (dense or sparse, kept while
+// unchanged — within a step the contact set and its anchors are fixed); a sweep costs O(nnz(W)).
 #pragma once
 
 #include <cstdint>
@@ -66,6 +84,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     int sparse_above = 64;          // c above this: sparse factorization of W
     double drop_tolerance = 1e-14;  // sparse path: drop |W_rk| <= τ √(W_rr W_kk)
     bool reuse = true;              // keep M⁻¹ w_a for unchanged anchors between calls
+    int contact_iterations = 200;   // projected Gauss–Seidel sweeps at most (contact rows)
+    double contact_tolerance = 1e-6;  // relative to |β|∞
     SparseBackend backend = cholmodAvailable() ? SparseBackend::kCholmod : SparseBackend::kSimplicialLdlt;
   };
 
@@ -79,6 +99,9 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     bool sparse = false;     // sparse factorization used
     bool refactored = false; // W changed and was factored again
     bool reassembled = false;  // W was assembled (false: unchanged anchors and directions)
+    int inequalities = 0;    // contact rows (normal and friction)
+    int sweeps = 0;          // projected Gauss–Seidel sweeps (with contact rows)
+    double change = 0.0;     // the last sweep's largest W_rr |Δλ_r| (m/s²)
   };
 
   LagrangeMultiplierSolver();
@@ -87,7 +110,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
 
   /// "sparse_above": c threshold (integer >= 0, default 64), "drop_tolerance": τ in [0, 1e-6]
   /// (default 1e-14), "reuse": bool (default true), "sparse_solver": "cholmod" (default when
-  /// built with FILUM_WITH_SUITESPARSE) or "simplicial_ldlt".
+  /// built with FILUM_WITH_SUITESPARSE) or "simplicial_ldlt"; with contacts "contact_iterations"
+  /// (sweeps, default 200) and "contact_tolerance" (relative, default 1e-6).
   static std::unique_ptr<LagrangeMultiplierSolver> fromParams(const Params& p);
   static bool cholmodAvailable();
 
@@ -95,7 +119,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   void solve(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a) override;
 
   /// Multipliers of the last solve (N for a fixed point: the force holding it).
-  const VecX& multipliers() const { return lambda_; }
+  Eigen::Ref<const VecX> multipliers() const override { return lambda_.head(c_); }
   const Statistics& statistics() const { return stats_; }
   const Options& options() const { return options_; }
 
@@ -122,6 +146,12 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// a += A⁻¹ Lᵀ λ by scattering Lᵀ λ and one solve per touched body.
   void scatterForces(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a);
   void factorAndSolve();
+  /// W as full symmetric rows (adjacency_), from the dense or sparse lower triangle.
+  void buildAdjacency(int c);
+  /// (W λ)_r.
+  double delassusRow(int r) const;
+  /// λ with contact rows by projected Gauss–Seidel (see above).
+  void solveWithContacts(const ConstraintRows& rows);
 
   Options options_;
   Statistics stats_;
@@ -134,6 +164,15 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   std::vector<int> last_factor_start_, last_factor_anchor_;
   std::vector<Vec3> last_factor_direction_;
   bool last_sparse_ = false, have_factorization_ = false;
+  bool factored_last_call_ = false;  // the last call factored W (no contact rows)
+  // Projected Gauss–Seidel: W's full rows, the equality rows and their block's factor.
+  std::vector<int> adjacency_start_, adjacency_column_;
+  std::vector<double> adjacency_value_;
+  std::vector<int> equality_rows_;
+  std::vector<ConstraintRows::Kind> last_kinds_;
+  MatX w_bb_;
+  Eigen::LDLT<MatX> ldlt_bb_;
+  VecX residual_bb_, delta_bb_;
   // Rows of the last call through an operator that mixes the axes (an implicit step matrix):
   // while the operator's revision and these rows are unchanged, its columns A⁻¹Lᵀ and W are kept.
   std::vector<int> last_row_start_, last_row_point_;
@@ -149,7 +188,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   VecX diagonal_;
   std::vector<int> bucket_, bucket_start_, cursor_;  // columns to solve, grouped by body
   std::vector<char> body_touched_;
-  VecX rhs_, lambda_, force_, block_;
+  int c_ = 0;                 // rows of the current (last) call
+  VecX rhs_, lambda_, force_, block_;  // rhs_, lambda_, diagonal_: capacity >= c_, used head(c_)
   Eigen::LDLT<MatX> ldlt_;
   MatX w_factored_;  // W of the current dense factorization
   std::unique_ptr<SparseFactor> sparse_;

@@ -9,20 +9,23 @@
 //   - CollisionPipeline: at most one per scene, the component that runs the stages below. It is
 //     only called when the scene holds at least one CollisionModel.
 // Stage order inside Scene (one step):
-//   beginStep(scene, s_n)               once, before the integrator: detection at the step's
+//   beginStep(scene, s_n, h)            once, before the integrator: detection at the step's
 //                                        start state, the step's contact set;
 //   addForce(s, B)                      every integrator stage: contact penalties, B += Q (N);
 //   addJacobian(s, kf, df, out)         implicit stages: kf·∂Q/∂q + df·∂Q/∂q̇;
-//   solveContacts(scene, s, L, A⁻¹, a)  every stage, in place of the bilateral constraint solve:
-//                                        unilateral contact rows together with the bilateral
-//                                        rows L (returns false when it has nothing to add, and
-//                                        the scene's ConstraintSolver runs as usual).
+//   addContactRows(s, rows)             every stage: unilateral contacts as inequality rows after
+//                                        the constraints' rows; the scene's ConstraintSolver
+//                                        solves them all together;
+//   takeMultipliers(λ, first)           after that solve: the contact rows' multipliers (forces);
+//   passedThrough(s_{n+1})              after the integrator: did a centre line pass through
+//                                        another? If so the scene halves the step.
 // The contact set is a function of the step's start state only (no history), so that a saved
 // and restored SceneState continues exactly.
 #pragma once
 
 #include "filum/core/block_inverse.hpp"
 #include "filum/core/component.hpp"
+#include "filum/core/constraint_solver.hpp"
 #include "filum/core/constraint_rows.hpp"
 #include "filum/core/jacobian_accumulator.hpp"
 #include "filum/core/scene_state.hpp"
@@ -42,7 +45,8 @@ class CollisionPipeline : public Component {
   virtual void init(const Scene& scene) = 0;
 
   /// Stage 2: collision detection at the start state s of the step (positions, velocities, time).
-  virtual void beginStep(const Scene& scene, const SceneState& s) = 0;
+  /// h: the step (or sub-step, Scene::step halves a step after a pass-through) about to be taken.
+  virtual void beginStep(const Scene& scene, const SceneState& s, double h) = 0;
 
   /// Stage 3a: B += generalized contact forces at stage state s with the step's contact set.
   virtual void addForce(const SceneState& /*s*/, VecX& /*B*/) const {}
@@ -53,13 +57,20 @@ class CollisionPipeline : public Component {
   /// True when addJacobian is implemented (implicit integrators require it).
   virtual bool hasJacobian() const { return false; }
 
-  /// Stage 3c with unilateral contacts: on entry a = A⁻¹ b; solves the bilateral rows and the
-  /// contact rows of the step's contact set together. Returns false (leaving a untouched) when
-  /// there are no unilateral contacts in this step: the scene's ConstraintSolver then runs.
-  virtual bool solveContacts(const Scene& /*scene*/, const SceneState& /*s*/, const ConstraintRows& /*bilateral*/,
-                             const BlockInverse& /*inverse*/, VecX& /*a*/) {
-    return false;
-  }
+  /// Stage 3c: appends the step's unilateral contacts at stage state s to the rows (normal rows
+  /// and friction pairs, ConstraintRows::addContactRows). Returns the number of rows added.
+  virtual int addContactRows(const SceneState& /*s*/, ConstraintRows& /*rows*/) { return 0; }
+  /// The multipliers of the rows it added, starting at row `first` of the solve's λ.
+  virtual void takeMultipliers(Eigen::Ref<const VecX> /*lambda*/, int /*first*/) {}
+  /// True when the pipeline adds contact rows: the scene then needs a ConstraintSolver, and uses
+  /// defaultConstraintSolver() when it declares none.
+  virtual bool addsContactRows() const { return false; }
+  /// After a (sub-)step that began with the last beginStep: true when a thread's centre line
+  /// passed through another's (or its own) between that start and `after` — a step too large for
+  /// the contact set of its start. The scene then redoes the step in two halves (Scene::step).
+  /// Pipelines that allow pass-through (penalties) return false.
+  virtual bool passedThrough(const SceneState& /*after*/) { return false; }
+  virtual ConstraintSolver* defaultConstraintSolver() { return nullptr; }
 };
 
 }  // namespace filum

@@ -12,6 +12,13 @@
 // in any direction: a fixed point is one anchor and three directions (one scalar solve instead
 // of three). Rows built term by term (addTerm/endRow) are factored per axis: up to three
 // factors with e = x, y, z.
+//
+// Kinds of rows. Most rows are equalities (bilateral constraints, L_r A = E_r, λ_r free). Contacts
+// add inequality rows (DESIGN.md, one constraint solver for both; talk 002: Signorini's law):
+//   a normal row   n·(A_A − A_B) >= E_r,   λ_r >= 0,  λ_r (L_r A − E_r) = 0;
+//   a friction pair t_j·(A_A − A_B) = E_r (j = 1, 2), |(λ_t1, λ_t2)| <= μ λ_n of its normal row
+//     (Coulomb's disc).
+// addContactRows adds them on the current anchor; the pair always follows its normal row.
 #pragma once
 
 #include <cassert>
@@ -23,7 +30,12 @@ namespace filum {
 
 class ConstraintRows {
  public:
+  enum class Kind : char { kEquality, kNormal, kFriction };
+
   void clear() {
+    kind_.clear();
+    friction_.clear();
+    inequalities_ = 0;
     start_.assign(1, 0);
     point_.clear();
     coeff_.clear();
@@ -78,6 +90,24 @@ class ConstraintRows {
     factor_direction_.push_back(direction);
     closeRow(rhs);
   }
+  /// Adds a contact on the current anchor (+w on one side's points, −w on the other's): the
+  /// normal row n·A >= rhs_n and, if μ > 0, the friction pair t1·A = rhs_1, t2·A = rhs_2 bounded
+  /// by Coulomb's disc. Returns the index of the normal row.
+  int addContactRows(const Vec3& n, double rhs_n, double mu, const Vec3& t1, double rhs_1, const Vec3& t2,
+                     double rhs_2) {
+    const int normal = rows();
+    addAnchoredRow(n, rhs_n);
+    kind_.back() = Kind::kNormal;
+    ++inequalities_;
+    if (mu > 0.0) {
+      addAnchoredRow(t1, rhs_1);
+      addAnchoredRow(t2, rhs_2);
+      kind_[normal + 1] = kind_[normal + 2] = Kind::kFriction;
+      friction_[normal + 1] = friction_[normal + 2] = mu;
+      inequalities_ += 2;
+    }
+    return normal;
+  }
 
   // --- Reading rows: expanded terms.
 
@@ -87,6 +117,11 @@ class ConstraintRows {
   int point(int t) const { return point_[t]; }
   const Vec3& coeff(int t) const { return coeff_[t]; }
   double rhs(int r) const { return rhs_[r]; }
+  Kind kind(int r) const { return kind_[r]; }
+  /// μ of a friction row (its normal row is the one before the pair).
+  double friction(int r) const { return friction_[r]; }
+  /// Rows that are not equalities (contact normal and friction rows).
+  int inequalityCount() const { return inequalities_; }
 
   /// L_r · x for a global vector x (3N points first).
   double dot(int r, const VecX& x) const {
@@ -119,6 +154,8 @@ class ConstraintRows {
     start_.push_back(static_cast<int>(point_.size()));
     factor_start_.push_back(static_cast<int>(factor_anchor_.size()));
     rhs_.push_back(rhs);
+    kind_.push_back(Kind::kEquality);
+    friction_.push_back(0.0);
   }
 
   // Expanded terms: row r holds terms [start_[r], start_[r+1]).
@@ -126,6 +163,9 @@ class ConstraintRows {
   std::vector<int> point_;
   std::vector<Vec3> coeff_;
   std::vector<double> rhs_;
+  std::vector<Kind> kind_;
+  std::vector<double> friction_;  // μ of friction rows, 0 elsewhere
+  int inequalities_ = 0;
   // Anchors: anchor a holds points [anchor_start_[a], anchor_start_[a+1]).
   std::vector<int> anchor_start_;
   std::vector<int> anchor_point_;

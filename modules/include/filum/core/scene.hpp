@@ -78,8 +78,8 @@ class Scene {
   /// Stage 3c: on entry a = A⁻¹ b (unconstrained); on exit the a that solves A a = b + Lᵀλ,
   /// L a = E for the active constraints' rows built at state s. `inverse` applies A⁻¹: the mass
   /// matrix for explicit steps, the step matrix for implicit ones. No-op without constraints.
-  /// In a step with unilateral contacts the collision pipeline solves the bilateral rows and the
-  /// contact rows together (CollisionPipeline::solveContacts) in place of the ConstraintSolver.
+  /// The step's unilateral contacts (CollisionPipeline::addContactRows) are rows of the same
+  /// solve, as inequalities.
   void applyConstraints(const SceneState& s, const BlockInverse& inverse, VecX& a);
   /// Which force Jacobians addForceJacobian adds: all of them, only the constant ones
   /// (ForceField::jacobianIsConstant), or only those that change with the state (contacts too).
@@ -105,6 +105,8 @@ class Scene {
   /// Replaces the state (e.g. restores a saved one); scheduled releases follow its time.
   void setState(const SceneState& s);
   long stepCount() const { return step_count_; }
+  /// Steps redone in halves because a thread passed through another (since init).
+  long passThroughHalvings() const { return pass_through_halvings_; }
   int dofPointCount() const { return point_count_; }
   /// Number E of extra scalar DOFs (constraints' own, after the 3N point coordinates).
   int extraDofCount() const { return extra_count_; }
@@ -144,6 +146,12 @@ class Scene {
   SceneSettings settings_;
   SceneState state_;
   SceneState last_good_;
+  /// Advances state_ by h (detection at its start, then the integrator); redone as two halves,
+  /// recursively, while the collision pipeline finds that a thread passed through another.
+  void advance(double h, int depth);
+  static constexpr int kMaxPassThroughHalvings = 6;
+  std::vector<SceneState> substep_start_;  // one per halving depth (sized at init)
+  long pass_through_halvings_ = 0;
   long step_count_ = 0;
   int point_count_ = 0;
   int extra_count_ = 0;  // extra DOFs of constraints (scene_state.hpp)
