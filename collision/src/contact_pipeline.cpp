@@ -11,6 +11,21 @@
 
 namespace filum::collision {
 
+namespace {
+
+/// A sphere holding the chord [a0, a1] at the start of a step, [b0, b1] at its end (and so every
+/// linear motion in between), grown by `pad`.
+BoundingSphere sweptChordBound(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, double pad) {
+  BoundingSphere bound;
+  bound.center = 0.25 * (a0 + a1 + b0 + b1);
+  bound.radius = std::max({(a0 - bound.center).norm(), (a1 - bound.center).norm(), (b0 - bound.center).norm(),
+                           (b1 - bound.center).norm()}) +
+                 pad;
+  return bound;
+}
+
+}  // namespace
+
 std::unique_ptr<ContactPipeline> ContactPipeline::fromParams(const Params& p) {
   Settings s;
   const std::string response = p.string("response", "penalty");
@@ -37,14 +52,10 @@ void ContactPipeline::init(const Scene& scene) {
   scene.root().collect(models_);
   scene.root().collect(obstacles_);
   for (SphereCollisionModel* m : models_) m->init(scene);
-  time_step_ = scene.settings().dt;
   // Margin: contacts are kept up to half the smallest radius of gap (beyond the sweep).
   double smallest = std::numeric_limits<double>::infinity();
   for (const SphereCollisionModel* m : models_) smallest = std::min(smallest, m->radius());
   margin_ = settings_.margin >= 0.0 ? settings_.margin : (std::isfinite(smallest) ? 0.5 * smallest : 0.0);
-  // Baumgarte ω of contact rows: critically damped over two steps by default.
-  stabilization_ = settings_.stabilization > 0.0 ? settings_.stabilization : 0.5 / time_step_;
-  friction_rate_ = settings_.friction_rate > 0.0 ? settings_.friction_rate : stabilization_;
   broad_phase_ = UniformGridBroadPhase(settings_.cell_size);
   contacts_.clear();
 }
@@ -89,12 +100,7 @@ void ContactPipeline::beginStep(const Scene& /*scene*/, const SceneState& s, dou
     for (int k = 0; k + 1 < model.sphereCount(); ++k) {
       const Vec3 a0 = x.row(k).transpose(), a1 = x.row(k + 1).transpose();
       const Vec3 b0 = a0 + sweep * v.row(k).transpose(), b1 = a1 + sweep * v.row(k + 1).transpose();
-      BoundingSphere bound;
-      bound.center = 0.25 * (a0 + a1 + b0 + b1);
-      const double reach = std::max({(a0 - bound.center).norm(), (a1 - bound.center).norm(),
-                                     (b0 - bound.center).norm(), (b1 - bound.center).norm()});
-      bound.radius = reach + model.radius() + 0.5 * margin_;
-      chords_.push_back(bound);
+      chords_.push_back(sweptChordBound(a0, a1, b0, b1, model.radius() + 0.5 * margin_));
       chord_owner_.emplace_back(m, k);
     }
   }
@@ -197,11 +203,7 @@ bool ContactPipeline::passedThrough(const SceneState& after) {
     for (int k = 0; k + 1 < model.sphereCount(); ++k) {
       const Vec3 a0 = start.row(k).transpose(), a1 = start.row(k + 1).transpose();
       const Vec3 b0 = end.row(k).transpose(), b1 = end.row(k + 1).transpose();
-      BoundingSphere bound;
-      bound.center = 0.25 * (a0 + a1 + b0 + b1);
-      bound.radius = std::max({(a0 - bound.center).norm(), (a1 - bound.center).norm(), (b0 - bound.center).norm(),
-                               (b1 - bound.center).norm()});
-      chords_.push_back(bound);
+      chords_.push_back(sweptChordBound(a0, a1, b0, b1, 0.0));  // centre lines only
       chord_owner_.emplace_back(m, k);
     }
   }

@@ -437,13 +437,7 @@ double LagrangeMultiplierSolver::delassusRow(int r) const {
 
 void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows) {
   const int c = rows.rows();
-  buildAdjacency(c);
-  // W_rr (the sparse path's diagonal_ is current only when W was reassembled).
-  for (int r = 0; r < c; ++r) {
-    diagonal_[r] = 0.0;
-    for (int i = adjacency_start_[r]; i < adjacency_start_[r + 1]; ++i)
-      if (adjacency_column_[i] == r) diagonal_[r] = adjacency_value_[i];
-  }
+  buildAdjacency(c);  // diagonal_ holds W_rr since W's assembly (this call or an identical last one)
   // Warm start: λ of the previous call when its rows were of the same kinds (an earlier stage of
   // the same step, same contact set); else λ = 0.
   bool warm = static_cast<int>(last_kinds_.size()) == c;
