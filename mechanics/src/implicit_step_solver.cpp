@@ -61,8 +61,9 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
     force_ -= ma_;
 
     // A = M − θh D − κh² K at the iterate, factored: at every Newton iterate, at the first only
-    // for the chord method; in linearized mode not for the estimate (k = 1).
-    bool refactor = settings_.linearized ? k != 1 : (k == 0 || settings_.refactor_every_iteration);
+    // for the chord method; in linearized mode not for the estimate (k = 1, which assembles at a_1 itself when it fails) nor for the
+    // check after a correction (k = 2, a chord step on the matrix of a_1).
+    bool refactor = settings_.linearized ? (k == 0 || k >= 3) : (k == 0 || settings_.refactor_every_iteration);
     if (k == 0 && settings_.linearized && settings_.reuse_factorization && matrix_valid_ && matrix_key_[0] == h &&
         matrix_key_[1] == theta && matrix_key_[2] == kappa && matrix_.laidOutFor(scene)) {
       refactor = false;  // a chord step on an earlier factorization; the estimate guards it
@@ -94,6 +95,14 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
     ++last_iterations_;
     ++total_iterations_;
     if (fixed_count) continue;
+    // Linearized mode after a correction: the update just taken, from the corrected iterate,
+    // measures that iterate's error the way the estimate measured a_1's; when it passes the same
+    // test, the updated iterate (more accurate still) is accepted.
+    if (settings_.linearized && k >= 2) {
+      const double displacement = (eval_.q - s0.q).head(n3).lpNorm<Eigen::Infinity>();
+      if (kappa * h * h * change <= settings_.linearization_tolerance * std::max(displacement, settings_.tolerance * extent))
+        return Status::kConverged;
+    }
     // Newton's convergence test (in linearized mode after a failed estimate: the estimate was a
     // chord iteration, and Newton goes on to the full tolerance, as in "newton" mode).
     const double scale = std::max(a.head(n3).lpNorm<Eigen::Infinity>(), gravity);

@@ -1,5 +1,7 @@
 #include "filum/mechanics/rayleigh_damping.hpp"
 
+#include <algorithm>
+
 #include "filum/core/scene.hpp"
 #include "filum/mechanics/stiffness_derivative.hpp"
 #include "filum/mechanics/viscous_damping.hpp"
@@ -29,14 +31,21 @@ const std::vector<const ForceField*>& RayleighDamping::elasticFields() const {
   return elastic_;
 }
 
-const Triplets& RayleighDamping::stiffness(const SceneState& s) const {
+const BlockBandMatrix& RayleighDamping::stiffness(const SceneState& s) const {
   // The key is the body's positions and velocities (a spring's ∂Q/∂q has dashpot terms in q̇).
   const Eigen::Index offset = 3 * body().offset(), size = 3 * body().pointCount();
   if (!stiffness_valid_ || stiffness_key_.head(size) != s.q.segment(offset, size) ||
       stiffness_key_.tail(size) != s.v.segment(offset, size)) {
-    stiffness_.clear();
-    TripletAccumulator stiffness(stiffness_);
-    for (const ForceField* field : elasticFields()) field->addJacobian(s, 1.0, 0.0, stiffness);
+    if (stiffness_.firstPoint() != body().offset() || stiffness_.points() != body().pointCount())
+      stiffness_.resize(body().offset(), body().pointCount(), std::max(0, body().couplingRange()));
+    // K over the band the body declares; a field whose Jacobian reaches further (a global
+    // energy's rank-one term) widens it once, and K is filled again.
+    for (int pass = 0; pass < 2; ++pass) {
+      stiffness_.setZero();
+      for (const ForceField* field : elasticFields()) field->addJacobian(s, 1.0, 0.0, stiffness_);
+      if (stiffness_.misfits() == 0 || stiffness_.neededRange() <= stiffness_.range()) break;
+      stiffness_.resize(body().offset(), body().pointCount(), stiffness_.neededRange());
+    }
     stiffness_key_.resize(2 * size);
     stiffness_key_ << s.q.segment(offset, size), s.v.segment(offset, size);
     stiffness_valid_ = true;
@@ -46,15 +55,15 @@ const Triplets& RayleighDamping::stiffness(const SceneState& s) const {
 
 void RayleighDamping::addForce(const SceneState& s, VecX& B) const {
   // Q = β K(q) q̇, K from the elastic fields' analytic Jacobians (k_factor = 1, no damping part).
-  for (const Triplet& t : stiffness(s)) B[t.row()] += beta_ * t.value() * s.v[t.col()];
+  const Eigen::Index offset = 3 * body().offset(), size = 3 * body().pointCount();
+  stiffness(s).multiplyAdd(s.v.segment(offset, size), beta_, B.segment(offset, size));
 }
 
 void RayleighDamping::addJacobian(const SceneState& s, double k_factor, double d_factor,
                                   JacobianAccumulator& out) const {
   if (beta_ == 0.0) return;
   // ∂Q/∂q̇ = β K(q).
-  if (d_factor != 0.0)
-    for (const Triplet& t : stiffness(s)) out.addEntry(t.row(), t.col(), d_factor * beta_ * t.value());
+  if (d_factor != 0.0) stiffness(s).addSymmetrizedTo(d_factor * beta_, out);
   // ∂Q/∂q = β ∂(K(q) q̇)/∂q, from the fields that can differentiate their stiffness.
   if (k_factor != 0.0)
     for (const ForceField* field : elasticFields())

@@ -12,7 +12,9 @@
 // ParametricBending). For the others (CurvatureBending, GlobalStretching, SpringForceField) that
 // part of ∂Q/∂q is left out: Newton then converges linearly instead of quadratically when
 // velocities are large (the solution it converges to is unchanged).
-// K(q) is computed once per state: the force and the Jacobian at the same state share it.
+// K(q) is computed once per state, as a block band (BlockBandMatrix): the force and the Jacobian
+// at the same state share it. Its Jacobian ∂Q/∂q̇ = β K is copied symmetrised, (K + Kᵀ)/2, as
+// the step matrix symmetrises every term anyway.
 #pragma once
 
 #include <memory>
@@ -20,6 +22,7 @@
 
 #include "filum/core/force_field.hpp"
 #include "filum/core/params.hpp"
+#include "filum/mechanics/block_band_matrix.hpp"
 
 namespace filum::mechanics {
 
@@ -41,15 +44,15 @@ class RayleighDamping final : public ForceField {
   void init(const Scene& scene) override;
   /// The elastic force fields of the body (resolved on first use: all fields are bound by then).
   const std::vector<const ForceField*>& elasticFields() const;
-  /// K(q) of the elastic fields as triplets (k_factor 1), recomputed only when the body's
+  /// K(q) of the elastic fields (k_factor 1) as a block band, recomputed only when the body's
   /// positions or velocities change.
-  const Triplets& stiffness(const SceneState& s) const;
+  const BlockBandMatrix& stiffness(const SceneState& s) const;
 
   double beta_;
   const Scene* scene_ = nullptr;
   mutable bool resolved_ = false;
   mutable std::vector<const ForceField*> elastic_;
-  mutable Triplets stiffness_;  // K(q) as triplets, at the state stiffness_key_
+  mutable BlockBandMatrix stiffness_;  // K(q) at the state stiffness_key_
   mutable VecX stiffness_key_;  // this body's q then q̇ when K was computed (2 · 3n)
   mutable bool stiffness_valid_ = false;
 };
