@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "filum/collision/segment_continuous_collision.hpp"
 #include "filum/constraints/projected_point_constraint.hpp"
@@ -73,6 +74,7 @@ void ContactPipeline::beginStep(const Scene& /*scene*/, const SceneState& s, dou
     stats_.spheres += m->sphereCount();
   }
   for (Obstacle* o : obstacles_) o->moveTo(s.time);
+  rememberForces();
   contacts_.clear();
 
   NarrowPhaseSettings narrow;
@@ -163,10 +165,53 @@ int ContactPipeline::addContactRows(const SceneState& s, ConstraintRows& rows) {
     const Vec3 v = k.v_a - k.v_b;
     tangent1_[i] = t1;
     tangent2_[i] = t2;
+    // Warm start: the force this contact had in the last solve, in the new directions.
+    const Vec3 previous = rememberedForce(c);
+    const Vec3 guess(previous.dot(c.normal), previous.dot(t1), previous.dot(t2));
     normal_row_[i] = rows.addContactRows(c.normal, -2.0 * w * k.gap_rate - w * w * k.gap, c.friction, t1,
-                                         -wf * t1.dot(v), t2, -wf * t2.dot(v)) - first;
+                                         -wf * t1.dot(v), t2, -wf * t2.dot(v), guess) - first;
   }
   return rows.rows() - first;
+}
+
+void ContactPipeline::rememberForces() {
+  // The contacts of the last solve with their forces, sorted by (model A, model B, obstacle, s_A)
+  // for rememberedForce. Only when the forces belong to this contact set (takeMultipliers ran
+  // after the detection that made it).
+  remembered_.clear();
+  if (contact_force_.size() == contacts_.size())
+    for (std::size_t i = 0; i < contacts_.size(); ++i) {
+      const Contact& c = contacts_[i];
+      remembered_.push_back({c.model_a, c.model_b, c.obstacle, c.abscissa_a, c.abscissa_b, contact_force_[i]});
+    }
+  std::sort(remembered_.begin(), remembered_.end(), [](const RememberedContact& x, const RememberedContact& y) {
+    return std::tie(x.model_a, x.model_b, x.obstacle, x.abscissa_a) < std::tie(y.model_a, y.model_b, y.obstacle, y.abscissa_a);
+  });
+  contact_force_.clear();
+}
+
+Vec3 ContactPipeline::rememberedForce(const Contact& c) const {
+  // The same contact in the last solve: same models or obstacle, abscissas within one sphere
+  // spacing of A's sampling (a contact slides along the threads by less than that per step);
+  // the closest such one.
+  const SphereCollisionModel& a = *models_[c.model_a];
+  const double reach = 1.0 / std::max(1, a.sphereCount() - 1);
+  const RememberedContact low{c.model_a, c.model_b, c.obstacle, c.abscissa_a - reach, 0.0, Vec3::Zero()};
+  auto it = std::lower_bound(remembered_.begin(), remembered_.end(), low, [](const RememberedContact& x, const RememberedContact& y) {
+    return std::tie(x.model_a, x.model_b, x.obstacle, x.abscissa_a) < std::tie(y.model_a, y.model_b, y.obstacle, y.abscissa_a);
+  });
+  Vec3 force = Vec3::Zero();
+  double closest = 2.0 * reach;
+  for (; it != remembered_.end() && it->model_a == c.model_a && it->model_b == c.model_b && it->obstacle == c.obstacle &&
+         it->abscissa_a <= c.abscissa_a + reach;
+       ++it) {
+    const double distance = std::abs(it->abscissa_a - c.abscissa_a) + (c.againstObstacle() ? 0.0 : std::abs(it->abscissa_b - c.abscissa_b));
+    if (distance < closest) {
+      closest = distance;
+      force = it->force;
+    }
+  }
+  return force;
 }
 
 void ContactPipeline::takeMultipliers(Eigen::Ref<const VecX> lambda, int first) {

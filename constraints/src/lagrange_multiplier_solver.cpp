@@ -439,10 +439,12 @@ void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows) {
   const int c = rows.rows();
   buildAdjacency(c);  // diagonal_ holds W_rr since W's assembly (this call or an identical last one)
   // Warm start: λ of the previous call when its rows were of the same kinds (an earlier stage of
-  // the same step, same contact set); else λ = 0.
+  // the same step, same contact set); else the rows' guesses (a contact's force of the previous
+  // step, 0 for a new one).
   bool warm = static_cast<int>(last_kinds_.size()) == c;
   for (int r = 0; warm && r < c; ++r) warm = last_kinds_[r] == rows.kind(r);
-  if (!warm) lambda_.head(c).setZero();
+  if (!warm)
+    for (int r = 0; r < c; ++r) lambda_[r] = rows.guess(r);
   last_kinds_.resize(c);
   for (int r = 0; r < c; ++r) last_kinds_[r] = rows.kind(r);
 
@@ -497,7 +499,7 @@ void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows) {
       double l2 = diagonal_[r2] > 0.0 ? old2 + residual(r2) / diagonal_[r2] : old2;
       double l1 = lambda_[r];
       const double bound = rows.friction(r) * lambda_[r - 1];
-      const double norm = std::hypot(l1, l2);
+      const double norm = std::sqrt(l1 * l1 + l2 * l2);  // |λ_t| (no overflow: |λ| is far below 1e150)
       if (norm > bound) {
         const double shrink = norm > 0.0 ? bound / norm : 0.0;
         l1 *= shrink;

@@ -49,6 +49,7 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
   ++solves_;
   last_iterations_ = 0;
   double previous_change = 0.0;
+  double linearized_displacement = 0.0;  // linearized mode: max(|θh v0 + κh² a_1|∞, floor)
 
   for (int k = 0; k < settings_.max_iterations; ++k) {
     // The iterate's state: q = q0 + θh v0 + κh² a, v = v0 + θh a.
@@ -83,7 +84,8 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
       ++estimates_;
       const double displacement = (eval_.q - s0.q).head(n3).lpNorm<Eigen::Infinity>();  // θh v0 + κh² a_1
       const double floor = settings_.tolerance * extent;  // round-off level of positions (see Newton's test)
-      if (kappa * h * h * change <= settings_.linearization_tolerance * std::max(displacement, floor))
+      linearized_displacement = std::max(displacement, floor);
+      if (kappa * h * h * change <= settings_.linearization_tolerance * linearized_displacement)
         return Status::kConverged;
       ++corrections_;
       if (!assembleAt(scene, h, theta, kappa)) return Status::kFailed;
@@ -98,11 +100,11 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
     // Linearized mode after a correction: the update just taken, from the corrected iterate,
     // measures that iterate's error the way the estimate measured a_1's; when it passes the same
     // test, the updated iterate (more accurate still) is accepted.
-    if (settings_.linearized && k >= 2) {
-      const double displacement = (eval_.q - s0.q).head(n3).lpNorm<Eigen::Infinity>();
-      if (kappa * h * h * change <= settings_.linearization_tolerance * std::max(displacement, settings_.tolerance * extent))
-        return Status::kConverged;
-    }
+    // The scale is a_1's displacement, not the iterate's own: an iterate that overshot far would
+    // pass a test relative to its own motion.
+    if (settings_.linearized && k >= 2 &&
+        kappa * h * h * change <= settings_.linearization_tolerance * linearized_displacement)
+      return Status::kConverged;
     // Newton's convergence test (in linearized mode after a failed estimate: the estimate was a
     // chord iteration, and Newton goes on to the full tolerance, as in "newton" mode).
     const double scale = std::max(a.head(n3).lpNorm<Eigen::Infinity>(), gravity);

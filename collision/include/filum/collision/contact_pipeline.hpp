@@ -130,6 +130,17 @@ class ContactPipeline final : public CollisionPipeline {
   std::vector<int> normal_row_;
   std::vector<Vec3> tangent1_, tangent2_;
   std::vector<Vec3> contact_force_;
+  // Warm start of the contact rows: the last solve's contacts (keys and forces), sorted.
+  struct RememberedContact {
+    int model_a, model_b, obstacle;
+    double abscissa_a, abscissa_b;
+    Vec3 force;
+  };
+  std::vector<RememberedContact> remembered_;
+  /// Moves the last solve's contact forces into remembered_ (before a new detection).
+  void rememberForces();
+  /// The remembered force of the same contact in the last solve, or zero.
+  Vec3 rememberedForce(const Contact& c) const;
   constraints::LagrangeMultiplierSolver default_solver_;
   std::vector<Points> after_centers_;  // passedThrough: sphere centres at the step's end, per model
   Statistics stats_;

@@ -19,6 +19,9 @@
 //   a friction pair t_j·(A_A − A_B) = E_r (j = 1, 2), |(λ_t1, λ_t2)| <= μ λ_n of its normal row
 //     (Coulomb's disc).
 // addContactRows adds them on the current anchor; the pair always follows its normal row.
+//
+// Guesses. A row may carry a guess of its multiplier (0 unless set): a contact's force of the
+// previous step, with which an iterative solve starts (warm start).
 #pragma once
 
 #include <cassert>
@@ -35,6 +38,7 @@ class ConstraintRows {
   void clear() {
     kind_.clear();
     friction_.clear();
+    guess_.clear();
     inequalities_ = 0;
     start_.assign(1, 0);
     point_.clear();
@@ -92,18 +96,22 @@ class ConstraintRows {
   }
   /// Adds a contact on the current anchor (+w on one side's points, −w on the other's): the
   /// normal row n·A >= rhs_n and, if μ > 0, the friction pair t1·A = rhs_1, t2·A = rhs_2 bounded
-  /// by Coulomb's disc. Returns the index of the normal row.
+  /// by Coulomb's disc; `guess` (λ_n, λ_t1, λ_t2) their multipliers' guesses. Returns the index
+  /// of the normal row.
   int addContactRows(const Vec3& n, double rhs_n, double mu, const Vec3& t1, double rhs_1, const Vec3& t2,
-                     double rhs_2) {
+                     double rhs_2, const Vec3& guess = Vec3::Zero()) {
     const int normal = rows();
     addAnchoredRow(n, rhs_n);
     kind_.back() = Kind::kNormal;
+    guess_.back() = guess[0];
     ++inequalities_;
     if (mu > 0.0) {
       addAnchoredRow(t1, rhs_1);
       addAnchoredRow(t2, rhs_2);
       kind_[normal + 1] = kind_[normal + 2] = Kind::kFriction;
       friction_[normal + 1] = friction_[normal + 2] = mu;
+      guess_[normal + 1] = guess[1];
+      guess_[normal + 2] = guess[2];
       inequalities_ += 2;
     }
     return normal;
@@ -120,6 +128,8 @@ class ConstraintRows {
   Kind kind(int r) const { return kind_[r]; }
   /// μ of a friction row (its normal row is the one before the pair).
   double friction(int r) const { return friction_[r]; }
+  /// The guess of row r's multiplier (0 unless the row was given one).
+  double guess(int r) const { return guess_[r]; }
   /// Rows that are not equalities (contact normal and friction rows).
   int inequalityCount() const { return inequalities_; }
 
@@ -156,6 +166,7 @@ class ConstraintRows {
     rhs_.push_back(rhs);
     kind_.push_back(Kind::kEquality);
     friction_.push_back(0.0);
+    guess_.push_back(0.0);
   }
 
   // Expanded terms: row r holds terms [start_[r], start_[r+1]).
@@ -165,6 +176,7 @@ class ConstraintRows {
   std::vector<double> rhs_;
   std::vector<Kind> kind_;
   std::vector<double> friction_;  // μ of friction rows, 0 elsewhere
+  std::vector<double> guess_;     // guesses of the multipliers, 0 unless given
   int inequalities_ = 0;
   // Anchors: anchor a holds points [anchor_start_[a], anchor_start_[a+1]).
   std::vector<int> anchor_start_;
