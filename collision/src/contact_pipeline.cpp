@@ -5,6 +5,7 @@
 #include <limits>
 #include <tuple>
 
+#include "filum/collision/segment_closest_points.hpp"
 #include "filum/collision/segment_continuous_collision.hpp"
 #include "filum/constraints/projected_point_constraint.hpp"
 #include "filum/core/node.hpp"
@@ -232,8 +233,8 @@ Vec3 ContactPipeline::contactForce(int i, const SceneState& s) const {
   return penaltyForce(c, contactKinematics(c, s), settings_.penalty).force;
 }
 
-bool ContactPipeline::passedThrough(const SceneState& after) {
-  if (settings_.response != Response::kUnilateral) return false;
+CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) {
+  if (settings_.response != Response::kUnilateral) return Miss::kNone;
   const int model_count = static_cast<int>(models_.size());
   if (static_cast<int>(after_centers_.size()) != model_count) after_centers_.resize(model_count);
   chords_.clear();
@@ -252,8 +253,9 @@ bool ContactPipeline::passedThrough(const SceneState& after) {
       chord_owner_.emplace_back(m, k);
     }
   }
-  if (chords_.size() < 2) return false;
+  if (chords_.size() < 2) return Miss::kNone;
   broad_phase_.findPairs(chords_, pairs_);
+  Miss miss = Miss::kNone;
   for (const IndexPair& pair : pairs_) {
     const auto [ma, k] = chord_owner_[pair.first];
     const auto [mb, l] = chord_owner_[pair.second];
@@ -266,9 +268,18 @@ bool ContactPipeline::passedThrough(const SceneState& after) {
                      after_centers_[mb].row(l).transpose(), after_centers_[mb].row(l + 1).transpose()};
     // Centre lines meet: closer than a thousandth of the radius at a coplanarity root (strands in
     // contact stay two radii apart; only a pass-through brings the lines together).
-    if (firstSegmentContact(sa, sb, 1e-3 * std::min(a.radius(), b.radius()))) return true;
+    const double radius = std::min(a.radius(), b.radius());
+    if (firstSegmentContact(sa, sb, 1e-3 * radius)) return Miss::kPassThrough;
+    // Deep penetration: chords that started at least a radius apart and ended closer, half-way
+    // to a crossing. The step's contacts hold their pairs to within Baumgarte's correction of
+    // the contact distance r_a + r_b; a pair this deep was not among them (it came into contact
+    // within the step, e.g. two threads closing like scissors along their length).
+    if (miss == Miss::kNone &&
+        closestPointsOnSegments(sa.end0, sa.end1, sb.end0, sb.end1).distance < radius &&
+        closestPointsOnSegments(sa.start0, sa.start1, sb.start0, sb.start1).distance >= radius)
+      miss = Miss::kDeepPenetration;
   }
-  return false;
+  return miss;
 }
 
 Vec3 ContactPipeline::obstacleForce(int o, const SceneState& s) const {

@@ -169,7 +169,10 @@ void LagrangeMultiplierSolver::layoutColumn(const Scene& scene, Column& column, 
     column.starts[i] = size;
     size += width * scene.bodies()[column.bodies[i]]->pointCount();
   }
-  if (column.y.size() != size) column.y.resize(size);
+  // y only grows: a column slot serves anchors on different bodies from call to call; the
+  // segments are addressed through starts (an operator coupling bodies always asks for all of
+  // them, the exact size it solves in).
+  if (column.y.size() < size) column.y.resize(size);
 }
 
 void LagrangeMultiplierSolver::prepareColumns(const Scene& scene, const ConstraintRows& rows,
@@ -181,8 +184,26 @@ void LagrangeMultiplierSolver::prepareColumns(const Scene& scene, const Constrai
   const bool coupled = inverse.coupled();
   const bool reuse = separable && options_.reuse && inverse.revision() >= 0 && &inverse == cached_inverse_ &&
                      inverse.revision() == cached_revision_ && cached_size_ == scene.state().q.size();
-  if (current_.size() < static_cast<std::size_t>(count)) current_.resize(count);
+  if (current_.size() < static_cast<std::size_t>(count)) {
+    // Grows geometrically (contact rows come and go from step to step), each new column with room
+    // for every body it can touch and for a row on the two largest bodies (a contact between
+    // threads): a steady step allocates nothing.
+    int largest = 0;
+    for (const MechanicalState* body : bodies) largest = std::max(largest, body->pointCount());
+    const std::size_t old = current_.size();
+    current_.resize(2 * static_cast<std::size_t>(count));
+    for (std::size_t i = old; i < current_.size(); ++i) {
+      current_[i].bodies.reserve(body_count);
+      current_[i].starts.reserve(body_count);
+      current_[i].y.resize(2 * 3 * largest);
+    }
+  }
   body_touched_.assign(body_count, 0);
+  // Notes that a column touches body b (terms come grouped by body: a repeat of the last one is
+  // skipped, so the list stays within its reserved room; layoutColumn sorts and dedups it).
+  auto addBody = [](Column& column, int b) {
+    if (column.bodies.empty() || column.bodies.back() != b) column.bodies.push_back(b);
+  };
 
   for (int i = 0; i < count; ++i) {
     Column& col = current_[i];
@@ -198,11 +219,11 @@ void LagrangeMultiplierSolver::prepareColumns(const Scene& scene, const Constrai
       for (int k = rows.anchorBegin(i); k < rows.anchorEnd(i); ++k) {
         col.points.push_back(rows.anchorPoint(k));
         col.weights.push_back(rows.anchorWeight(k));
-        col.bodies.push_back(scene.bodyOfPoint(rows.anchorPoint(k)));
+        addBody(col, scene.bodyOfPoint(rows.anchorPoint(k)));
       }
       col.hash = hashAnchor(col.points, col.weights);
     } else {
-      for (int t = rows.begin(i); t < rows.end(i); ++t) col.bodies.push_back(scene.bodyOfPoint(rows.point(t)));
+      for (int t = rows.begin(i); t < rows.end(i); ++t) addBody(col, scene.bodyOfPoint(rows.point(t)));
     }
     layoutColumn(scene, col, width);
     for (int b : col.bodies) body_touched_[b] = 1;
@@ -361,9 +382,26 @@ void LagrangeMultiplierSolver::assembleGeneral(const Scene& scene, const Constra
     }
     return sum;
   };
+  // Rows on disjoint sets of bodies do not couple (W_rk = 0: column k lives on its rows' bodies,
+  // all of them when the operator couples bodies): most pairs of a scene of many threads in
+  // contact, skipped without visiting their terms.
+  auto share_a_body = [&](int r, int k) {
+    const std::vector<int>& x = current_[r].bodies;
+    const std::vector<int>& y = current_[k].bodies;
+    for (int bx : x)
+      if (std::find(y.begin(), y.end(), bx) != y.end()) return true;
+    return false;
+  };
   for (int r = 0; r < c; ++r) diagonal_[r] = entry(r, r);
   for (int r = 0; r < c; ++r)
-    for (int k = 0; k <= r; ++k) storeEntry(r, k, k == r ? diagonal_[r] : entry(r, k));
+    for (int k = 0; k <= r; ++k) {
+      if (k == r)
+        storeEntry(r, k, diagonal_[r]);
+      else if (!share_a_body(r, k))
+        storeEntry(r, k, 0.0);  // dense: an explicit zero; sparse: dropped
+      else
+        storeEntry(r, k, entry(r, k));
+    }
 }
 
 void LagrangeMultiplierSolver::factorAndSolve() {
@@ -622,7 +660,6 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   // 4. λ = W⁻¹ (E − L A_t), or with contact rows the projected Gauss–Seidel solution.
   stats_.inequalities = rows.inequalityCount();
   if (stats_.inequalities > 0) {
-    if (stats_.sparse) sparse_->assemble(c);  // the matrix of the triplets (kept if unchanged)
     solveWithContacts(rows);
     factored_last_call_ = false;
   } else if (unchanged && factored_last_call_) {

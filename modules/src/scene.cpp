@@ -119,8 +119,8 @@ void Scene::init() {
 
   force_.setZero(3 * point_count_);
   last_good_ = state_;
-  substep_start_.assign(kMaxPassThroughHalvings + 1, state_);
-  pass_through_halvings_ = 0;
+  substep_start_.assign(kMaxContactHalvings + 1, state_);
+  contact_halvings_ = 0;
   step_count_ = 0;
   initialized_ = true;
 }
@@ -244,16 +244,21 @@ void Scene::advance(double h, int depth) {
   if (collision_) collision_->beginStep(*this, state_, h);
   substep_start_[depth] = state_;  // preallocated: no allocation
   integrator_->step(*this, state_, h);
-  if (!fault_.empty() || !collision_ || !collision_->passedThrough(state_)) return;
-  // The contact set of the start did not hold the motion (a strand moved through another within
-  // the step): redo it as two halves, each with its own detection (Bridson et al. 2002 stop a
-  // step at the first such event; halving keeps the step pipeline as it is).
-  if (depth == kMaxPassThroughHalvings) {
-    noteFault(collision_->describe() + ": a thread passed through another even in " +
-              std::to_string(1 << depth) + " sub-steps of " + std::to_string(h) + " s");
+  if (!fault_.empty() || !collision_) return;
+  const CollisionPipeline::Miss miss = collision_->missedContact(state_);
+  if (miss == CollisionPipeline::Miss::kNone) return;
+  // The contact set of the start did not hold the motion (a strand moved through another, or
+  // deep into it, within the step): redo it as two halves, each with its own detection (Bridson
+  // et al. 2002 stop a step at the first such event; halving keeps the step pipeline as it is).
+  if (depth == kMaxContactHalvings) {
+    // A deep penetration at the finest sub-step is kept (Baumgarte's term pushes it out in the
+    // next steps); a pass-through is not: the threads' topology changed.
+    if (miss == CollisionPipeline::Miss::kPassThrough)
+      noteFault(collision_->describe() + ": a thread passed through another even in " +
+                std::to_string(1 << depth) + " sub-steps of " + std::to_string(h) + " s");
     return;
   }
-  ++pass_through_halvings_;
+  ++contact_halvings_;
   state_ = substep_start_[depth];
   advance(0.5 * h, depth + 1);
   if (fault_.empty()) advance(0.5 * h, depth + 1);

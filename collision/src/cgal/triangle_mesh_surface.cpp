@@ -38,6 +38,11 @@ struct TriangleMeshSurface::Impl {
   Mesh mesh;
   std::unique_ptr<Tree> tree;
   std::unique_ptr<Inside> inside;
+  // The hint of the next closest-point query: the answer to the last one. Without a hint CGAL
+  // looks one up in a k-d tree of reference points, which allocates on every query; queries come
+  // sphere after sphere along a thread, so the last answer is close to the next one. The answer
+  // does not depend on the hint (it only prunes the tree traversal sooner).
+  mutable Tree::Point_and_primitive_id hint;
 };
 
 TriangleMeshSurface::TriangleMeshSurface(const Points& vertices, const std::vector<Triangle>& triangles)
@@ -65,7 +70,8 @@ TriangleMeshSurface::TriangleMeshSurface(const Points& vertices, const std::vect
   if (!CGAL::is_closed(m.mesh))
     throw std::invalid_argument("the mesh is not closed (it has border edges); the inside test needs a closed surface");
   m.tree = std::make_unique<Tree>(faces(m.mesh).first, faces(m.mesh).second, m.mesh);
-  m.tree->accelerate_distance_queries();
+  m.tree->build();
+  m.hint = m.tree->any_reference_point_and_id();
   m.inside = std::make_unique<Inside>(m.mesh);
 }
 
@@ -107,14 +113,18 @@ const Points& TriangleMeshSurface::vertices() const { return impl_->vertices; }
 const std::vector<TriangleMeshSurface::Triangle>& TriangleMeshSurface::triangles() const { return impl_->triangles; }
 const Eigen::AlignedBox3d& TriangleMeshSurface::bounds() const { return impl_->bounds; }
 
-Vec3 TriangleMeshSurface::closestPoint(const Vec3& x) const { return toVec3(impl_->tree->closest_point(toPoint(x))); }
+Vec3 TriangleMeshSurface::closestPoint(const Vec3& x) const {
+  impl_->hint = impl_->tree->closest_point_and_primitive(toPoint(x), impl_->hint);
+  return toVec3(impl_->hint.first);
+}
 
 bool TriangleMeshSurface::inside(const Vec3& x) const {
   return (*impl_->inside)(toPoint(x)) == CGAL::ON_BOUNDED_SIDE;
 }
 
 Vec3 TriangleMeshSurface::nearestFaceNormal(const Vec3& x) const {
-  const auto hit = impl_->tree->closest_point_and_primitive(toPoint(x));
+  const auto hit = impl_->tree->closest_point_and_primitive(toPoint(x), impl_->hint);
+  impl_->hint = hit;
   const Mesh& mesh = impl_->mesh;
   const auto h = mesh.halfedge(hit.second);
   const Vec3 a = toVec3(mesh.point(mesh.source(h)));

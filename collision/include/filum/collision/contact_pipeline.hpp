@@ -30,7 +30,7 @@
 //      The rows hold the step's start; a step of a stiff thread can still carry a strand through
 //      another when its velocity changes much within the step (a released stiff knot springs at
 //      metres per second). After each step the pipeline checks that no centre line passed
-//      through another (passedThrough), and the scene redoes such a step in halves.
+//      through another (missedContact: or sank into it by a radius), and the scene redoes such a step in halves.
 // Continuous detection assumes each sphere centre moves in a straight line at its start
 // velocity over the step; the margin (default r/2) absorbs the curvature of the true motion,
 // ½ |a| h² (0.5 mm covers |a| < 1e5 m/s² at h = 1e-4 s).
@@ -99,7 +99,7 @@ class ContactPipeline final : public CollisionPipeline {
   /// Unilateral response: the centre lines of the step's start (the spheres of beginStep) and of
   /// `after` (the same material points), chords moving linearly in between, tested pair by pair
   /// for a meeting (segment_continuous_collision.hpp) after a swept broad phase.
-  bool passedThrough(const SceneState& after) override;
+  Miss missedContact(const SceneState& after) override;
 
   const Settings& settings() const { return settings_; }
   const ContactSet& contacts() const { return contacts_; }
@@ -142,7 +142,7 @@ class ContactPipeline final : public CollisionPipeline {
   /// The remembered force of the same contact in the last solve, or zero.
   Vec3 rememberedForce(const Contact& c) const;
   constraints::LagrangeMultiplierSolver default_solver_;
-  std::vector<Points> after_centers_;  // passedThrough: sphere centres at the step's end, per model
+  std::vector<Points> after_centers_;  // missedContact: sphere centres at the step's end, per model
   Statistics stats_;
 };
 

@@ -17,8 +17,9 @@
 //                                        the constraints' rows; the scene's ConstraintSolver
 //                                        solves them all together;
 //   takeMultipliers(λ, first)           after that solve: the contact rows' multipliers (forces);
-//   passedThrough(s_{n+1})              after the integrator: did a centre line pass through
-//                                        another? If so the scene halves the step.
+//   missedContact(s_{n+1})              after the integrator: did a centre line pass through
+//                                        another, or sink into it by a radius, outside the step's
+//                                        contact set? If so the scene halves the step.
 // The contact set is a function of the step's start state only (no history), so that a saved
 // and restored SceneState continues exactly.
 #pragma once
@@ -65,11 +66,17 @@ class CollisionPipeline : public Component {
   /// True when the pipeline adds contact rows: the scene then needs a ConstraintSolver, and uses
   /// defaultConstraintSolver() when it declares none.
   virtual bool addsContactRows() const { return false; }
-  /// After a (sub-)step that began with the last beginStep: true when a thread's centre line
-  /// passed through another's (or its own) between that start and `after` — a step too large for
-  /// the contact set of its start. The scene then redoes the step in two halves (Scene::step).
-  /// Pipelines that allow pass-through (penalties) return false.
-  virtual bool passedThrough(const SceneState& /*after*/) { return false; }
+  /// What the contact set of a (sub-)step's start missed during it.
+  enum class Miss {
+    kNone,
+    kDeepPenetration,  // two centre lines that were a radius or more apart ended closer than that
+    kPassThrough,      // a centre line passed through another's (or its own)
+  };
+  /// After a (sub-)step that began with the last beginStep: whether the motion from that start to
+  /// `after` went through a contact its start did not hold — a step too large for the contact set
+  /// of its start. The scene then redoes the step in two halves (Scene::advance). Pipelines that
+  /// allow pass-through (penalties) return kNone.
+  virtual Miss missedContact(const SceneState& /*after*/) { return Miss::kNone; }
   virtual ConstraintSolver* defaultConstraintSolver() { return nullptr; }
 };
 

@@ -105,8 +105,9 @@ class Scene {
   /// Replaces the state (e.g. restores a saved one); scheduled releases follow its time.
   void setState(const SceneState& s);
   long stepCount() const { return step_count_; }
-  /// Steps redone in halves because a thread passed through another (since init).
-  long passThroughHalvings() const { return pass_through_halvings_; }
+  /// Steps redone in halves because the contact set of their start missed a contact: a thread
+  /// passed through another or sank into it by a radius (since init).
+  long contactHalvings() const { return contact_halvings_; }
   int dofPointCount() const { return point_count_; }
   /// Number E of extra scalar DOFs (constraints' own, after the 3N point coordinates).
   int extraDofCount() const { return extra_count_; }
@@ -147,11 +148,11 @@ class Scene {
   SceneState state_;
   SceneState last_good_;
   /// Advances state_ by h (detection at its start, then the integrator); redone as two halves,
-  /// recursively, while the collision pipeline finds that a thread passed through another.
+  /// recursively, while the collision pipeline finds a contact the step's contact set missed.
   void advance(double h, int depth);
-  static constexpr int kMaxPassThroughHalvings = 6;
+  static constexpr int kMaxContactHalvings = 6;
   std::vector<SceneState> substep_start_;  // one per halving depth (sized at init)
-  long pass_through_halvings_ = 0;
+  long contact_halvings_ = 0;
   long step_count_ = 0;
   int point_count_ = 0;
   int extra_count_ = 0;  // extra DOFs of constraints (scene_state.hpp)
