@@ -366,22 +366,24 @@ void LagrangeMultiplierSolver::assembleSeparable(const Scene& scene, const Const
     for (int k = 0; k <= r; ++k) storeEntry(r, k, k == r ? diagonal_[r] : entry(r, k));
 }
 
+double LagrangeMultiplierSolver::generalEntry(const Scene& scene, const ConstraintRows& rows, int r, int k) const {
+  // W_rk = L_r · y_k = Σ_{t ∈ r} c_t · y_k(p_t).
+  const auto& bodies = scene.bodies();
+  const Column& col = current_[k];
+  double sum = 0.0;
+  for (int t = rows.begin(r); t < rows.end(r); ++t) {
+    const int p = rows.point(t);
+    const int body = scene.bodyOfPoint(p);
+    for (std::size_t seg = 0; seg < col.bodies.size(); ++seg)
+      if (col.bodies[seg] == body)
+        sum += rows.coeff(t).dot(col.y.segment<3>(col.starts[seg] + 3 * (p - bodies[body]->offset())));
+  }
+  return sum;
+}
+
 void LagrangeMultiplierSolver::assembleGeneral(const Scene& scene, const ConstraintRows& rows) {
   const int c = rows.rows();
-  const auto& bodies = scene.bodies();
-  // W_rk = L_r · y_k = Σ_{t ∈ r} c_t · y_k(p_t).
-  auto entry = [&](int r, int k) {
-    const Column& col = current_[k];
-    double sum = 0.0;
-    for (int t = rows.begin(r); t < rows.end(r); ++t) {
-      const int p = rows.point(t);
-      const int body = scene.bodyOfPoint(p);
-      for (std::size_t seg = 0; seg < col.bodies.size(); ++seg)
-        if (col.bodies[seg] == body)
-          sum += rows.coeff(t).dot(col.y.segment<3>(col.starts[seg] + 3 * (p - bodies[body]->offset())));
-    }
-    return sum;
-  };
+  auto entry = [&](int r, int k) { return generalEntry(scene, rows, r, k); };
   // Rows on disjoint sets of bodies do not couple (W_rk = 0: column k lives on its rows' bodies,
   // all of them when the operator couples bodies): most pairs of a scene of many threads in
   // contact, skipped without visiting their terms.
@@ -473,9 +475,63 @@ double LagrangeMultiplierSolver::delassusRow(int r) const {
   return sum;
 }
 
-void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows) {
+/// W through its assembled rows (adjacency_): (W λ)_r = Σ_k W_rk λ_k.
+struct LagrangeMultiplierSolver::AssembledDelassus {
+  LagrangeMultiplierSolver& solver;
+  void begin() {}
+  double product(int r) const { return solver.delassusRow(r); }
+  void changed(int /*r*/, double /*delta*/) {}
+  /// W_BB of the equality rows (sorted) from W's rows.
+  void equalityBlock(const ConstraintRows& rows, MatX& block) const {
+    const auto& eq = solver.equality_rows_;
+    const int nb = static_cast<int>(eq.size());
+    block.setZero(nb, nb);
+    for (int i = 0; i < nb; ++i) {
+      const int r = eq[i];
+      for (int e = solver.adjacency_start_[r]; e < solver.adjacency_start_[r + 1]; ++e) {
+        const int k = solver.adjacency_column_[e];
+        if (rows.kind(k) != ConstraintRows::Kind::kEquality) continue;
+        const int j = static_cast<int>(std::lower_bound(eq.begin(), eq.end(), k) - eq.begin());
+        block(i, j) = solver.adjacency_value_[e];
+      }
+    }
+  }
+};
+
+/// W = L A⁻¹ Lᵀ never assembled: u = A⁻¹ Lᵀ λ = Σ_r λ_r y_r is kept up to date, (W λ)_r = L_r·u
+/// costs the row's terms, a change of λ_r adds Δ y_r on the row's bodies — per row O(terms + the
+/// points of its bodies) instead of O(rows it couples to), and no O(c²) assembly.
+struct LagrangeMultiplierSolver::FactoredDelassus {
+  LagrangeMultiplierSolver& solver;
+  const Scene& scene;
+  const ConstraintRows& rows;
+  VecX& u;
+  void begin() {
+    u.setZero(3 * scene.dofPointCount());
+    for (int r = 0; r < rows.rows(); ++r) changed(r, solver.lambda_[r]);
+  }
+  double product(int r) const { return rows.dot(r, u); }
+  void changed(int r, double delta) {
+    if (delta == 0.0) return;
+    const Column& col = solver.current_[r];
+    for (std::size_t seg = 0; seg < col.bodies.size(); ++seg) {
+      const MechanicalState& body = *scene.bodies()[col.bodies[seg]];
+      const int size = 3 * body.pointCount();
+      u.segment(3 * body.offset(), size) += delta * col.y.segment(col.starts[seg], size);
+    }
+  }
+  void equalityBlock(const ConstraintRows& /*rows*/, MatX& block) const {
+    const auto& eq = solver.equality_rows_;
+    const int nb = static_cast<int>(eq.size());
+    block.resize(nb, nb);
+    for (int i = 0; i < nb; ++i)
+      for (int j = 0; j <= i; ++j) block(i, j) = block(j, i) = solver.generalEntry(scene, rows, eq[i], eq[j]);
+  }
+};
+
+template <class Delassus>
+void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows, Delassus& w) {
   const int c = rows.rows();
-  buildAdjacency(c);  // diagonal_ holds W_rr since W's assembly (this call or an identical last one)
   // Warm start: λ of the previous call when its rows were of the same kinds (an earlier stage of
   // the same step, same contact set); else the rows' guesses (a contact's force of the previous
   // step, 0 for a new one).
@@ -485,6 +541,7 @@ void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows) {
     for (int r = 0; r < c; ++r) lambda_[r] = rows.guess(r);
   last_kinds_.resize(c);
   for (int r = 0; r < c; ++r) last_kinds_[r] = rows.kind(r);
+  w.begin();
 
   // The equality block W_BB, factored once.
   equality_rows_.clear();
@@ -492,21 +549,16 @@ void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows) {
     if (rows.kind(r) == ConstraintRows::Kind::kEquality) equality_rows_.push_back(r);
   const int nb = static_cast<int>(equality_rows_.size());
   if (nb > 0) {
-    w_bb_.setZero(nb, nb);
-    for (int i = 0; i < nb; ++i) {
-      const int r = equality_rows_[i];
-      for (int e = adjacency_start_[r]; e < adjacency_start_[r + 1]; ++e) {
-        const int k = adjacency_column_[e];
-        if (rows.kind(k) != ConstraintRows::Kind::kEquality) continue;
-        const int j = static_cast<int>(std::lower_bound(equality_rows_.begin(), equality_rows_.end(), k) - equality_rows_.begin());
-        w_bb_(i, j) = adjacency_value_[e];
-      }
-    }
+    w.equalityBlock(rows, w_bb_);
     ldlt_bb_.compute(w_bb_);
     residual_bb_.resize(nb);
   }
   const double threshold = options_.contact_tolerance * std::max(rhs_.head(c).lpNorm<Eigen::Infinity>(), 1e-300);
-  auto residual = [&](int r) { return rhs_[r] - delassusRow(r); };
+  auto residual = [&](int r) { return rhs_[r] - w.product(r); };
+  auto set = [&](int r, double value) {
+    w.changed(r, value - lambda_[r]);
+    lambda_[r] = value;
+  };
 
   stats_.sweeps = 0;
   for (int sweep = 0; sweep < options_.contact_iterations; ++sweep) {
@@ -518,7 +570,7 @@ void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows) {
       for (int i = 0; i < nb; ++i) {
         const int r = equality_rows_[i];
         change = std::max(change, std::abs(diagonal_[r] * delta_bb_[i]));
-        lambda_[r] += delta_bb_[i];
+        set(r, lambda_[r] + delta_bb_[i]);
       }
     }
     // Contact rows in order: a normal λ_n >= 0, then its friction pair in μ λ_n's disc.
@@ -528,14 +580,14 @@ void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows) {
       if (kind == ConstraintRows::Kind::kNormal) {
         const double next = std::max(0.0, lambda_[r] + residual(r) / diagonal_[r]);
         change = std::max(change, diagonal_[r] * std::abs(next - lambda_[r]));
-        lambda_[r] = next;
+        set(r, next);
         continue;
       }
       const int r2 = r + 1;  // friction rows come in pairs (t1, t2) after their normal row
       const double old1 = lambda_[r], old2 = lambda_[r2];
-      lambda_[r] = old1 + residual(r) / diagonal_[r];
+      double l1 = old1 + residual(r) / diagonal_[r];
+      set(r, l1);  // t2's residual sees t1's update (Gauss–Seidel within the pair)
       double l2 = diagonal_[r2] > 0.0 ? old2 + residual(r2) / diagonal_[r2] : old2;
-      double l1 = lambda_[r];
       const double bound = rows.friction(r) * lambda_[r - 1];
       const double norm = std::sqrt(l1 * l1 + l2 * l2);  // |λ_t| (no overflow: |λ| is far below 1e150)
       if (norm > bound) {
@@ -544,8 +596,8 @@ void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows) {
         l2 *= shrink;
       }
       change = std::max({change, diagonal_[r] * std::abs(l1 - old1), diagonal_[r2] * std::abs(l2 - old2)});
-      lambda_[r] = l1;
-      lambda_[r2] = l2;
+      set(r, l1);
+      set(r2, l2);
       ++r;
     }
     stats_.sweeps = sweep + 1;
@@ -637,6 +689,14 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   const int factors = c > 0 ? rows.factorEnd(c - 1) : 0;
   for (int f = 0; unchanged && f < factors; ++f)
     unchanged = last_factor_anchor_[f] == rows.factorAnchor(f) && last_factor_direction_[f] == rows.factorDirection(f);
+  // Contact rows through an operator that mixes the axes (an implicit step matrix): projected
+  // Gauss–Seidel on the factored form (FactoredDelassus), W not assembled — only its diagonal.
+  stats_.inequalities = rows.inequalityCount();
+  const bool factored_form = stats_.inequalities > 0 && !separable && !inverse.coupled();
+  if (factored_form) {
+    for (int r = 0; r < c; ++r) diagonal_[r] = generalEntry(scene, rows, r, r);
+    unchanged = true;  // nothing assembled: the next call without contacts assembles (see below)
+  }
   if (!unchanged) {
     if (stats_.sparse) {
       sparse_->triplets.clear();
@@ -658,9 +718,14 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   for (int r = 0; r < c; ++r) rhs_[r] = rows.rhs(r) - rows.dot(r, a);
 
   // 4. λ = W⁻¹ (E − L A_t), or with contact rows the projected Gauss–Seidel solution.
-  stats_.inequalities = rows.inequalityCount();
-  if (stats_.inequalities > 0) {
-    solveWithContacts(rows);
+  if (factored_form) {
+    FactoredDelassus w{*this, scene, rows, u_};
+    solveWithContacts(rows, w);
+    factored_last_call_ = false;
+  } else if (stats_.inequalities > 0) {
+    buildAdjacency(c);  // diagonal_ holds W_rr since W's assembly (this call or an identical last one)
+    AssembledDelassus w{*this};
+    solveWithContacts(rows, w);
     factored_last_call_ = false;
   } else if (unchanged && factored_last_call_) {
     if (stats_.sparse) {
@@ -690,7 +755,9 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   // solve ~60 per point (3 × 3 blocks, 3 block diagonals each side): the sum is cheaper up to
   // ~20 rows (kColumnSumRows).
   constexpr int kColumnSumRows = 16;
-  if (!separable && !inverse.coupled() && c <= kColumnSumRows) {
+  if (factored_form) {
+    a.head(u_.size()) += u_;  // kept by the projected Gauss–Seidel sweeps
+  } else if (!separable && !inverse.coupled() && c <= kColumnSumRows) {
     const auto& bodies = scene.bodies();
     for (int r = 0; r < c; ++r) {
       const Column& col = current_[r];

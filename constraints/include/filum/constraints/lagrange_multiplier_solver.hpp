@@ -150,8 +150,14 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   void buildAdjacency(int c);
   /// (W λ)_r.
   double delassusRow(int r) const;
-  /// λ with contact rows by projected Gauss–Seidel (see above).
-  void solveWithContacts(const ConstraintRows& rows);
+  /// λ with contact rows by projected Gauss–Seidel (see above) on a Delassus operator: W
+  /// assembled (AssembledDelassus) or in factored form (FactoredDelassus).
+  struct AssembledDelassus;
+  struct FactoredDelassus;
+  template <class Delassus>
+  void solveWithContacts(const ConstraintRows& rows, Delassus& w);
+  /// W_rk through an operator that mixes the axes (columns per row, current_).
+  double generalEntry(const Scene& scene, const ConstraintRows& rows, int r, int k) const;
 
   Options options_;
   Statistics stats_;
@@ -189,6 +195,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   std::vector<int> bucket_, bucket_start_, cursor_;  // columns to solve, grouped by body
   std::vector<char> body_touched_;
   int c_ = 0;                 // rows of the current (last) call
+  VecX u_;  // A⁻¹ Lᵀ λ (FactoredDelassus)
   VecX rhs_, lambda_, force_, block_;  // rhs_, lambda_, diagonal_: capacity >= c_, used head(c_)
   Eigen::LDLT<MatX> ldlt_;
   MatX w_factored_;  // W of the current dense factorization
