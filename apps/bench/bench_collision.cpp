@@ -7,13 +7,15 @@
 //    stays the same from 10^3 to 10^5 spheres. Linear time means ns_per_sphere stays constant.
 //    BruteForce/1000 tests all n(n − 1)/2 pairs, for scale.
 //  - Scene/knot, Scene/threads: wall time per simulated millisecond of apps/scenes/paper_knot.json
-//    (paper Fig. 1b: 5.7 ms on a 1.7 GHz Pentium 4) and apps/scenes/threads.json (Fig. 1c:
+//    (paper Fig. 1b: 5.7 ms on a 1.7 GHz Pentium 4) and apps/scenes/paper_threads.json (Fig. 1c:
 //    16 ms). One iteration = the steps of one simulated ms, the whole pipeline (detection,
 //    contacts, constraints, RK4), no output; a fixed number of iterations from the scene's start
 //    (knot: the first 2 s, in which its weight tightens it; threads: the first 1 s, in which the
 //    threads swing through each other), so that every repetition times the same motion.
-//    Scene/organ (with CGAL): the first 1 s of apps/scenes/organ.json, a thread falling on the
-//    triangle-mesh organ (no figure in the paper).
+//    Scene/organ (with CGAL): the first 1 s of apps/scenes/paper_organ.json, a thread falling on
+//    the triangle-mesh organ (no figure in the paper). Scene/threads_real, Scene/organ_real: the
+//    first 1 s of the same scenes in real material (threads.json, organ.json: silicone vessel
+//    loops under implicit steps at 1 ms with unilateral contacts).
 //    Counters: wall_ms_per_sim_ms, contacts (mean per step), spheres.
 // Run: build/apps/bench/bench_collision --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <chrono>
@@ -113,9 +115,11 @@ void Scene(benchmark::State& state, const std::string& file) {
   state.counters["spheres"] = spheres / std::max(steps, 1L);
 }
 BENCHMARK_CAPTURE(Scene, knot, std::string("paper_knot.json"))->Iterations(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(Scene, threads, std::string("threads.json"))->Iterations(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(Scene, threads, std::string("paper_threads.json"))->Iterations(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(Scene, threads_real, std::string("threads.json"))->Iterations(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
 #ifdef FILUM_WITH_CGAL
-BENCHMARK_CAPTURE(Scene, organ, std::string("organ.json"))->Iterations(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(Scene, organ, std::string("paper_organ.json"))->Iterations(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(Scene, organ_real, std::string("organ.json"))->Iterations(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
 #endif
 
 }  // namespace
