@@ -9,7 +9,10 @@
 namespace filum::mechanics {
 
 std::unique_ptr<RayleighDamping> RayleighDamping::fromParams(const Params& p) {
-  return std::make_unique<RayleighDamping>(p.nonNegative("stiffness_coefficient", 0.0));
+  const std::string update = p.string("stiffness_update", "per_state");
+  if (update != "per_state" && update != "per_step")
+    p.fail("stiffness_update", "\"per_state\" or \"per_step\"", "\"" + update + "\"");
+  return std::make_unique<RayleighDamping>(p.nonNegative("stiffness_coefficient", 0.0), update == "per_step");
 }
 
 void RayleighDamping::init(const Scene& scene) {
@@ -33,9 +36,12 @@ const std::vector<const ForceField*>& RayleighDamping::elasticFields() const {
 
 const BlockBandMatrix& RayleighDamping::stiffness(const SceneState& s) const {
   // The key is the body's positions and velocities (a spring's ∂Q/∂q has dashpot terms in q̇).
+  // Lagged (per_step): the key is the time alone.
   const Eigen::Index offset = 3 * body().offset(), size = 3 * body().pointCount();
-  if (!stiffness_valid_ || stiffness_key_.head(size) != s.q.segment(offset, size) ||
-      stiffness_key_.tail(size) != s.v.segment(offset, size)) {
+  const bool stale = per_step_ ? !stiffness_valid_ || stiffness_time_ != s.time
+                               : !stiffness_valid_ || stiffness_key_.head(size) != s.q.segment(offset, size) ||
+                                     stiffness_key_.tail(size) != s.v.segment(offset, size);
+  if (stale) {
     if (stiffness_.firstPoint() != body().offset() || stiffness_.points() != body().pointCount())
       stiffness_.resize(body().offset(), body().pointCount(), std::max(0, body().couplingRange()));
     // K over the band the body declares; a field whose Jacobian reaches further (a global
@@ -49,6 +55,7 @@ const BlockBandMatrix& RayleighDamping::stiffness(const SceneState& s) const {
     stiffness_key_.resize(2 * size);
     stiffness_key_ << s.q.segment(offset, size), s.v.segment(offset, size);
     stiffness_valid_ = true;
+    stiffness_time_ = s.time;
   }
   return stiffness_;
 }
@@ -64,8 +71,9 @@ void RayleighDamping::addJacobian(const SceneState& s, double k_factor, double d
   if (beta_ == 0.0) return;
   // ∂Q/∂q̇ = β K(q).
   if (d_factor != 0.0) stiffness(s).addSymmetrizedTo(d_factor * beta_, out);
-  // ∂Q/∂q = β ∂(K(q) q̇)/∂q, from the fields that can differentiate their stiffness.
-  if (k_factor != 0.0)
+  // ∂Q/∂q = β ∂(K(q) q̇)/∂q, from the fields that can differentiate their stiffness (0 when K
+  // is lagged).
+  if (k_factor != 0.0 && !per_step_)
     for (const ForceField* field : elasticFields())
       if (const auto* derivative = dynamic_cast<const StiffnessDerivative*>(field))
         derivative->addStiffnessDerivative(s, s.v, k_factor * beta_, out);

@@ -242,6 +242,7 @@ StepReport Scene::step() {
 void Scene::advance(double h, int depth) {
   // Stage 2: collision detection at the (sub-)step's start state, only if collision models exist.
   if (collision_) collision_->beginStep(*this, state_, h);
+  for (ForceField* field : force_fields_) field->beginStep(state_, h);
   substep_start_[depth] = state_;  // preallocated: no allocation
   integrator_->step(*this, state_, h);
   if (!fault_.empty() || !collision_) return;

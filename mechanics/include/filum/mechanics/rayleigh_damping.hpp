@@ -13,7 +13,14 @@
 // part of ∂Q/∂q is left out: Newton then converges linearly instead of quadratically when
 // velocities are large (the solution it converges to is unchanged).
 // K(q) is computed once per state, as a block band (BlockBandMatrix): the force and the Jacobian
-// at the same state share it. Its Jacobian ∂Q/∂q̇ = β K is copied symmetrised, (K + Kᵀ)/2, as
+// at the same state share it.
+// "stiffness_update": "per_step" (for implicit steps) lags K: it is computed at the first state
+// evaluated in a step (after beginStep) and kept for the other evaluations at that time (the
+// iterations of one implicit step; a halved step's sub-steps are at other times), Q = β K(q_first) q̇ — the damping force differs from the exact one by
+// β (K(q) − K(q_first)) q̇ = O(h), within backward Euler's first-order error — and it is linear in
+// q̇ with ∂Q/∂q = 0, so a linearized step is exact for it: one Jacobian of the elastic fields per
+// step instead of one per evaluation, and no third derivatives. Not for explicit multistage
+// schemes (RK4 evaluates two stages at t + h/2). Its Jacobian ∂Q/∂q̇ = β K is copied symmetrised, (K + Kᵀ)/2, as
 // the step matrix symmetrises every term anyway.
 #pragma once
 
@@ -29,11 +36,13 @@ namespace filum::mechanics {
 class RayleighDamping final : public ForceField {
  public:
   /// stiffness_coefficient β (s) >= 0.
-  explicit RayleighDamping(double stiffness_coefficient) : beta_(stiffness_coefficient) {}
-  /// "stiffness_coefficient": β (s).
+  explicit RayleighDamping(double stiffness_coefficient, bool per_step = false)
+      : beta_(stiffness_coefficient), per_step_(per_step) {}
+  /// "stiffness_coefficient": β (s); "stiffness_update": "per_state" (default) or "per_step".
   static std::unique_ptr<RayleighDamping> fromParams(const Params& p);
 
   std::string typeName() const override { return "RayleighDamping"; }
+  void beginStep(const SceneState& /*s*/, double /*h*/) override { stiffness_valid_ = false; }
   void addForce(const SceneState& s, VecX& B) const override;
   void addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const override;
   bool hasJacobian() const override { return true; }
@@ -49,12 +58,14 @@ class RayleighDamping final : public ForceField {
   const BlockBandMatrix& stiffness(const SceneState& s) const;
 
   double beta_;
+  bool per_step_ = false;  // K lagged: once per time (see above)
   const Scene* scene_ = nullptr;
   mutable bool resolved_ = false;
   mutable std::vector<const ForceField*> elastic_;
   mutable BlockBandMatrix stiffness_;  // K(q) at the state stiffness_key_
   mutable VecX stiffness_key_;  // this body's q then q̇ when K was computed (2 · 3n)
   mutable bool stiffness_valid_ = false;
+  mutable double stiffness_time_ = 0.0;  // per_step: the time K was computed at
 };
 
 }  // namespace filum::mechanics

@@ -14,6 +14,9 @@ namespace filum {
 
 class ForceField : public BodyComponent {
  public:
+  /// Stage 2 of a (sub-)step of length h from state s (Scene::advance, before the integrator):
+  /// a field that keeps something for the step (a lagged stiffness) starts afresh.
+  virtual void beginStep(const SceneState& /*s*/, double /*h*/) {}
   /// B += generalized force of this field on its body at state s. B is the global 3N vector.
   virtual void addForce(const SceneState& s, VecX& B) const = 0;
 
