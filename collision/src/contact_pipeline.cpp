@@ -5,6 +5,7 @@
 #include <limits>
 #include <tuple>
 
+#include "filum/collision/segment_closest_points.hpp"
 #include "filum/collision/segment_continuous_collision.hpp"
 #include "filum/constraints/projected_point_constraint.hpp"
 #include "filum/core/node.hpp"
@@ -44,6 +45,11 @@ std::unique_ptr<ContactPipeline> ContactPipeline::fromParams(const Params& p) {
   s.cell_size = p.nonNegative("cell_size", s.cell_size);
   s.stabilization = p.positive("stabilization", 0.0);
   s.friction_rate = p.positive("friction_rate", 0.0);
+  s.max_penetration = p.nonNegative("max_penetration", 0.0);
+  if (s.max_penetration >= 1.0) p.fail("max_penetration", "a fraction of the contact distance in [0, 1)");
+  s.penetration_halvings = p.integer("penetration_halvings", 0, s.penetration_halvings);
+  if (s.penetration_halvings > 5)  // the scene halves a step 6 times at most (a pass-through beyond is a fault)
+    p.fail("penetration_halvings", "at most 5 (sub-steps of dt / 32)");
   return std::make_unique<ContactPipeline>(s);
 }
 
@@ -61,10 +67,11 @@ void ContactPipeline::init(const Scene& scene) {
   contacts_.clear();
 }
 
-void ContactPipeline::beginStep(const Scene& /*scene*/, const SceneState& s, double h) {
+void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double h) {
   // Baumgarte ω of contact rows: critically damped over two steps of the step about to be taken
   // (ω h = ½: the normal row then keeps g1 >= ¾ g0 over the step, to first order).
   time_step_ = h;
+  scene_dt_ = scene.settings().dt;
   stabilization_ = settings_.stabilization > 0.0 ? settings_.stabilization : 0.5 / h;
   friction_rate_ = settings_.friction_rate > 0.0 ? settings_.friction_rate : stabilization_;
   // 1. Spheres on the current curves, centres and velocities mapped down.
@@ -234,6 +241,10 @@ Vec3 ContactPipeline::contactForce(int i, const SceneState& s) const {
 
 bool ContactPipeline::passedThrough(const SceneState& after) {
   if (settings_.response != Response::kUnilateral) return false;
+  // Depth test (max_penetration > 0) while the sub-step may still be halved.
+  const bool depth_test = settings_.max_penetration > 0.0 &&
+                          time_step_ > 1.5 * scene_dt_ / static_cast<double>(1 << settings_.penetration_halvings);
+  const double keep = 1.0 - settings_.max_penetration;  // centre lines kept (1 − p) R apart
   const int model_count = static_cast<int>(models_.size());
   if (static_cast<int>(after_centers_.size()) != model_count) after_centers_.resize(model_count);
   chords_.clear();
@@ -248,7 +259,7 @@ bool ContactPipeline::passedThrough(const SceneState& after) {
     for (int k = 0; k + 1 < model.sphereCount(); ++k) {
       const Vec3 a0 = start.row(k).transpose(), a1 = start.row(k + 1).transpose();
       const Vec3 b0 = end.row(k).transpose(), b1 = end.row(k + 1).transpose();
-      chords_.push_back(sweptChordBound(a0, a1, b0, b1, 0.0));  // centre lines only
+      chords_.push_back(sweptChordBound(a0, a1, b0, b1, depth_test ? keep * model.radius() : 0.0));  // centre lines
       chord_owner_.emplace_back(m, k);
     }
   }
@@ -267,6 +278,10 @@ bool ContactPipeline::passedThrough(const SceneState& after) {
     // Centre lines meet: closer than a thousandth of the radius at a coplanarity root (strands in
     // contact stay two radii apart; only a pass-through brings the lines together).
     if (firstSegmentContact(sa, sb, 1e-3 * std::min(a.radius(), b.radius()))) return true;
+    if (!depth_test) continue;
+    const double end = closestPointsOnSegments(sa.end0, sa.end1, sb.end0, sb.end1).distance;
+    if (end < keep * (a.radius() + b.radius()) && end < closestPointsOnSegments(sa.start0, sa.start1, sb.start0, sb.start1).distance)
+      return true;
   }
   return false;
 }

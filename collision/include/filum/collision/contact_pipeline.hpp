@@ -65,6 +65,8 @@ class ContactPipeline final : public CollisionPipeline {
     double cell_size = 0.0;     // broad-phase cell (m); 0: twice the largest chord bound
     double stabilization = 0.0;  // ω (1/s) of the normal rows; 0: 0.5/dt
     double friction_rate = 0.0;  // ω_f (1/s) of the friction rows; 0: ω
+    double max_penetration = 0.0;  // fraction of R; > 0: a step deepening an overlap beyond it is halved
+    int penetration_halvings = 3;  // ... down to sub-steps of dt / 2^penetration_halvings
   };
 
   /// What the last detection found (benchmarks, tests, reports).
@@ -82,8 +84,10 @@ class ContactPipeline final : public CollisionPipeline {
   /// "damping": c (N·s/m, default 0); "friction": μ (default 0); "friction_velocity": ε (m/s,
   /// default 1e-3); "margin": m (default r/2); "continuous": bool (default true); "cell_size": m
   /// (default automatic); "stabilization": ω (1/s, default 0.5/dt); "friction_rate": ω_f (1/s,
-  /// default ω). The sweeps of the unilateral solve are the constraint solver's settings
-  /// (LagrangeMultiplierSolver "contact_iterations", "contact_tolerance").
+  /// default ω); "max_penetration": p, a fraction of the contact distance R (default 0: off), and
+  /// "penetration_halvings": k (default 3), see passedThrough. The sweeps of the unilateral solve
+  /// are the constraint solver's settings (LagrangeMultiplierSolver "contact_iterations",
+  /// "contact_tolerance").
   static std::unique_ptr<ContactPipeline> fromParams(const Params& p);
 
   std::string typeName() const override { return "ContactPipeline"; }
@@ -98,7 +102,16 @@ class ContactPipeline final : public CollisionPipeline {
   ConstraintSolver* defaultConstraintSolver() override { return &default_solver_; }
   /// Unilateral response: the centre lines of the step's start (the spheres of beginStep) and of
   /// `after` (the same material points), chords moving linearly in between, tested pair by pair
-  /// for a meeting (segment_continuous_collision.hpp) after a swept broad phase.
+  /// for a meeting (segment_continuous_collision.hpp) after a swept broad phase. With
+  /// "max_penetration" p > 0, also true when the step brought two chords' centre lines closer than
+  /// (1 − p) R and closer than they were at its start, while the (sub-)step is longer than
+  /// dt / 2^(k−1) (k = "penetration_halvings"): the rows hold the contact's material points along
+  /// the normal of the step's start, which no longer follows the contact once strands slide
+  /// around each other by more than about √(2 ρ g) in a step (ρ the radius of curvature of the
+  /// strand, g the gap) — a knot pulled at 1 m/s with 1 ms steps slides 1 mm per step around
+  /// loops of a few mm, and the rows then both jam the sliding and let the strands overlap. The
+  /// scene redoes such a step in halves (Scene::advance), each with its own detection; the
+  /// shortest sub-step is accepted as it is.
   bool passedThrough(const SceneState& after) override;
 
   const Settings& settings() const { return settings_; }
@@ -117,6 +130,7 @@ class ContactPipeline final : public CollisionPipeline {
   Settings settings_;
   double margin_ = 0.0;
   double time_step_ = 0.0;
+  double scene_dt_ = 0.0;  // the scene's dt (penetration halvings)
   double stabilization_ = 0.0, friction_rate_ = 0.0;  // ω, ω_f in use
   std::vector<SphereCollisionModel*> models_;
   std::vector<Obstacle*> obstacles_;
