@@ -47,9 +47,10 @@ std::unique_ptr<ContactPipeline> ContactPipeline::fromParams(const Params& p) {
   s.friction_rate = p.positive("friction_rate", 0.0);
   s.max_penetration = p.nonNegative("max_penetration", 0.0);
   if (s.max_penetration >= 1.0) p.fail("max_penetration", "a fraction of the contact distance in [0, 1)");
-  s.penetration_halvings = p.integer("penetration_halvings", 0, s.penetration_halvings);
-  if (s.penetration_halvings > 5)  // the scene halves a step 6 times at most (a pass-through beyond is a fault)
-    p.fail("penetration_halvings", "at most 5 (sub-steps of dt / 32)");
+  s.max_slide = p.nonNegative("max_slide", 0.0);
+  s.contact_halvings = p.integer("contact_halvings", 0, s.contact_halvings);
+  if (s.contact_halvings > 5)  // the scene halves a step 6 times at most (a pass-through beyond is a fault)
+    p.fail("contact_halvings", "at most 5 (sub-steps of dt / 32)");
   return std::make_unique<ContactPipeline>(s);
 }
 
@@ -130,6 +131,13 @@ void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double 
     }
   }
   stats_.thread_contacts = static_cast<int>(contacts_.size()) - stats_.obstacle_contacts;
+  if (settings_.max_slide > 0.0) {
+    start_offset_.resize(contacts_.size());
+    for (std::size_t i = 0; i < contacts_.size(); ++i) {
+      const ContactKinematics k = contactKinematics(contacts_[i], s);
+      start_offset_[i] = k.x_a - k.x_b;
+    }
+  }
 }
 
 void ContactPipeline::addForce(const SceneState& s, VecX& B) const {
@@ -241,9 +249,18 @@ Vec3 ContactPipeline::contactForce(int i, const SceneState& s) const {
 
 bool ContactPipeline::passedThrough(const SceneState& after) {
   if (settings_.response != Response::kUnilateral) return false;
-  // Depth test (max_penetration > 0) while the sub-step may still be halved.
-  const bool depth_test = settings_.max_penetration > 0.0 &&
-                          time_step_ > 1.5 * scene_dt_ / static_cast<double>(1 << settings_.penetration_halvings);
+  // Depth and slide tests (max_penetration, max_slide > 0) while the sub-step may still be halved.
+  const bool may_halve = time_step_ > 1.5 * scene_dt_ / static_cast<double>(1 << settings_.contact_halvings);
+  const bool depth_test = settings_.max_penetration > 0.0 && may_halve;
+  if (settings_.max_slide > 0.0 && may_halve && start_offset_.size() == contacts_.size() &&
+      contact_force_.size() == contacts_.size())
+    for (std::size_t i = 0; i < contacts_.size(); ++i) {
+      const Contact& c = contacts_[i];
+      if (c.againstObstacle() || contact_force_[i].dot(c.normal) <= 0.0) continue;  // pressed thread contacts
+      const ContactKinematics k = contactKinematics(c, after);
+      const Vec3 moved = (k.x_a - k.x_b) - start_offset_[i];
+      if ((moved - moved.dot(c.normal) * c.normal).norm() > settings_.max_slide) return true;
+    }
   const double keep = 1.0 - settings_.max_penetration;  // centre lines kept (1 − p) R apart
   const int model_count = static_cast<int>(models_.size());
   if (static_cast<int>(after_centers_.size()) != model_count) after_centers_.resize(model_count);
