@@ -65,7 +65,7 @@ def scene(points, dt, duration, damping):
         "integrator": {"type": "ImplicitEuler", "newton_iterations": 1},
         "constraint_solver": {"type": "LagrangeMultiplierSolver", "contact_iterations": 100},
         "collision": {"type": "ContactPipeline", "response": "unilateral", "friction": 0.2,
-                      "max_penetration": 0.1, "penetration_halvings": 3},
+                      "max_penetration": 0.1, "max_slide": 1.5e-4, "contact_halvings": 3},
         "output": {"interval": duration, "curve_samples": 16},
         "nodes": [{"name": "thread", "components": [
             {"type": "DynamicSpline", "radius": 1.5e-4, "density": 1300, "control_points": points},
