@@ -1,6 +1,6 @@
 // The knot of apps/scenes/knot.json: an overhand knot in a 2-0 braided silk suture (E·A = 615 N,
 // E·I = 2e-7 N·m², r = 0.15 mm) under linearized backward Euler at dt = 1 ms with unilateral
-// contacts. Its two ends are drawn 8 mm apart each in 0.4 s (tightening), then, the left end held,
+// contacts. Its two ends are drawn 8 mm apart each in 0.17 s (tightening), then, the left end held,
 // the right end is pulled 8 mm further at 1 m/s. The knot holds: every step succeeds, the curve is
 // an overhand knot (determinant 3) after the tightening and after the pull, the pull tightens it
 // further, and no centre line ever passes through another (CrossingWatch, independent of the
@@ -40,7 +40,7 @@ TEST(KnotRealMaterial, ASilkKnotTightenedAtOneMillisecondHoldsWhenOneEndIsPulled
   Points before = test::CrossingWatch::sample(*scene, scene->state(), kSamples);
   int most_contacts = 0, most_sweeps = 0;
   long sweeps = 0;
-  const long tightened = std::lround(0.5 / scene->settings().dt);  // the pull starts at 0.5 s
+  const long tightened = std::lround(0.35 / scene->settings().dt);  // the pull starts at 0.35 s
   const long steps = std::lround(scene->settings().duration / scene->settings().dt);
   double knot_before = 0.0, knot_after = 0.0;
   SceneState tightened_state = scene->state();
@@ -61,7 +61,7 @@ TEST(KnotRealMaterial, ASilkKnotTightenedAtOneMillisecondHoldsWhenOneEndIsPulled
       tightened_state = scene->state();
       knot_before = test::pieceDiameter(*scene, 0, initial, lo, hi);  // the same thread at the start
       knot_after = test::pieceDiameter(*scene, 0, scene->state(), lo, hi);
-      std::cout << "  tightened (t = 0.5 s): " << pipeline.contacts().size() << " contacts, the knot holds "
+      std::cout << "  tightened (t = 0.35 s): " << pipeline.contacts().size() << " contacts, the knot holds "
                 << test::threadLength(*scene, 0, scene->state(), lo, hi) * 1e3 << " mm of thread in " << knot_after * 1e3
                 << " mm; that thread spanned " << knot_before * 1e3 << " mm at the start\n";
     }
