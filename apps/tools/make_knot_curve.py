@@ -16,7 +16,7 @@ suture, relaxed onto its own contacts.
    loops creep onto each other instead of snapping), then 0.3 s in the scene's own settings
    (dt = 1 ms, 2 /s). The loops open until they rest on each other: a loose knot on a few
    contacts, still of determinant 3.
-Runs `filum run` twice (about 10 s) in a temporary folder and prints the last frame's control
+Runs `filum run` twice (a few seconds) in a temporary folder and prints the last frame's control
 points as a JSON array.
 """
 import argparse
