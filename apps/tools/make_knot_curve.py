@@ -18,7 +18,7 @@ suture, relaxed onto its own contacts.
    of a millisecond (time scale R² √(ρA/EI) ≈ 5e-5 s), far too violent for 1 ms steps. It is
    relaxed with both ends held: 40 ms at dt = 20 µs with heavy viscous damping (2000 /s, so the
    loops creep onto each other instead of snapping), then 0.3 s in the scene's own settings
-   (dt = 1 ms, 2 /s). The loops open until they rest on each other: a loose knot on a few
+   (dt = 1 ms, 2 /s). The loops open until they rest on each other: a loose knot on its
    contacts, still of determinant 3.
 Runs `filum run` twice (a few seconds) in a temporary folder and prints the last frame's control
 points as a JSON array.

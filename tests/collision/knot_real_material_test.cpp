@@ -53,6 +53,13 @@ TEST(KnotRealMaterial, ASilkKnotTightenedAtOneMillisecondHoldsWhenOneEndIsPulled
     most_contacts = std::max(most_contacts, static_cast<int>(pipeline.contacts().size()));
     most_sweeps = std::max(most_sweeps, solver->statistics().sweeps);
     sweeps += solver->statistics().sweeps;
+    if (k == 1) {
+      const auto [lo, hi] = test::knotContactRange(*scene, 0);
+      if (lo < hi)
+        std::cout << "  loose knot (t = " << scene->state().time << " s): " << pipeline.contacts().size()
+                  << " contacts, it holds " << test::threadLength(*scene, 0, scene->state(), lo, hi) * 1e3
+                  << " mm of thread in " << test::pieceDiameter(*scene, 0, scene->state(), lo, hi) * 1e3 << " mm\n";
+    }
     if (k == tightened) {
       ASSERT_EQ(test::openKnotDeterminant(test::sampledCurve(*scene, 0, scene->state())), 3)
           << "the knot came undone while it was tightened";
@@ -82,7 +89,7 @@ TEST(KnotRealMaterial, ASilkKnotTightenedAtOneMillisecondHoldsWhenOneEndIsPulled
             << " crossings\n";
   RecordProperty("closest_centre_lines_mm", std::to_string(w.min_distance * 1e3));
 
-  // Tightened: drawing the ends 2 × 8 mm apart takes 16 mm out of the ~44 mm of thread the loose
+  // Tightened: drawing the ends 2 × 8 mm apart takes 16 mm out of the ~45 mm of thread the loose
   // knot holds (apps/tools/make_knot_curve.py); closing uniformly, its size would shrink in that
   // ratio (0.64). The thread the tightened knot holds must span less than 0.8 of what it spanned
   // at the start: room for a knot that closes unevenly; a knot that merely slid along the thread
