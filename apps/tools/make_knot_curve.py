@@ -8,7 +8,7 @@ suture, relaxed onto its own contacts.
    t in [π + 0.4, 3π − 0.4], turned (x, y, z) → (x, z, −y) and scaled by 1.5 mm, with straight
    arms of 3 cm along −x (from its start) and +x (from its end), the two corners where the arms
    meet the trefoil rounded (moving average over ±2 mm), then 98 points equally spaced along it,
-   interpolated by the uniform cubic B-spline of 100 control points (0.97 mm apart). Its
+   interpolated by the uniform cubic B-spline of 100 control points (1.0 mm apart). Its
    parametric speed is uniform to 1 %, so the rest shape a straightened piece should reach is one
    the spline can take: control points sampled straight from the polyline left a 17 % dip of
    |P0'| at each corner, and once pulled straight out of the knot that piece kept a kink of
