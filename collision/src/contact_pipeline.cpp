@@ -45,6 +45,12 @@ std::unique_ptr<ContactPipeline> ContactPipeline::fromParams(const Params& p) {
   s.cell_size = p.nonNegative("cell_size", s.cell_size);
   s.stabilization = p.positive("stabilization", 0.0);
   s.friction_rate = p.positive("friction_rate", 0.0);
+  s.max_penetration = p.nonNegative("max_penetration", s.max_penetration);
+  if (s.max_penetration >= 1.0) p.fail("max_penetration", "a fraction of the contact distance in [0, 1)");
+  s.max_slide = p.nonNegative("max_slide", 0.0);
+  s.contact_halvings = p.integer("contact_halvings", 0, s.contact_halvings);
+  if (s.contact_halvings > 5)  // the scene halves a step 6 times at most (a pass-through beyond is a fault)
+    p.fail("contact_halvings", "at most 5 (sub-steps of dt / 32)");
   return std::make_unique<ContactPipeline>(s);
 }
 
@@ -62,10 +68,11 @@ void ContactPipeline::init(const Scene& scene) {
   contacts_.clear();
 }
 
-void ContactPipeline::beginStep(const Scene& /*scene*/, const SceneState& s, double h) {
+void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double h) {
   // Baumgarte ω of contact rows: critically damped over two steps of the step about to be taken
   // (ω h = ½: the normal row then keeps g1 >= ¾ g0 over the step, to first order).
   time_step_ = h;
+  scene_dt_ = scene.settings().dt;
   stabilization_ = settings_.stabilization > 0.0 ? settings_.stabilization : 0.5 / h;
   friction_rate_ = settings_.friction_rate > 0.0 ? settings_.friction_rate : stabilization_;
   // 1. Spheres on the current curves, centres and velocities mapped down.
@@ -124,6 +131,13 @@ void ContactPipeline::beginStep(const Scene& /*scene*/, const SceneState& s, dou
     }
   }
   stats_.thread_contacts = static_cast<int>(contacts_.size()) - stats_.obstacle_contacts;
+  if (settings_.max_slide > 0.0) {
+    start_offset_.resize(contacts_.size());
+    for (std::size_t i = 0; i < contacts_.size(); ++i) {
+      const ContactKinematics k = contactKinematics(contacts_[i], s);
+      start_offset_[i] = k.x_a - k.x_b;
+    }
+  }
 }
 
 void ContactPipeline::addForce(const SceneState& s, VecX& B) const {
@@ -235,6 +249,19 @@ Vec3 ContactPipeline::contactForce(int i, const SceneState& s) const {
 
 CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) {
   if (settings_.response != Response::kUnilateral) return Miss::kNone;
+  // Depth and slide tests while the sub-step may still be halved (contact_halvings).
+  const bool may_halve = time_step_ > 1.5 * scene_dt_ / static_cast<double>(1 << settings_.contact_halvings);
+  const bool depth_test = settings_.max_penetration > 0.0 && may_halve;
+  if (settings_.max_slide > 0.0 && may_halve && start_offset_.size() == contacts_.size() &&
+      contact_force_.size() == contacts_.size())
+    for (std::size_t i = 0; i < contacts_.size(); ++i) {
+      const Contact& c = contacts_[i];
+      if (c.againstObstacle() || contact_force_[i].dot(c.normal) <= 0.0) continue;  // pressed thread contacts
+      const ContactKinematics k = contactKinematics(c, after);
+      const Vec3 moved = (k.x_a - k.x_b) - start_offset_[i];
+      if ((moved - moved.dot(c.normal) * c.normal).norm() > settings_.max_slide) return Miss::kOverlapOrSlide;
+    }
+  const double keep = 1.0 - settings_.max_penetration;  // centre lines kept (1 − p) R apart
   const int model_count = static_cast<int>(models_.size());
   if (static_cast<int>(after_centers_.size()) != model_count) after_centers_.resize(model_count);
   chords_.clear();
@@ -249,7 +276,7 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
     for (int k = 0; k + 1 < model.sphereCount(); ++k) {
       const Vec3 a0 = start.row(k).transpose(), a1 = start.row(k + 1).transpose();
       const Vec3 b0 = end.row(k).transpose(), b1 = end.row(k + 1).transpose();
-      chords_.push_back(sweptChordBound(a0, a1, b0, b1, 0.0));  // centre lines only
+      chords_.push_back(sweptChordBound(a0, a1, b0, b1, depth_test ? keep * model.radius() : 0.0));  // centre lines
       chord_owner_.emplace_back(m, k);
     }
   }
@@ -268,16 +295,16 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
                      after_centers_[mb].row(l).transpose(), after_centers_[mb].row(l + 1).transpose()};
     // Centre lines meet: closer than a thousandth of the radius at a coplanarity root (strands in
     // contact stay two radii apart; only a pass-through brings the lines together).
-    const double radius = std::min(a.radius(), b.radius());
-    if (firstSegmentContact(sa, sb, 1e-3 * radius)) return Miss::kPassThrough;
-    // Deep penetration: chords that started at least a radius apart and ended closer, half-way
-    // to a crossing. The step's contacts hold their pairs to within Baumgarte's correction of
-    // the contact distance r_a + r_b; a pair this deep was not among them (it came into contact
-    // within the step, e.g. two threads closing like scissors along their length).
-    if (miss == Miss::kNone &&
-        closestPointsOnSegments(sa.end0, sa.end1, sb.end0, sb.end1).distance < radius &&
-        closestPointsOnSegments(sa.start0, sa.start1, sb.start0, sb.start1).distance >= radius)
-      miss = Miss::kDeepPenetration;
+    if (firstSegmentContact(sa, sb, 1e-3 * std::min(a.radius(), b.radius()))) return Miss::kPassThrough;
+    // Overlap: the step brought the centre lines closer than (1 − p) R and closer than at its
+    // start. The step's contacts hold their pairs to within Baumgarte's correction of R = r_a +
+    // r_b; a pair this deep was not among them (it came into contact within the step, e.g. two
+    // threads closing like scissors along their length) or slid out of its rows' normals.
+    if (!depth_test || miss != Miss::kNone) continue;
+    const double end = closestPointsOnSegments(sa.end0, sa.end1, sb.end0, sb.end1).distance;
+    if (end < keep * (a.radius() + b.radius()) &&
+        end < closestPointsOnSegments(sa.start0, sa.start1, sb.start0, sb.start1).distance)
+      miss = Miss::kOverlapOrSlide;
   }
   return miss;
 }

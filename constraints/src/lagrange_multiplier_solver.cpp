@@ -475,6 +475,23 @@ double LagrangeMultiplierSolver::delassusRow(int r) const {
   return sum;
 }
 
+bool LagrangeMultiplierSolver::factoredFormIsCheaper(const Scene& scene, const ConstraintRows& rows) {
+  // Per sweep, a row costs the rows it couples to in assembled form (about Σ over its bodies of
+  // the rows on that body), 3 × the points of its bodies in factored form (plus its terms in
+  // both); the assembly's O(c² terms) is left out: it only favours the factored form further.
+  const auto& bodies = scene.bodies();
+  rows_on_body_.assign(bodies.size(), 0);
+  for (int r = 0; r < rows.rows(); ++r)
+    for (int b : current_[r].bodies) ++rows_on_body_[b];
+  long assembled = 0, factored = 0;
+  for (int r = 0; r < rows.rows(); ++r)
+    for (int b : current_[r].bodies) {
+      assembled += rows_on_body_[b];
+      factored += 3L * bodies[b]->pointCount();
+    }
+  return factored < assembled;
+}
+
 /// W through its assembled rows (adjacency_): (W λ)_r = Σ_k W_rk λ_k.
 struct LagrangeMultiplierSolver::AssembledDelassus {
   LagrangeMultiplierSolver& solver;
@@ -692,7 +709,8 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   // Contact rows through an operator that mixes the axes (an implicit step matrix): projected
   // Gauss–Seidel on the factored form (FactoredDelassus), W not assembled — only its diagonal.
   stats_.inequalities = rows.inequalityCount();
-  const bool factored_form = stats_.inequalities > 0 && !separable && !inverse.coupled();
+  const bool factored_form =
+      stats_.inequalities > 0 && !separable && !inverse.coupled() && factoredFormIsCheaper(scene, rows);
   if (factored_form) {
     for (int r = 0; r < c; ++r) diagonal_[r] = generalEntry(scene, rows, r, r);
     unchanged = true;  // nothing assembled: the next call without contacts assembles (see below)

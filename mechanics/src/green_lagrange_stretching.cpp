@@ -1,5 +1,7 @@
 #include "filum/mechanics/green_lagrange_stretching.hpp"
 
+#include <algorithm>
+
 
 #include "filum/geometry/spline_curve.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
@@ -8,7 +10,9 @@
 namespace filum::mechanics {
 
 std::unique_ptr<GreenLagrangeStretching> GreenLagrangeStretching::fromParams(const Params& p) {
-  return std::make_unique<GreenLagrangeStretching>(ElasticParameters::fromParams(p));
+  const std::string jacobian = p.string("jacobian", "exact");
+  if (jacobian != "exact" && jacobian != "definite") p.fail("jacobian", "\"exact\" or \"definite\"", "\"" + jacobian + "\"");
+  return std::make_unique<GreenLagrangeStretching>(ElasticParameters::fromParams(p), jacobian == "definite");
 }
 
 void GreenLagrangeStretching::init(const Scene&) {
@@ -54,7 +58,8 @@ void GreenLagrangeStretching::addJacobian(const SceneState& s, double k_factor, 
   // spline (its nodes share one support), block (a, b) of the Hessian is
   //   Σ_g b'_a b'_b c_g (ε_g I + x_g x_gᵀ / a0²) = (Σ_g p_g ε_g c_g) I + Σ_g p_g (c_g / a0²) x_g x_gᵀ,
   // p_g = b'_a(s_g) b'_b(s_g): 6 distinct entries of a symmetric outer product and one isotropic
-  // term per node and pair a >= b, instead of a full 3 × 3 product per node and pair.
+  // term per node and pair a >= b, instead of a full 3 × 3 product per node and pair. With the
+  // definite Jacobian the isotropic term c ε is clamped at 0 (compression).
   if (k_factor == 0.0) return;
   const ConstPointsMap q = body().block(s.q);
   const auto& nodes = quadrature_.nodes();
@@ -75,8 +80,10 @@ void GreenLagrangeStretching::addJacobian(const SceneState& s, double k_factor, 
       const Vec3 x = geometry::curveTangent(node.row, q);
       const double a0sq = node.rest_speed * node.rest_speed;
       const double beta = c_[g] / a0sq;
+      double isotropic = c_[g] * (x.squaredNorm() - a0sq) / (2.0 * a0sq);  // c ε
+      if (definite_jacobian_) isotropic = std::max(isotropic, 0.0);
       outer << beta * x.x() * x.x(), beta * x.x() * x.y(), beta * x.x() * x.z(), beta * x.y() * x.y(),
-          beta * x.y() * x.z(), beta * x.z() * x.z(), c_[g] * (x.squaredNorm() - a0sq) / (2.0 * a0sq), 0.0;  // c ε
+          beta * x.y() * x.z(), beta * x.z() * x.z(), isotropic, 0.0;
       int k = 0;
       for (int a = 0; a < count; ++a)
         for (int b = 0; b <= a; ++b) products[k++] = node.row.d1[a] * node.row.d1[b];

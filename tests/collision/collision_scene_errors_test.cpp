@@ -35,6 +35,13 @@ TEST(CollisionSceneErrors, NameTheFileThePlaceAndWhatWasExpected) {
   nlohmann::json bad_response = test::collisionScene({thread()}, {{"type", "ContactPipeline"}, {"response", "sticky"}});
   cases.push_back({bad_response, {"collision test: /collision/response", "\"penalty\" or \"unilateral\"", "\"sticky\""}});
 
+  cases.push_back({test::collisionScene({thread()}, {{"type", "ContactPipeline"}, {"response", "unilateral"}, {"max_penetration", 1.0}}),
+                   {"/collision/max_penetration", "a fraction of the contact distance in [0, 1)", "1"}});
+  cases.push_back({test::collisionScene({thread()}, {{"type", "ContactPipeline"}, {"response", "unilateral"}, {"contact_halvings", 6}}),
+                   {"/collision/contact_halvings", "at most 5", "6"}});
+  cases.push_back({test::collisionScene({thread()}, {{"type", "ContactPipeline"}, {"response", "unilateral"}, {"max_slide", -1e-4}}),
+                   {"/collision/max_slide", "a number >= 0", "-0.0001"}});
+
   test::CollisionThread wide = thread();
   wide.collision_params = {{"spacing", 0.005}};  // radius 1 mm
   cases.push_back({test::collisionScene({wide}, pipeline),

@@ -11,6 +11,7 @@
 // 1e-7 of the largest shows.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include "filum/core/scene.hpp"
@@ -120,6 +121,34 @@ TEST(ForceFieldDerivatives, RayleighDamping) {
   partial.extra = json::array({{{"type", "GreenLagrangeStretching"}, {"youngs_modulus", 2e9}},
                                {{"type", "CurvatureBending"}, {"youngs_modulus", 2e9}}});
   checkField(partial);
+}
+
+TEST(ForceFieldDerivatives, DefiniteGreenLagrangeJacobianDropsOnlyTheCompressedTransverseTerm) {
+  // "jacobian": "definite" replaces c ε by max(c ε, 0) in K: the same K where every node is
+  // stretched, a negative semi-definite K where the thread is compressed (the exact K then has
+  // positive eigenvalues: the buckling directions that make M − h²K indefinite), the same force.
+  const json exact = {{"type", "GreenLagrangeStretching"}, {"youngs_modulus", 2e9}};
+  json definite = exact;
+  definite["jacobian"] = "definite";
+  auto a = test::loadThreadWith(test::ThreadSpec{}, json::array({exact}));
+  auto b = test::loadThreadWith(test::ThreadSpec{}, json::array({definite}));
+  for (const double scale : {1.01, 0.99}) {  // uniformly stretched, then compressed, by 1 %
+    SceneState s = a->state();
+    s.q *= scale;
+    const MatX Ka = test::fieldJacobian(*a->forceFields().back(), s, 1.0, 0.0);
+    const MatX Kb = test::fieldJacobian(*b->forceFields().back(), s, 1.0, 0.0);
+    const double size = Ka.cwiseAbs().maxCoeff();
+    EXPECT_EQ(test::fieldForce(*a->forceFields().back(), s), test::fieldForce(*b->forceFields().back(), s));
+    const Eigen::SelfAdjointEigenSolver<MatX> ea(0.5 * (Ka + Ka.transpose())), eb(0.5 * (Kb + Kb.transpose()));
+    std::cout << "  scale " << scale << ": largest eigenvalue of K exact " << ea.eigenvalues().maxCoeff() << ", definite "
+              << eb.eigenvalues().maxCoeff() << " (|K| " << size << ")\n";
+    if (scale > 1.0) {
+      EXPECT_LE((Ka - Kb).cwiseAbs().maxCoeff(), 1e-12 * size);
+    } else {
+      EXPECT_GT(ea.eigenvalues().maxCoeff(), 1e-6 * size);  // c ε < 0: transverse K > 0
+      EXPECT_LE(eb.eigenvalues().maxCoeff(), 1e-12 * size);
+    }
+  }
 }
 
 TEST(ForceFieldDerivatives, ConservativeStiffnessesAreSymmetric) {

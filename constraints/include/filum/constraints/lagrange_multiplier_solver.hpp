@@ -156,6 +156,10 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   struct FactoredDelassus;
   template <class Delassus>
   void solveWithContacts(const ConstraintRows& rows, Delassus& w);
+  /// Contact sweeps through an operator that mixes the axes: the factored form costs less per
+  /// sweep than the assembled W (row cost: points of its bodies against rows it couples to).
+  bool factoredFormIsCheaper(const Scene& scene, const ConstraintRows& rows);
+  std::vector<long> rows_on_body_;
   /// W_rk through an operator that mixes the axes (columns per row, current_).
   double generalEntry(const Scene& scene, const ConstraintRows& rows, int r, int k) const;
 

@@ -18,8 +18,8 @@
 //                                        solves them all together;
 //   takeMultipliers(λ, first)           after that solve: the contact rows' multipliers (forces);
 //   missedContact(s_{n+1})              after the integrator: did a centre line pass through
-//                                        another, or sink into it by a radius, outside the step's
-//                                        contact set? If so the scene halves the step.
+//                                        another, or overlap it deeply, or slide along it further
+//                                        than the step's rows follow? If so the scene halves the step.
 // The contact set is a function of the step's start state only (no history), so that a saved
 // and restored SceneState continues exactly.
 #pragma once
@@ -69,7 +69,8 @@ class CollisionPipeline : public Component {
   /// What the contact set of a (sub-)step's start missed during it.
   enum class Miss {
     kNone,
-    kDeepPenetration,  // two centre lines that were a radius or more apart ended closer than that
+    kOverlapOrSlide,   // two centre lines overlapped deeper than the pipeline allows, or a pressed
+                       // contact slid further than its rows follow
     kPassThrough,      // a centre line passed through another's (or its own)
   };
   /// After a (sub-)step that began with the last beginStep: whether the motion from that start to
