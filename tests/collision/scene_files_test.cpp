@@ -40,10 +40,11 @@ TEST(SceneFiles, ElevenThreadsFallIntoContactAndNeverCross) {
   EXPECT_GT(most_contacts, 10);
   EXPECT_EQ(w.crossings, 0);
   EXPECT_EQ(w.sign_flips, 0);
-  // Threads in contact are 2r apart; the scene (Scene::advance) redoes every step after which
-  // two chords that started at least r apart end closer than r (a contact the step's detection
-  // missed), so no pair goes below r unless it was there already — and the contacts' Baumgarte
-  // term pushes a pair out (g₁ ≥ 0.75 g₀ for a penetration g₀ < 0 at ω = 0.5/h).
+  // Threads in contact are 2r apart; the scene (Scene::advance) redoes in halves, down to dt/8,
+  // every step that brought two chords' centre lines closer than r and closer than at its start
+  // (ContactPipeline max_penetration, ½ of 2r by default: a contact the step's detection missed),
+  // and the contacts' Baumgarte term pushes a pair out (g₁ ≥ 0.75 g₀ for a penetration g₀ < 0 at
+  // ω = 0.5/h): no pair goes below r unless even dt/8 missed it.
   EXPECT_GT(w.min_distance, r);
   std::cout << "  steps redone in halves for a missed contact: " << scene->contactHalvings() << '\n';
 }
