@@ -144,6 +144,13 @@ std::unique_ptr<LagrangeMultiplierSolver> LagrangeMultiplierSolver::fromParams(c
   o.reuse = p.boolean("reuse", o.reuse);
   o.contact_iterations = p.integer("contact_iterations", 1, o.contact_iterations);
   o.contact_tolerance = p.positive("contact_tolerance", o.contact_tolerance);
+  const std::string form = p.string("contact_form", "auto");
+  if (form == "assembled")
+    o.contact_form = ContactForm::kAssembled;
+  else if (form == "factored")
+    o.contact_form = ContactForm::kFactored;
+  else if (form != "auto")
+    p.fail("contact_form", "\"auto\", \"assembled\" or \"factored\"", "\"" + form + "\"");
   if (p.has("sparse_solver")) {
     const std::string name = p.string("sparse_solver");
     if (name == "cholmod") {
@@ -709,8 +716,9 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   // Contact rows through an operator that mixes the axes (an implicit step matrix): projected
   // Gauss–Seidel on the factored form (FactoredDelassus), W not assembled — only its diagonal.
   stats_.inequalities = rows.inequalityCount();
-  const bool factored_form =
-      stats_.inequalities > 0 && !separable && !inverse.coupled() && factoredFormIsCheaper(scene, rows);
+  const bool factored_form = stats_.inequalities > 0 && !separable && !inverse.coupled() &&
+                             (options_.contact_form == ContactForm::kAuto ? factoredFormIsCheaper(scene, rows)
+                                                                           : options_.contact_form == ContactForm::kFactored);
   if (factored_form) {
     for (int r = 0; r < c; ++r) diagonal_[r] = generalEntry(scene, rows, r, r);
     unchanged = true;  // nothing assembled: the next call without contacts assembles (see below)

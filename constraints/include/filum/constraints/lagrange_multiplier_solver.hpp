@@ -79,6 +79,9 @@ namespace filum::constraints {
 class LagrangeMultiplierSolver final : public ConstraintSolver {
  public:
   enum class SparseBackend { kCholmod, kSimplicialLdlt };
+  /// The Delassus operator of the contact sweeps through an operator that mixes the axes:
+  /// whichever costs less per sweep, W assembled, or factored (A⁻¹Lᵀλ kept, W never assembled).
+  enum class ContactForm { kAuto, kAssembled, kFactored };
 
   struct Options {
     int sparse_above = 64;          // c above this: sparse factorization of W
@@ -86,6 +89,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     bool reuse = true;              // keep M⁻¹ w_a for unchanged anchors between calls
     int contact_iterations = 200;   // projected Gauss–Seidel sweeps at most (contact rows)
     double contact_tolerance = 1e-6;  // relative to |β|∞
+    ContactForm contact_form = ContactForm::kAuto;
     SparseBackend backend = cholmodAvailable() ? SparseBackend::kCholmod : SparseBackend::kSimplicialLdlt;
   };
 
@@ -111,7 +115,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// "sparse_above": c threshold (integer >= 0, default 64), "drop_tolerance": τ in [0, 1e-6]
   /// (default 1e-14), "reuse": bool (default true), "sparse_solver": "cholmod" (default when
   /// built with FILUM_WITH_SUITESPARSE) or "simplicial_ldlt"; with contacts "contact_iterations"
-  /// (sweeps, default 200) and "contact_tolerance" (relative, default 1e-6).
+  /// (sweeps, default 200), "contact_tolerance" (relative, default 1e-6) and "contact_form"
+  /// ("auto", "assembled", "factored"; the same solution up to round-off, at different costs).
   static std::unique_ptr<LagrangeMultiplierSolver> fromParams(const Params& p);
   static bool cholmodAvailable();
 
