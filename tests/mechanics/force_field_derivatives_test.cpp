@@ -15,6 +15,7 @@
 #include <Eigen/Geometry>
 
 #include "filum/core/scene.hpp"
+#include "filum/core/scene_error.hpp"
 #include "support/finite_difference.hpp"
 #include "support/force_field_check.hpp"
 #include "support/mechanics_scenes.hpp"
@@ -121,6 +122,28 @@ TEST(ForceFieldDerivatives, RayleighDamping) {
   partial.extra = json::array({{{"type", "GreenLagrangeStretching"}, {"youngs_modulus", 2e9}},
                                {{"type", "CurvatureBending"}, {"youngs_modulus", 2e9}}});
   checkField(partial);
+  // Lagged over a step ("stiffness_update": "per_step"): K is the one of the first state
+  // evaluated at this time and stays fixed for the others, so Q = β K q̇ is linear in q̇ with
+  // D = β K and ∂Q/∂q = 0 — what its Jacobian says, checked moving too, over curvature bending.
+  FieldCase lagged{"RayleighDamping lagged over curvature bending",
+                   {{"type", "RayleighDamping"}, {"stiffness_coefficient", 1e-3}, {"stiffness_update", "per_step"}},
+                   false};
+  lagged.extra = partial.extra;
+  checkField(lagged);
+}
+
+TEST(ForceFieldDerivatives, RayleighDampingRefusesAnUnknownStiffnessUpdate) {
+  try {
+    test::loadThreadWith(test::ThreadSpec{}, json::array({{{"type", "RayleighDamping"},
+                                                           {"stiffness_coefficient", 1e-3},
+                                                           {"stiffness_update", "sometimes"}}}));
+    ADD_FAILURE() << "accepted stiffness_update \"sometimes\"";
+  } catch (const SceneError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("stiffness_update"), std::string::npos) << message;
+    EXPECT_NE(message.find("\"per_step\""), std::string::npos) << message;
+    EXPECT_NE(message.find("sometimes"), std::string::npos) << message;
+  }
 }
 
 TEST(ForceFieldDerivatives, DefiniteGreenLagrangeJacobianDropsOnlyTheCompressedTransverseTerm) {
