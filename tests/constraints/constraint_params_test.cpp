@@ -81,6 +81,7 @@ TEST(ConstraintParams, BadSolverSettingsAreRefused) {
       {{{"type", "LagrangeMultiplierSolver"}, {"drop_tolerance", 0.1}}, "/constraint_solver/drop_tolerance"},
       {{{"type", "LagrangeMultiplierSolver"}, {"sparse_solver", "magic"}}, "/constraint_solver/sparse_solver"},
       {{{"type", "LagrangeMultiplierSolver"}, {"sparse_above", -1}}, "/constraint_solver/sparse_above"},
+      {{{"type", "LagrangeMultiplierSolver"}, {"contact_form", "sparse"}}, "/constraint_solver/contact_form"},
   };
   for (const auto& [solver, where] : cases) {
     const std::string message = errorOf(fixed, solver);
