@@ -531,6 +531,10 @@ struct LagrangeMultiplierSolver::FactoredDelassus {
   const ConstraintRows& rows;
   VecX& u;
   void begin() {
+    // Each body's first coordinate and size, looked up once per solve instead of per update.
+    solver.body_span_.clear();
+    for (const MechanicalState* body : scene.bodies())
+      solver.body_span_.emplace_back(3 * body->offset(), 3 * body->pointCount());
     u.setZero(3 * scene.dofPointCount());
     for (int r = 0; r < rows.rows(); ++r) changed(r, solver.lambda_[r]);
   }
@@ -539,9 +543,8 @@ struct LagrangeMultiplierSolver::FactoredDelassus {
     if (delta == 0.0) return;
     const Column& col = solver.current_[r];
     for (std::size_t seg = 0; seg < col.bodies.size(); ++seg) {
-      const MechanicalState& body = *scene.bodies()[col.bodies[seg]];
-      const int size = 3 * body.pointCount();
-      u.segment(3 * body.offset(), size) += delta * col.y.segment(col.starts[seg], size);
+      const auto [first, size] = solver.body_span_[col.bodies[seg]];
+      u.segment(first, size) += delta * col.y.segment(col.starts[seg], size);
     }
   }
   void equalityBlock(const ConstraintRows& /*rows*/, MatX& block) const {
@@ -721,9 +724,7 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
                                                                            : options_.contact_form == ContactForm::kFactored);
   if (factored_form) {
     for (int r = 0; r < c; ++r) diagonal_[r] = generalEntry(scene, rows, r, r);
-    unchanged = true;  // nothing assembled: the next call without contacts assembles (see below)
-  }
-  if (!unchanged) {
+  } else if (!unchanged) {
     if (stats_.sparse) {
       sparse_->triplets.clear();
     } else {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-
 #include "filum/geometry/spline_curve.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
 #include "filum/mechanics/support_jacobian.hpp"

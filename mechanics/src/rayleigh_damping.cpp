@@ -52,8 +52,10 @@ const BlockBandMatrix& RayleighDamping::stiffness(const SceneState& s) const {
       if (stiffness_.misfits() == 0 || stiffness_.neededRange() <= stiffness_.range()) break;
       stiffness_.resize(body().offset(), body().pointCount(), stiffness_.neededRange());
     }
-    stiffness_key_.resize(2 * size);
-    stiffness_key_ << s.q.segment(offset, size), s.v.segment(offset, size);
+    if (!per_step_) {  // lagged: the time is the whole key
+      stiffness_key_.resize(2 * size);
+      stiffness_key_ << s.q.segment(offset, size), s.v.segment(offset, size);
+    }
     stiffness_valid_ = true;
     stiffness_time_ = s.time;
   }

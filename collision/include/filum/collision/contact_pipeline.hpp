@@ -30,7 +30,8 @@
 //      The rows hold the step's start; a step of a stiff thread can still carry a strand through
 //      another when its velocity changes much within the step (a released stiff knot springs at
 //      metres per second). After each step the pipeline checks that no centre line passed
-//      through another (missedContact: or sank into it by a radius), and the scene redoes such a step in halves.
+//      through another, overlapped it deeply or slid along it faster than the rows follow
+//      (missedContact), and the scene redoes such a step in halves.
 // Continuous detection assumes each sphere centre moves in a straight line at its start
 // velocity over the step; the margin (default r/2) absorbs the curvature of the true motion,
 // ½ |a| h² (0.5 mm covers |a| < 1e5 m/s² at h = 1e-4 s).
@@ -86,9 +87,9 @@ class ContactPipeline final : public CollisionPipeline {
   /// default 1e-3); "margin": m (default r/2); "continuous": bool (default true); "cell_size": m
   /// (default automatic); "stabilization": ω (1/s, default 0.5/dt); "friction_rate": ω_f (1/s,
   /// default ω); "max_penetration": p, a fraction of the contact distance R (default 0.5; 0: off),
-  /// "max_slide": m (default 0: off) and "contact_halvings": k (default 3), see missedContact. The sweeps of the unilateral solve
-  /// are the constraint solver's settings (LagrangeMultiplierSolver "contact_iterations",
-  /// "contact_tolerance").
+  /// "max_slide": m (default 0: off) and "contact_halvings": k (default 3), see missedContact.
+  /// The sweeps of the unilateral solve are the constraint solver's settings
+  /// (LagrangeMultiplierSolver "contact_iterations", "contact_tolerance").
   static std::unique_ptr<ContactPipeline> fromParams(const Params& p);
 
   std::string typeName() const override { return "ContactPipeline"; }

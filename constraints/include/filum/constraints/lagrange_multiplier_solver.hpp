@@ -205,6 +205,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   std::vector<char> body_touched_;
   int c_ = 0;                 // rows of the current (last) call
   VecX u_;  // A⁻¹ Lᵀ λ (FactoredDelassus)
+  std::vector<std::pair<int, int>> body_span_;  // FactoredDelassus: (3 · offset, 3 · points) per body
   VecX rhs_, lambda_, force_, block_;  // rhs_, lambda_, diagonal_: capacity >= c_, used head(c_)
   Eigen::LDLT<MatX> ldlt_;
   MatX w_factored_;  // W of the current dense factorization

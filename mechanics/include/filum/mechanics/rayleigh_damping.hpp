@@ -14,14 +14,15 @@
 // velocities are large (the solution it converges to is unchanged).
 // K(q) is computed once per state, as a block band (BlockBandMatrix): the force and the Jacobian
 // at the same state share it.
+// Its Jacobian ∂Q/∂q̇ = β K is copied symmetrised, (K + Kᵀ)/2, as the step matrix symmetrises
+// every term anyway.
 // "stiffness_update": "per_step" (for implicit steps) lags K: it is computed at the first state
 // evaluated in a step (after beginStep) and kept for the other evaluations at that time (the
-// iterations of one implicit step; a halved step's sub-steps are at other times), Q = β K(q_first) q̇ — the damping force differs from the exact one by
-// β (K(q) − K(q_first)) q̇ = O(h), within backward Euler's first-order error — and it is linear in
-// q̇ with ∂Q/∂q = 0, so a linearized step is exact for it: one Jacobian of the elastic fields per
-// step instead of one per evaluation, and no third derivatives. Not for explicit multistage
-// schemes (RK4 evaluates two stages at t + h/2). Its Jacobian ∂Q/∂q̇ = β K is copied symmetrised, (K + Kᵀ)/2, as
-// the step matrix symmetrises every term anyway.
+// iterations of one implicit step; a halved step's sub-steps are at other times):
+// Q = β K(q_first) q̇. It differs from the exact force by β (K(q) − K(q_first)) q̇ = O(h), within
+// backward Euler's first-order error, and is linear in q̇ with ∂Q/∂q = 0, so a linearized step is
+// exact for it: one Jacobian of the elastic fields per step instead of one per evaluation, and no
+// third derivatives. Not for explicit multistage schemes (RK4 evaluates two stages at t + h/2).
 #pragma once
 
 #include <memory>
@@ -63,7 +64,7 @@ class RayleighDamping final : public ForceField {
   mutable bool resolved_ = false;
   mutable std::vector<const ForceField*> elastic_;
   mutable BlockBandMatrix stiffness_;  // K(q) at the state stiffness_key_
-  mutable VecX stiffness_key_;  // this body's q then q̇ when K was computed (2 · 3n)
+  mutable VecX stiffness_key_;  // per_state: this body's q then q̇ when K was computed (2 · 3n)
   mutable bool stiffness_valid_ = false;
   mutable double stiffness_time_ = 0.0;  // per_step: the time K was computed at
 };

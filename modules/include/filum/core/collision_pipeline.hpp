@@ -20,8 +20,10 @@
 //   missedContact(s_{n+1})              after the integrator: did a centre line pass through
 //                                        another, or overlap it deeply, or slide along it further
 //                                        than the step's rows follow? If so the scene halves the step.
-// The contact set is a function of the step's start state only (no history), so that a saved
-// and restored SceneState continues exactly.
+// The contact set is a function of the step's start state only (no history). The contact solve
+// starts from the last step's forces (warm start), so a saved and restored SceneState continues
+// with the same contacts and to within the sweeps' tolerance, not bit for bit; a rerun from the
+// scene's start is bit-identical.
 #pragma once
 
 #include "filum/core/block_inverse.hpp"

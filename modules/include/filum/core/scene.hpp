@@ -105,8 +105,8 @@ class Scene {
   /// Replaces the state (e.g. restores a saved one); scheduled releases follow its time.
   void setState(const SceneState& s);
   long stepCount() const { return step_count_; }
-  /// Steps redone in halves because the contact set of their start missed a contact: a thread
-  /// passed through another or sank into it by a radius (since init).
+  /// Steps redone in halves because the contact set of their start missed a contact
+  /// (CollisionPipeline::missedContact: a pass-through, a deep overlap or a fast slide; since init).
   long contactHalvings() const { return contact_halvings_; }
   int dofPointCount() const { return point_count_; }
   /// Number E of extra scalar DOFs (constraints' own, after the 3N point coordinates).
