@@ -193,7 +193,7 @@ int main(int argc, char** argv) {
 
   const std::vector<Scheme> implicit_schemes = {
       {"implicit Euler linearized", {{"type", "ImplicitEuler"}}},
-      {"implicit Euler lin. reuse", {{"type", "ImplicitEuler"}, {"reuse_factorization", true}}},
+      {"implicit Euler lin. fresh", {{"type", "ImplicitEuler"}, {"reuse_factorization", false}}},
       {"implicit Euler B-W only", {{"type", "ImplicitEuler"}, {"newton_iterations", 1}}},
       {"implicit Euler Newton", {{"type", "ImplicitEuler"}, {"solve", "newton"}}},
       {"implicit midpoint lin.", {{"type", "ImplicitMidpoint"}}},

@@ -16,7 +16,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 SCHEME_COLOURS = {
     "implicit Euler linearized": "tab:red",
-    "implicit Euler lin. reuse": "tab:purple",
+    "implicit Euler lin. fresh": "tab:purple",
     "implicit Euler B-W only": "tab:pink",
     "implicit Euler Newton": "tab:brown",
     "implicit midpoint lin.": "tab:green",

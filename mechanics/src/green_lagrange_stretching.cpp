@@ -21,20 +21,47 @@ void GreenLagrangeStretching::init(const Scene&) {
                                                  : defaultNodesPerPiece(spline.basis().degree());
   quadrature_ = CurveQuadrature(spline.basis(), k, spline.initialPositions(), parameters_.rest_length);
   c_.clear();
-  for (const QuadratureNode& node : quadrature_.nodes()) c_.push_back(axial_stiffness_ * node.weight / node.rest_speed);
-}
-
-void GreenLagrangeStretching::addForce(const SceneState& s, VecX& B) const {
-  const ConstPointsMap q = body().block(s.q);
-  PointsMap Q = body().block(B);
+  nodes_.clear();
+  pieces_.clear();
   const auto& nodes = quadrature_.nodes();
   for (std::size_t g = 0; g < nodes.size(); ++g) {
     const QuadratureNode& node = nodes[g];
-    const Vec3 x = geometry::curveTangent(node.row, q);
-    const double a0sq = node.rest_speed * node.rest_speed;
-    const double strain = (x.squaredNorm() - a0sq) / (2.0 * a0sq);  // ε
-    const Eigen::RowVector3d dEdx = (c_[g] * strain) * x.transpose();  // c ε x
-    for (int j = 0; j < node.row.count; ++j) Q.row(node.row.first + j) -= node.row.d1[j] * dEdx;
+    c_.push_back(axial_stiffness_ * node.weight / node.rest_speed);
+    nodes_.push_back({node.row.d1, c_.back(), node.rest_speed * node.rest_speed});
+    if (pieces_.empty() || pieces_.back().first != node.row.first || pieces_.back().count != node.row.count)
+      pieces_.push_back({node.row.first, node.row.count, static_cast<int>(g), static_cast<int>(g)});
+    pieces_.back().end = static_cast<int>(g) + 1;
+  }
+}
+
+template <int Count>
+void GreenLagrangeStretching::addPieceForce(const Piece& piece, const double* q, double* Q) const {
+  // The piece's control points and forces stay in registers over its nodes.
+  const int count = Count > 0 ? Count : piece.count;
+  std::array<double, 3 * geometry::BasisRow::kMaxSupport> force{};
+  const double* points = q + 3 * piece.first;
+  for (int g = piece.begin; g < piece.end; ++g) {
+    const Node& node = nodes_[g];
+    double x[3] = {0.0, 0.0, 0.0};  // x = P'(s_g) = Σ_j b'_j q_j
+    for (int j = 0; j < count; ++j)
+      for (int k = 0; k < 3; ++k) x[k] += node.d1[j] * points[3 * j + k];
+    const double strain = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - node.a0sq) / (2.0 * node.a0sq);  // ε
+    const double scale = node.c * strain;  // ∂E_g/∂x = c ε x
+    for (int j = 0; j < count; ++j)
+      for (int k = 0; k < 3; ++k) force[3 * j + k] -= node.d1[j] * scale * x[k];  // Q_j −= b'_j c ε x
+  }
+  double* target = Q + 3 * piece.first;
+  for (int i = 0; i < 3 * count; ++i) target[i] += force[i];
+}
+
+void GreenLagrangeStretching::addForce(const SceneState& s, VecX& B) const {
+  const double* q = body().block(s.q).data();
+  double* Q = body().block(B).data();
+  for (const Piece& piece : pieces_) {
+    if (piece.count == 4)  // the cubic B-spline: the support size known at compile time
+      addPieceForce<4>(piece, q, Q);
+    else
+      addPieceForce<0>(piece, q, Q);
   }
 }
 
@@ -60,49 +87,43 @@ void GreenLagrangeStretching::addJacobian(const SceneState& s, double k_factor, 
   // term per node and pair a >= b, instead of a full 3 × 3 product per node and pair. With the
   // definite Jacobian the isotropic term c ε is clamped at 0 (compression).
   if (k_factor == 0.0) return;
-  const ConstPointsMap q = body().block(s.q);
-  const auto& nodes = quadrature_.nodes();
+  const double* q = body().block(s.q).data();
   constexpr int kMax = geometry::BasisRow::kMaxSupport;
   constexpr int kPairs = kMax * (kMax + 1) / 2;
   // Column k of `sums`: pair k = (a, b <= a) of the piece; rows xx xy xz yy yz zz, isotropic, 0.
   Eigen::Matrix<double, 8, kPairs> sums;
   Eigen::Matrix<double, 8, 1> outer;
   Eigen::Matrix<double, 1, kPairs> products;
+  std::array<Eigen::Matrix3d, kPairs> blocks;
   const double scale = -k_factor;
   const int base = body().offset();
-  std::size_t g = 0;
-  while (g < nodes.size()) {
-    const int first = nodes[g].row.first, count = nodes[g].row.count, pairs = count * (count + 1) / 2;
+  for (const Piece& piece : pieces_) {
+    const int count = piece.count, pairs = count * (count + 1) / 2;
+    const double* points = q + 3 * piece.first;
     sums.leftCols(pairs).setZero();
-    for (; g < nodes.size() && nodes[g].row.first == first && nodes[g].row.count == count; ++g) {
-      const QuadratureNode& node = nodes[g];
-      const Vec3 x = geometry::curveTangent(node.row, q);
-      const double a0sq = node.rest_speed * node.rest_speed;
-      const double beta = c_[g] / a0sq;
-      double isotropic = c_[g] * (x.squaredNorm() - a0sq) / (2.0 * a0sq);  // c ε
+    for (int g = piece.begin; g < piece.end; ++g) {
+      const Node& node = nodes_[g];
+      Vec3 x = Vec3::Zero();  // P'(s_g)
+      for (int j = 0; j < count; ++j) x += node.d1[j] * Vec3(points[3 * j], points[3 * j + 1], points[3 * j + 2]);
+      const double beta = node.c / node.a0sq;
+      double isotropic = node.c * (x.squaredNorm() - node.a0sq) / (2.0 * node.a0sq);  // c ε
       if (definite_jacobian_) isotropic = std::max(isotropic, 0.0);
       outer << beta * x.x() * x.x(), beta * x.x() * x.y(), beta * x.x() * x.z(), beta * x.y() * x.y(),
           beta * x.y() * x.z(), beta * x.z() * x.z(), isotropic, 0.0;
       int k = 0;
       for (int a = 0; a < count; ++a)
-        for (int b = 0; b <= a; ++b) products[k++] = node.row.d1[a] * node.row.d1[b];
+        for (int b = 0; b <= a; ++b) products[k++] = node.d1[a] * node.d1[b];
       if (pairs == 10)  // the cubic B-spline: fixed sizes, unrolled
         sums.leftCols<10>().noalias() += outer * products.leftCols<10>();
       else
         sums.leftCols(pairs).noalias() += outer * products.leftCols(pairs);  // rank-one update
     }
-    int k = 0;
-    for (int a = 0; a < count; ++a)
-      for (int b = 0; b <= a; ++b, ++k) {
-        const auto m = sums.col(k);
-        Eigen::Matrix3d block;
-        block << m[0] + m[6], m[1], m[2], m[1], m[3] + m[6], m[4], m[2], m[4], m[5] + m[6];
-        block *= scale;
-        if (a == b)
-          out.addBlock(base + first + a, base + first + a, block);
-        else
-          out.addBlockPair(base + first + a, base + first + b, block);
-      }
+    for (int k = 0; k < pairs; ++k) {
+      const auto m = sums.col(k);
+      blocks[k] << m[0] + m[6], m[1], m[2], m[1], m[3] + m[6], m[4], m[2], m[4], m[5] + m[6];
+      blocks[k] *= scale;
+    }
+    out.addSupportBlocks(base + piece.first, count, blocks.data());
   }
 }
 

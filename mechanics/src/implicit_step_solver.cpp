@@ -7,8 +7,8 @@
 
 namespace filum::mechanics {
 
-NewtonSettings NewtonSettings::fromParams(const Params& p) {
-  NewtonSettings settings;
+NewtonSettings NewtonSettings::fromParams(const Params& p, const NewtonSettings& defaults) {
+  NewtonSettings settings = defaults;
   const std::string solve = p.string("solve", "linearized");
   if (solve != "linearized" && solve != "newton") p.fail("solve", "\"linearized\" or \"newton\"", "\"" + solve + "\"");
   settings.linearized = solve == "linearized";
@@ -58,14 +58,18 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
 
     // Residual r = Q(q, v) − M a.
     scene.computeForce(eval_, force_);
-    for (const MechanicalState* body : scene.bodies()) body->multiplyMass(body->block(a), body->block(ma_));
-    force_ -= ma_;
+    if (k > 0) {  // a_0 = 0: M a_0 = 0
+      for (const MechanicalState* body : scene.bodies()) body->multiplyMass(body->block(a), body->block(ma_));
+      force_ -= ma_;
+    }
 
     // A = M − θh D − κh² K at the iterate, factored: at every Newton iterate, at the first only
     // for the chord method; in linearized mode not for the estimate (k = 1, which assembles at a_1 itself when it fails) nor for the
     // check after a correction (k = 2, a chord step on the matrix of a_1).
     bool refactor = settings_.linearized ? (k == 0 || k >= 3) : (k == 0 || settings_.refactor_every_iteration);
-    if (k == 0 && settings_.linearized && settings_.reuse_factorization && matrix_valid_ && matrix_key_[0] == h &&
+    // Only with the estimate (max_iterations > 1) to guard it: Baraff & Witkin's step alone would
+    // keep a stale matrix forever.
+    if (k == 0 && settings_.linearized && settings_.reuse_factorization && settings_.max_iterations > 1 && matrix_valid_ && matrix_key_[0] == h &&
         matrix_key_[1] == theta && matrix_key_[2] == kappa && matrix_.laidOutFor(scene)) {
       refactor = false;  // a chord step on an earlier factorization; the estimate guards it
       ++reuses_;
@@ -85,8 +89,10 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
       const double displacement = (eval_.q - s0.q).head(n3).lpNorm<Eigen::Infinity>();  // θh v0 + κh² a_1
       const double floor = settings_.tolerance * extent;  // round-off level of positions (see Newton's test)
       linearized_displacement = std::max(displacement, floor);
-      if (kappa * h * h * change <= settings_.linearization_tolerance * linearized_displacement)
+      if (kappa * h * h * change <= settings_.linearization_tolerance * linearized_displacement) {
+        a.swap(next_);  // a_2 = a_1 + Δa: the chord iterate the estimate computed, closer still
         return Status::kConverged;
+      }
       ++corrections_;
       if (!assembleAt(scene, h, theta, kappa)) return Status::kFailed;
       force_ = residual_;

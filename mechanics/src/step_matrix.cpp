@@ -129,6 +129,23 @@ void StepMatrix::addBlockPair(int i, int j, const Eigen::Matrix3d& value) {
     target.block(J, I) += value.transpose();
 }
 
+void StepMatrix::addSupportBlocks(int first, int count, const Eigen::Matrix3d* lower) {
+  if (count <= 0) return;
+  // The support's two ends decide for all its blocks: points are numbered body by body, so
+  // both ends in one band block put every pair in it, at distance <= count − 1.
+  const int b = route(first + count - 1, first);
+  if (b == kMisfit) return;
+  if (b == kSparse) {
+    JacobianAccumulator::addSupportBlocks(first, count, lower);
+    return;
+  }
+  Block& block = blocks_[b];
+  BlockBandLdlt& target = constant_pass_ ? block.constant : block.band_factor;
+  const int base = first - block.first_point;
+  for (int a = 0, k = 0; a < count; ++a)
+    for (int c = 0; c <= a; ++c, ++k) target.block(base + a, base + c) += lower[k];  // lower blocks only
+}
+
 void StepMatrix::addEntry(int row, int col, double value) {
   const int b = route(row / 3, col / 3);
   if (b == kMisfit) return;

@@ -10,6 +10,7 @@
 //    work while the ends sit on their targets (g = ġ = 0 up to round-off, so L v1 = 0).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "support/mechanics_scenes.hpp"
@@ -26,8 +27,14 @@ TEST(EnergyBehaviour, UndampedSymplecticEulerKeepsTheEnergyBoundedOver1e5Steps) 
   // Its stiffest mode has ω_max ≈ 1.6e4 rad/s; dt = 2e-5 s (ω_max h ≈ 0.32 < 2, stable), 10^5
   // steps = 2 s, ~20 swings. A symplectic scheme's energy error oscillates with amplitude
   // O(h ω) times the energy exchanged; asserted: (max − min)/(m g L) < 0.1 over the run (ω_max h
-  // ≈ 0.32 bounds it; measured ~1e-2), and no growth: the oscillation over the last 4e4 steps is
-  // at most 1.5 × that over the 4e4 before.
+  // ≈ 0.32 bounds it; measured ~1e-2), and no drift: backward error analysis gives a modified
+  // energy H̃ = H + O(h) that the scheme conserves, so H oscillates about a level with no
+  // secular term. A drift of d per 4e4 steps would move the window means by d while widening
+  // each window's range by d; asserted: the mean over the last 4e4 steps differs from the mean
+  // over the 4e4 before by less than ¼ of the earlier window's range. (The range itself is not
+  // compared across windows: it grows for ~2e5 steps while the release's energy spreads into
+  // higher modes, whose O(h ω) error is larger — a redistribution, not a drift; over 1e6 steps
+  // the range rises to ~3e-2 while the window means stay within 5e-4 of E0.)
   test::ThreadSpec spec;
   spec.control_points = 10;
   spec.integrator = {{"type", "SymplecticEuler"}};
@@ -43,21 +50,22 @@ TEST(EnergyBehaviour, UndampedSymplecticEulerKeepsTheEnergyBoundedOver1e5Steps) 
   constexpr int kSteps = 100000, kSettle = 20000, kMiddle = 60000;
   // The error builds up over the first swings as energy spreads to higher modes; boundedness
   // is then judged on steps 2e4..6e4 against 6e4..1e5.
-  double lo = e0, hi = e0, middle_lo = 1e300, middle_hi = -1e300, late_lo = 1e300, late_hi = -1e300;
+  double lo = e0, hi = e0, middle_lo = 1e300, middle_hi = -1e300, middle_sum = 0.0, late_sum = 0.0;
   for (int k = 1; k <= kSteps; ++k) {
     ASSERT_TRUE(scene->step().ok) << "step " << k;
     const double e = scene->energy(scene->state()).total();
     lo = std::min(lo, e);
     hi = std::max(hi, e);
-    if (k > kSettle && k <= kMiddle) middle_lo = std::min(middle_lo, e), middle_hi = std::max(middle_hi, e);
-    if (k > kMiddle) late_lo = std::min(late_lo, e), late_hi = std::max(late_hi, e);
+    if (k > kSettle && k <= kMiddle) middle_lo = std::min(middle_lo, e), middle_hi = std::max(middle_hi, e), middle_sum += e - e0;
+    if (k > kMiddle) late_sum += e - e0;
   }
   const double relative = (hi - lo) / scale;
-  std::printf("  symplectic Euler, 1e5 steps of %.0e s: energy oscillation (max - min)/(m g L) = %.3e over the run; "
-              "%.3e over steps 2e4..6e4, %.3e over 6e4..1e5\n",
-              spec.dt, relative, (middle_hi - middle_lo) / scale, (late_hi - late_lo) / scale);
+  const double middle_mean = middle_sum / (kMiddle - kSettle), late_mean = late_sum / (kSteps - kMiddle);
+  std::printf("  symplectic Euler, 1e5 steps of %.0e s: energy oscillation (max - min)/(m g L) = %.3e over the run, "
+              "%.3e over steps 2e4..6e4; mean E - E0 over 2e4..6e4 %.3e, over 6e4..1e5 %.3e (relative to m g L)\n",
+              spec.dt, relative, (middle_hi - middle_lo) / scale, middle_mean / scale, late_mean / scale);
   EXPECT_LT(relative, 0.1);
-  EXPECT_LT(late_hi - late_lo, 1.5 * (middle_hi - middle_lo)) << "the energy error grows";
+  EXPECT_LT(std::abs(late_mean - middle_mean), 0.25 * (middle_hi - middle_lo)) << "the energy drifts";
 }
 
 TEST(EnergyBehaviour, ImplicitEulerNeverIncreasesTheEnergyOfATautString) {

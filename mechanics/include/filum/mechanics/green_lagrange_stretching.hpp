@@ -30,6 +30,7 @@
 //   ∂(K w)_i/∂q_k = −Σ_g b'_i b'_k (c / a0²) (ω xᵀ + (x·ω) I + x ωᵀ).
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -67,8 +68,26 @@ class GreenLagrangeStretching final : public ForceField, public StiffnessDerivat
   ElasticParameters parameters_;
   bool definite_jacobian_ = false;
   double axial_stiffness_ = 0.0;  // E A (N)
+  /// What a force evaluation reads of a quadrature node, packed (the node's BasisRow also holds
+  /// values and second derivatives): b'_j, c and a0².
+  struct Node {
+    std::array<double, geometry::BasisRow::kMaxSupport> d1{};
+    double c = 0.0;     // E A w_g / a0_g (N)
+    double a0sq = 0.0;  // |P0'(s_g)|²
+  };
+  /// Nodes sharing one support (a polynomial piece): nodes_[begin, end) act on points
+  /// first .. first + count − 1 of the body.
+  struct Piece {
+    int first = 0, count = 0, begin = 0, end = 0;
+  };
+  /// Σ_g over one piece of −b'_j c ε x into Q (Count > 0: the support size known at compile time).
+  template <int Count>
+  void addPieceForce(const Piece& piece, const double* q, double* Q) const;
+
   CurveQuadrature quadrature_;
   std::vector<double> c_;         // E A w_g / a0_g per node (N)
+  std::vector<Node> nodes_;
+  std::vector<Piece> pieces_;
 };
 
 }  // namespace filum::mechanics

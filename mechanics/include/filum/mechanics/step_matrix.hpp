@@ -73,6 +73,7 @@ class StepMatrix final : public BlockInverse, public JacobianAccumulator {
   // JacobianAccumulator (called by the bodies and force fields during assemble()).
   void addBlock(int i, int j, const Eigen::Matrix3d& block) override;
   void addBlockPair(int i, int j, const Eigen::Matrix3d& block) override;
+  void addSupportBlocks(int first, int count, const Eigen::Matrix3d* lower) override;
   void addEntry(int row, int col, double value) override;
   void addIsotropic(int i, int j, double value) override;
   void addRankOne(int first, ConstPointsRef u, double factor) override;

@@ -31,6 +31,21 @@ class JacobianAccumulator {
     addBlock(j, i, block.transpose());
   }
 
+  /// The symmetric blocks of a term over `count` consecutive points from global point `first`
+  /// (a spline piece's support): lower[k] for the pair (a, b <= a) numbered k = a (a + 1) / 2 + b,
+  /// added at (first + a, first + b) and, for a ≠ b, its transpose at (first + b, first + a).
+  /// Diagonal blocks must be symmetric. One call per support lets the band step matrix check the
+  /// layout once for all count (count + 1) / 2 blocks.
+  virtual void addSupportBlocks(int first, int count, const Eigen::Matrix3d* lower) {
+    for (int a = 0, k = 0; a < count; ++a)
+      for (int b = 0; b <= a; ++b, ++k) {
+        if (a == b)
+          addBlock(first + a, first + a, lower[k]);
+        else
+          addBlockPair(first + a, first + b, lower[k]);
+      }
+  }
+
   /// A(row, col) += value for global coordinates row and col (3·point + axis).
   virtual void addEntry(int row, int col, double value) = 0;
 
