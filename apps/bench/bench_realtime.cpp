@@ -55,7 +55,7 @@ struct Figures {
   double energy_drift = 0.0;  // (E(T) − E(0)) / (m g ℓ)
   double dt = 0.0;
   double simulated = 0.0;
-  long corrections = -1, estimates = -1, halvings = -1, reuses = -1;  // implicit solvers only
+  long corrections = -1, estimates = -1, halvings = -1, reuses = -1, refreshes = -1;  // implicit solvers only
   std::string failure;
 };
 
@@ -140,6 +140,7 @@ Figures measure(const json& document, const std::string& name, int repetitions) 
         figures.estimates = solver->estimates();
         figures.halvings = solver->halvings();
         figures.reuses = solver->reuses();
+        figures.refreshes = solver->refreshes();
       }
     }
   }
@@ -151,17 +152,18 @@ Figures measure(const json& document, const std::string& name, int repetitions) 
 void printRow(std::FILE* csv, const std::string& problem, int n, const std::string& scheme, const Figures& f) {
   if (!f.failure.empty()) {
     std::printf("%-22s %5d  %-26s FAILED: %s\n", problem.c_str(), n, scheme.c_str(), f.failure.c_str());
-    std::fprintf(csv, "%s,%d,%s,%g,,,,,,,,failed\n", problem.c_str(), n, scheme.c_str(), f.dt);
+    std::fprintf(csv, "%s,%d,%s,%g,,,,,,,,,failed\n", problem.c_str(), n, scheme.c_str(), f.dt);
     return;
   }
   std::printf("%-22s %5d  %-26s dt %-8.2g %9.4f ms/ms  strain %.2e  drift %+.2e", problem.c_str(), n, scheme.c_str(), f.dt,
               f.wall_ms_per_sim_ms, f.max_strain, f.energy_drift);
   if (f.estimates >= 0) std::printf("  corrected %ld/%ld halved %ld", f.corrections, f.estimates, f.halvings);
-  if (f.reuses > 0) std::printf(" reused %ld", f.reuses);
+  if (f.reuses > 0) std::printf(" reused %ld refreshed %ld", f.reuses, f.refreshes);
   std::printf("\n");
   std::fflush(stdout);
-  std::fprintf(csv, "%s,%d,%s,%g,%g,%.6g,%.6g,%.6g,%ld,%ld,%ld,ok\n", problem.c_str(), n, scheme.c_str(), f.dt,
-               f.simulated, f.wall_ms_per_sim_ms, f.max_strain, f.energy_drift, f.corrections, f.halvings, f.reuses);
+  std::fprintf(csv, "%s,%d,%s,%g,%g,%.6g,%.6g,%.6g,%ld,%ld,%ld,%ld,ok\n", problem.c_str(), n, scheme.c_str(), f.dt,
+               f.simulated, f.wall_ms_per_sim_ms, f.max_strain, f.energy_drift, f.corrections, f.halvings, f.reuses,
+               f.refreshes);
 }
 
 }  // namespace
@@ -189,7 +191,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "error: cannot write %s\n", csv_path.c_str());
     return 4;
   }
-  std::fprintf(csv, "problem,n,scheme,dt,simulated_s,wall_ms_per_sim_ms,max_strain,energy_drift,corrections,halvings,reuses,status\n");
+  std::fprintf(csv, "problem,n,scheme,dt,simulated_s,wall_ms_per_sim_ms,max_strain,energy_drift,corrections,halvings,reuses,refreshes,status\n");
 
   const std::vector<Scheme> implicit_schemes = {
       {"implicit Euler linearized", {{"type", "ImplicitEuler"}}},

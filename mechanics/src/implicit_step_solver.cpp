@@ -30,6 +30,33 @@ NewtonSettings NewtonSettings::fromParams(const Params& p, const NewtonSettings&
 
 ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneState& s0, double h, double theta,
                                                      double kappa, VecX& a) {
+  // Only with the estimate (max_iterations > 1) to guard it: Baraff & Witkin's step alone would
+  // keep a stale matrix forever.
+  // After a failed reuse the next 1, 3, 7, ... 31 steps assemble afresh (the backoff doubles
+  // with each failure in a row, and resets with a reuse that passes): a failed reuse wastes a
+  // force evaluation and two solves, a reuse that passes saves an assembly and a factorization,
+  // so reuse pays only while most reuses pass.
+  const bool may_reuse =
+      settings_.linearized && settings_.reuse_factorization && settings_.max_iterations > 1 && reuse_skip_ == 0;
+  if (reuse_skip_ > 0) --reuse_skip_;
+  Attempt attempt = iterate(scene, s0, h, theta, kappa, a, may_reuse);
+  if (attempt == Attempt::kStale) {
+    ++refreshes_;
+    reuse_backoff_ = std::min(2 * reuse_backoff_ + 1, kMaxReuseBackoff);
+    reuse_skip_ = reuse_backoff_;
+    attempt = iterate(scene, s0, h, theta, kappa, a, false);
+  } else if (may_reuse) {
+    reuse_backoff_ = 0;
+  }
+  switch (attempt) {
+    case Attempt::kConverged: return Status::kConverged;
+    case Attempt::kFailed: return Status::kFailed;
+    default: return Status::kNotConverged;
+  }
+}
+
+ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const SceneState& s0, double h, double theta,
+                                                        double kappa, VecX& a, bool may_reuse) {
   // a holds the 3N point accelerations, then those of the constraints' extra DOFs (a sliding
   // point's s̈): these follow from the constrained point accelerations (Scene::applyConstraints,
   // stage 3d), so the Newton system and its convergence test are on the points only.
@@ -51,6 +78,7 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
   double previous_change = 0.0;
   double linearized_displacement = 0.0;  // linearized mode: max(|θh v0 + κh² a_1|∞, floor)
 
+  bool reused = false;  // the first iteration solved with an earlier step's matrix
   for (int k = 0; k < settings_.max_iterations; ++k) {
     // The iterate's state: q = q0 + θh v0 + κh² a, v = v0 + θh a.
     eval_.q = s0.q + (theta * h) * s0.v + (kappa * h * h) * a;
@@ -67,19 +95,18 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
     // for the chord method; in linearized mode not for the estimate (k = 1, which assembles at a_1 itself when it fails) nor for the
     // check after a correction (k = 2, a chord step on the matrix of a_1).
     bool refactor = settings_.linearized ? (k == 0 || k >= 3) : (k == 0 || settings_.refactor_every_iteration);
-    // Only with the estimate (max_iterations > 1) to guard it: Baraff & Witkin's step alone would
-    // keep a stale matrix forever.
-    if (k == 0 && settings_.linearized && settings_.reuse_factorization && settings_.max_iterations > 1 && matrix_valid_ && matrix_key_[0] == h &&
+    if (k == 0 && may_reuse && matrix_valid_ && matrix_key_[0] == h &&
         matrix_key_[1] == theta && matrix_key_[2] == kappa && matrix_.laidOutFor(scene)) {
       refactor = false;  // a chord step on an earlier factorization; the estimate guards it
+      reused = true;
       ++reuses_;
     }
-    if (refactor && !assembleAt(scene, h, theta, kappa)) return Status::kFailed;
+    if (refactor && !assembleAt(scene, h, theta, kappa)) return Attempt::kFailed;
 
     // a_t = a + A⁻¹ r, then the constraints through A⁻¹.
     const bool estimate = settings_.linearized && k == 1;
     if (estimate) residual_ = force_;
-    if (!update(scene, s0, a, k)) return Status::kFailed;
+    if (!update(scene, s0, a, k)) return Attempt::kFailed;
     double change = (next_ - a).head(n3).lpNorm<Eigen::Infinity>();
     if (estimate) {
       // The error estimate of the linearized step a_1 (one chord iteration): a_1 is accepted as
@@ -91,12 +118,13 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
       linearized_displacement = std::max(displacement, floor);
       if (kappa * h * h * change <= settings_.linearization_tolerance * linearized_displacement) {
         a.swap(next_);  // a_2 = a_1 + Δa: the chord iterate the estimate computed, closer still
-        return Status::kConverged;
+        return Attempt::kConverged;
       }
+      if (reused) return Attempt::kStale;  // taken again from a fresh matrix (see the header)
       ++corrections_;
-      if (!assembleAt(scene, h, theta, kappa)) return Status::kFailed;
+      if (!assembleAt(scene, h, theta, kappa)) return Attempt::kFailed;
       force_ = residual_;
-      if (!update(scene, s0, a, k)) return Status::kFailed;
+      if (!update(scene, s0, a, k)) return Attempt::kFailed;
       change = (next_ - a).head(n3).lpNorm<Eigen::Infinity>();
     }
     a.swap(next_);
@@ -110,11 +138,11 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
     // pass a test relative to its own motion.
     if (settings_.linearized && k >= 2 &&
         kappa * h * h * change <= settings_.linearization_tolerance * linearized_displacement)
-      return Status::kConverged;
+      return Attempt::kConverged;
     // Newton's convergence test (in linearized mode after a failed estimate: the estimate was a
     // chord iteration, and Newton goes on to the full tolerance, as in "newton" mode).
     const double scale = std::max(a.head(n3).lpNorm<Eigen::Infinity>(), gravity);
-    if (change <= settings_.tolerance * scale) return Status::kConverged;
+    if (change <= settings_.tolerance * scale) return Attempt::kConverged;
     // Newton contracts quadratically; the chord method linearly, at a rate below 1.
     const double contraction = settings_.refactor_every_iteration ? 0.5 : 1.0;
     if (k >= 1 && change > contraction * previous_change) {
@@ -124,12 +152,12 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
       // tiny accelerations) — accept; or Newton is not converging: give up from the third
       // iteration on (the caller halves the step).
       if (change <= std::sqrt(settings_.tolerance) * scale || theta * h * h * change <= settings_.tolerance * extent)
-        return Status::kConverged;
-      if (k >= 2) return Status::kNotConverged;
+        return Attempt::kConverged;
+      if (k >= 2) return Attempt::kNotConverged;
     }
     previous_change = change;
   }
-  return fixed_count ? Status::kConverged : Status::kNotConverged;
+  return fixed_count ? Attempt::kConverged : Attempt::kNotConverged;
 }
 
 bool ImplicitStepSolver::assembleAt(const Scene& scene, double h, double theta, double kappa) {
