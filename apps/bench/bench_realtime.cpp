@@ -76,7 +76,7 @@ json ropeDocument(int n, const json& integrator, double dt, double duration) {
 double maxStrain(const filum::Scene& scene) {
   double strain = 0.0;
   for (const filum::MechanicalState* body : scene.bodies()) {
-    const auto* spline = dynamic_cast<const filum::mechanics::DynamicSpline*>(body);
+    const auto* spline = body->curve();
     if (!spline) continue;
     const auto q = spline->block(scene.state().q);
     const int samples = 8 * spline->pointCount();
@@ -93,7 +93,7 @@ double maxStrain(const filum::Scene& scene) {
 double totalMass(const filum::Scene& scene) {
   double mass = 0.0;
   for (const filum::MechanicalState* body : scene.bodies())
-    if (const auto* spline = dynamic_cast<const filum::mechanics::DynamicSpline*>(body)) mass += spline->mass();
+    if (const auto* spline = body->curve()) mass += spline->mass();
   return mass;
 }
 

@@ -46,7 +46,7 @@ void RunOutput::writeFrame(const Scene& scene) {
     for (int i = 0; i < q.rows(); ++i)
       control_points_ << t << ',' << name << ',' << i << ',' << exact(q(i, 0)) << ',' << exact(q(i, 1)) << ','
                       << exact(q(i, 2)) << '\n';
-    const auto* spline = dynamic_cast<const mechanics::DynamicSpline*>(body);
+    const auto* spline = body->curve();
     if (!spline) continue;
     visual::PolyLine line{name, Points(curve_samples_, 3), abscissas};
     mechanics::SplinePointMapping(spline->basis(), abscissas).apply(q, line.points);

@@ -41,7 +41,7 @@ void addProbeForces(nlohmann::json& node) {
 double pickDepth(const Scene& scene, const visual::CameraSettings& camera, double u, double v) {
   double best = std::numeric_limits<double>::infinity(), depth = (camera.look_at - camera.position).norm();
   for (const MechanicalState* body : scene.bodies()) {
-    const auto* spline = dynamic_cast<const mechanics::DynamicSpline*>(body);
+    const auto* spline = body->curve();
     if (!spline) continue;
     const ConstPointsMap q = body->block(scene.state().q);
     for (int k = 0; k <= 200; ++k) {

@@ -271,7 +271,7 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
     if (model_count == 1 && !model.selfCollision()) continue;
     Points& end = after_centers_[m];
     if (end.rows() != model.sphereCount()) end.resize(model.sphereCount(), 3);
-    model.mapping().apply(model.spline().block(after.q), end);
+    model.mapping().apply(model.curve().block(after.q), end);
     const Points& start = model.centers();
     for (int k = 0; k + 1 < model.sphereCount(); ++k) {
       const Vec3 a0 = start.row(k).transpose(), a1 = start.row(k + 1).transpose();

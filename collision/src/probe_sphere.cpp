@@ -4,13 +4,13 @@
 
 namespace filum::collision {
 
-ProbeSphere::ProbeSphere(double radius, constraints::ScriptedPath path) : radius_(radius), path_(std::move(path)) {
+ProbeSphere::ProbeSphere(double radius, geometry::ScriptedPath path) : radius_(radius), path_(std::move(path)) {
   moveTo(0.0);
 }
 
 std::unique_ptr<ProbeSphere> ProbeSphere::fromParams(const Params& p) {
   const double radius = p.positive("radius");
-  auto probe = std::make_unique<ProbeSphere>(radius, constraints::ScriptedPath::fromParams(p, "path"));
+  auto probe = std::make_unique<ProbeSphere>(radius, geometry::ScriptedPath::fromParams(p, "path"));
   probe->readCommon(p);
   return probe;
 }

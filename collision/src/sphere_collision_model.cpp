@@ -5,7 +5,7 @@
 #include "filum/core/node.hpp"
 #include "filum/core/scene.hpp"
 #include "filum/core/scene_error.hpp"
-#include "filum/mechanics/dynamic_spline.hpp"
+#include "filum/core/curve_body.hpp"
 
 namespace filum::collision {
 
@@ -20,22 +20,22 @@ std::unique_ptr<SphereCollisionModel> SphereCollisionModel::fromParams(const Par
 
 void SphereCollisionModel::init(const Scene& scene) {
   MechanicalState* body = node() ? node()->mechanicalState() : nullptr;
-  spline_ = dynamic_cast<const mechanics::DynamicSpline*>(body);
-  if (!spline_)
-    throw SceneError(origin(), "a " + typeName() + " belongs in the node of a DynamicSpline (the thread it samples), "
+  curve_ = body ? body->curve() : nullptr;
+  if (!curve_)
+    throw SceneError(origin(), "a " + typeName() + " belongs in the node of a curve body such as a DynamicSpline (the thread it samples), "
                                    "but its node holds " + (body ? body->typeName() : std::string("no body")));
   const auto& bodies = scene.bodies();
   body_index_ = static_cast<int>(std::find(bodies.begin(), bodies.end(), body) - bodies.begin());
-  point_offset_ = spline_->offset();
-  radius_ = settings_.radius > 0.0 ? settings_.radius : spline_->radius();
+  point_offset_ = curve_->offset();
+  radius_ = settings_.radius > 0.0 ? settings_.radius : curve_->radius();
   const double spacing = settings_.spacing > 0.0 ? settings_.spacing : radius_;
   if (spacing > 2.0 * radius_)
     throw SceneError(origin() + "/spacing",
                      "a spacing <= 2 radius (" + std::to_string(2.0 * radius_) + " m) so that neighbouring spheres touch",
                      std::to_string(spacing) + " m");
   exclusion_ = settings_.exclusion >= 0.0 ? settings_.exclusion : 4.0 * radius_;
-  mapping_ = std::make_unique<SphereSamplingMapping>(spline_->basis(), spacing);
-  mapping_->resample(spline_->initialPositions());
+  mapping_ = std::make_unique<SphereSamplingMapping>(curve_->basis(), spacing);
+  mapping_->resample(curve_->initialPositions());
   const int capacity = 2 * mapping_->outputCount();  // room for stretching to twice the length
   mapping_->reserve(capacity);
   centers_.resize(capacity, 3);
@@ -43,8 +43,8 @@ void SphereCollisionModel::init(const Scene& scene) {
 }
 
 void SphereCollisionModel::update(const SceneState& s) {
-  const ConstPointsMap q = spline_->block(s.q);
-  const ConstPointsMap v = spline_->block(s.v);
+  const ConstPointsMap q = curve_->block(s.q);
+  const ConstPointsMap v = curve_->block(s.v);
   mapping_->resample(q);
   const int count = mapping_->outputCount();
   if (centers_.rows() < count) {  // grows only when the thread stretched beyond twice its length

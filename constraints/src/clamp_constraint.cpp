@@ -4,7 +4,7 @@
 
 #include "filum/constraints/projected_point_constraint.hpp"
 #include "filum/constraints/release_schedule.hpp"
-#include "filum/constraints/spline_body.hpp"
+#include "filum/constraints/curve_lookup.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/spline_curve.hpp"
 
@@ -27,7 +27,7 @@ std::unique_ptr<ClampConstraint> ClampConstraint::fromParams(const Params& p) {
 }
 
 void ClampConstraint::init(const Scene& scene) {
-  const mechanics::DynamicSpline& spline = requireSpline(body(), *this);
+  const CurveBody& spline = requireCurve(body(), *this);
   spline.basis().evaluate(abscissa_, row_);
   const Points& q0 = spline.initialPositions();
   target_.init(scene, *this, geometry::curvePoint(row_, q0), body(), abscissa_);

@@ -8,7 +8,7 @@ namespace {
 
 std::vector<Vec3> identityDirections() { return {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()}; }
 
-PointTarget skeletonTarget(std::optional<Vec3> target, ScriptedPath path) {
+PointTarget skeletonTarget(std::optional<Vec3> target, geometry::ScriptedPath path) {
   if (!path.empty()) return PointTarget::scripted(std::move(path));
   return target ? PointTarget::fixed(*target) : PointTarget();
 }
@@ -18,7 +18,7 @@ PointTarget skeletonTarget(std::optional<Vec3> target, ScriptedPath path) {
 FixedPointConstraint::FixedPointConstraint(double abscissa, PointTarget target, Baumgarte stabilization)
     : ProjectedPointConstraint(abscissa, std::move(target), stabilization, identityDirections()) {}
 
-FixedPointConstraint::FixedPointConstraint(double abscissa, std::optional<Vec3> target, ScriptedPath path,
+FixedPointConstraint::FixedPointConstraint(double abscissa, std::optional<Vec3> target, geometry::ScriptedPath path,
                                            std::optional<double> stabilization)
     : FixedPointConstraint(abscissa, skeletonTarget(target, std::move(path)), Baumgarte(stabilization)) {}
 

@@ -2,14 +2,14 @@
 
 #include <stdexcept>
 
-#include "filum/constraints/spline_body.hpp"
+#include "filum/constraints/curve_lookup.hpp"
 #include "filum/core/scene.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/spline_curve.hpp"
 
 namespace filum::constraints {
 
-PointTarget PointTarget::scripted(ScriptedPath path) {
+PointTarget PointTarget::scripted(geometry::ScriptedPath path) {
   PointTarget t(Kind::kScripted, Vec3::Zero());
   t.path_ = std::move(path);
   return t;
@@ -26,7 +26,7 @@ PointTarget PointTarget::fromParams(const Params& p) {
   const bool has_target = p.has("target");
   const bool has_path = p.has("path");
   if (has_target && has_path) p.fail("path", "either 'target' or 'path', not both");
-  if (has_path) return scripted(ScriptedPath::fromParams(p, "path"));
+  if (has_path) return scripted(geometry::ScriptedPath::fromParams(p, "path"));
   if (!has_target) return PointTarget();
   if (p.raw("target").is_object()) {
     const Params attach = p.object("target");
@@ -43,7 +43,7 @@ void PointTarget::init(const Scene& scene, const Component& owner, const Vec3& s
                        double own_abscissa) {
   if (kind_ == Kind::kStart) position_ = start;
   if (kind_ != Kind::kAttached) return;
-  body_ = &findSpline(scene, object_, where_, owner);
+  body_ = &findCurve(scene, object_, where_, owner);
   if (body_ == &own_body && abscissa_ == own_abscissa)
     throw SceneError(where_, "another point than the constrained one (" + owner.describe() +
                                  " would hold a point to itself: g ≡ 0, a singular system)",

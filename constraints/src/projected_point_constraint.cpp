@@ -4,7 +4,7 @@
 
 #include <Eigen/Geometry>
 
-#include "filum/constraints/spline_body.hpp"
+#include "filum/constraints/curve_lookup.hpp"
 #include "filum/geometry/spline_curve.hpp"
 
 namespace filum::constraints {
@@ -22,7 +22,7 @@ ProjectedPointConstraint::ProjectedPointConstraint(double abscissa, PointTarget 
     : abscissa_(abscissa), target_(std::move(target)), baumgarte_(baumgarte), directions_(std::move(directions)) {}
 
 void ProjectedPointConstraint::init(const Scene& scene) {
-  const mechanics::DynamicSpline& spline = requireSpline(body(), *this);
+  const CurveBody& spline = requireCurve(body(), *this);
   spline.basis().evaluate(abscissa_, row_);
   target_.init(scene, *this, geometry::curvePoint(row_, spline.initialPositions()), body(), abscissa_);
   baumgarte_.init(scene);

@@ -4,7 +4,7 @@
 
 #include "filum/constraints/projected_point_constraint.hpp"
 #include "filum/constraints/release_schedule.hpp"
-#include "filum/constraints/spline_body.hpp"
+#include "filum/constraints/curve_lookup.hpp"
 #include "filum/geometry/spline_curve.hpp"
 
 namespace filum::constraints {
@@ -22,7 +22,7 @@ std::unique_ptr<SlidingPointConstraint> SlidingPointConstraint::fromParams(const
 }
 
 void SlidingPointConstraint::init(const Scene& scene) {
-  spline_ = &requireSpline(body(), *this);
+  spline_ = &requireCurve(body(), *this);
   target_.init(scene, *this, geometry::curvePoint(spline_->basis(), spline_->initialPositions(), initial_abscissa_),
                body(), -1.0 /* s moves: no abscissa of its own to compare */);
   baumgarte_.init(scene);

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "filum/constraints/release_schedule.hpp"
-#include "filum/constraints/spline_body.hpp"
+#include "filum/constraints/curve_lookup.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/spline_curve.hpp"
 
@@ -58,8 +58,8 @@ std::unique_ptr<SplineJunctionConstraint> SplineJunctionConstraint::fromParams(c
 }
 
 void SplineJunctionConstraint::init(const Scene& scene) {
-  const mechanics::DynamicSpline& own = requireSpline(body(), *this);
-  other_ = &findSpline(scene, other_path_, other_where_.empty() ? origin() + "/other" : other_where_, *this);
+  const CurveBody& own = requireCurve(body(), *this);
+  other_ = &findCurve(scene, other_path_, other_where_.empty() ? origin() + "/other" : other_where_, *this);
   if (other_ == &own && abscissa_ == other_abscissa_)
     throw SceneError(other_where_.empty() ? origin() : other_where_,
                      "two different points to join (" + describe() + " joins a body to itself at one abscissa)",

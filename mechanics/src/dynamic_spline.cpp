@@ -4,7 +4,10 @@
 #include <numbers>
 
 #include "filum/core/scene_error.hpp"
+#include "filum/geometry/bspline_curve.hpp"
 #include "filum/geometry/gauss_legendre.hpp"
+#include "filum/geometry/knot_insertion.hpp"
+#include "filum/geometry/nonuniform_bspline.hpp"
 #include "filum/geometry/spline_curve.hpp"
 #include "filum/geometry/uniform_cubic_bspline.hpp"
 #include "filum/mechanics/mass_matrix.hpp"
@@ -21,6 +24,41 @@ DynamicSpline::DynamicSpline(std::unique_ptr<geometry::SplineBasis> basis, Point
       mass_matrix_(mechanics::massMatrix(*basis_, mass)),
       factor_(mass_matrix_, basis_->degree()),
       basis_integrals_(basisIntegrals(*basis_)) {}
+
+SparseMatrix DynamicSpline::refine(const std::vector<double>& abscissas) {
+  // Only a B-spline's control points are those of its knot form (Catmull-Rom's are not).
+  geometry::BSplineCurve curve;
+  try {
+    if (basis_->name() == "catmull_rom") throw std::invalid_argument("");
+    curve = geometry::toBSplineCurve(*basis_, initial_);
+  } catch (const std::invalid_argument&) {
+    throw SceneError(origin(), "a B-spline basis (uniform_cubic_bspline or a NUBS) to insert control points into",
+                     "the " + basis_->name() + " basis of " + describe());
+  }
+  // s ∈ [0, 1] maps affinely onto the knot domain [t_d, t_n] (bspline_curve.hpp).
+  const double u0 = curve.knots[curve.degree], u1 = curve.knots[pointCount()];
+  std::vector<double> new_knots;
+  new_knots.reserve(abscissas.size());
+  for (const double s : abscissas) {
+    if (!(s > 0.0 && s < 1.0))
+      throw SceneError(origin(), "abscissas strictly inside (0, 1) to insert control points at", std::to_string(s));
+    new_knots.push_back(u0 + s * (u1 - u0));
+  }
+  std::vector<double> refined;
+  try {
+    refined = geometry::refinedKnotVector(curve.degree, curve.knots, new_knots);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(origin(), "knots that keep the curve valid (multiplicity <= degree)", e.what());
+  }
+  SparseMatrix A = geometry::knotInsertionMatrix(curve.degree, curve.knots, refined);
+  basis_ = std::make_unique<geometry::NonUniformBSpline>(curve.degree, std::move(refined));
+  initial_ = A * initial_;  // the rest shape, refined like any configuration
+  mass_matrix_ = mechanics::massMatrix(*basis_, mass_);
+  factor_ = BandedCholesky(mass_matrix_, basis_->degree());
+  basis_integrals_ = basisIntegrals(*basis_);
+  noteLayoutChange();
+  return A;
+}
 
 void DynamicSpline::addGravity(const Vec3& g, PointsRef B) const {
   // Q_i = ∫ b_i(s) m g ds = m w_i g  (right-hand side of paper eq. 2).
@@ -104,7 +142,9 @@ std::unique_ptr<DynamicSpline> DynamicSpline::fromParams(const Params& p) {
   } else {
     p.fail("mass", "the thread's 'mass' (kg) or its 'density' (kg/m³)");
   }
-  return std::make_unique<DynamicSpline>(std::move(basis), std::move(q), mass, radius);
+  auto spline = std::make_unique<DynamicSpline>(std::move(basis), std::move(q), mass, radius);
+  spline->setRefinements(refinementsFromParams(p, "refine"));
+  return spline;
 }
 
 }  // namespace filum::mechanics

@@ -1,5 +1,7 @@
 #include "filum/core/scene.hpp"
 
+#include "filum/core/curve_body.hpp"
+
 #include <cmath>
 
 #include "filum/core/flush_denormals.hpp"
@@ -76,14 +78,7 @@ void Scene::init() {
 
   for (ForceField* f : force_fields_) bindBodyComponent(*f);
   for (Constraint* c : constraints_) bindBodyComponent(*c);
-
-  // Extra scalar DOFs of constraints (a sliding point's abscissa) after the 3N point
-  // coordinates, in declaration order (scene_state.hpp); their velocities start at zero.
-  extra_count_ = 0;
-  for (Constraint* c : constraints_) {
-    c->setExtraIndex(3 * point_count_ + extra_count_);
-    extra_count_ += c->extraDofCount();
-  }
+  setExtraIndices();
   state_.q.conservativeResize(3 * point_count_ + extra_count_);
   state_.v.setZero(3 * point_count_ + extra_count_);
   for (const Constraint* c : constraints_) c->initialExtra(state_.q);
@@ -94,6 +89,43 @@ void Scene::init() {
         throw SceneError(f->origin(), integrator_->typeName() + " needs the force Jacobian of every force field, but " +
                                           f->describe() + " does not provide one (use an explicit integrator)");
 
+  initCollision();
+  resizeWorkspace();
+  contact_halvings_ = 0;
+  step_count_ = 0;
+  initialized_ = true;
+}
+
+void Scene::setExtraIndices() {
+  // Extra scalar DOFs of constraints (a sliding point's abscissa) after the 3N point
+  // coordinates, in declaration order (scene_state.hpp); their velocities start at zero.
+  extra_count_ = 0;
+  for (Constraint* c : constraints_) {
+    c->setExtraIndex(3 * point_count_ + extra_count_);
+    extra_count_ += c->extraDofCount();
+  }
+}
+
+void Scene::bindComponents() {
+  for (ForceField* f : force_fields_) bindBodyComponent(*f);
+  for (Constraint* c : constraints_) bindBodyComponent(*c);
+  const int extras = extra_count_;
+  setExtraIndices();
+  if (extra_count_ != extras)
+    throw SceneError(settings_.source, std::to_string(extras) + " extra DOFs of constraints after a layout change",
+                     std::to_string(extra_count_));
+  for (Constraint* c : constraints_) c->updateRelease(state_);
+  if (collision_) collision_->init(*this);
+  resizeWorkspace();
+}
+
+void Scene::resizeWorkspace() {
+  force_.setZero(3 * point_count_);
+  last_good_ = state_;
+  substep_start_.assign(kMaxContactHalvings + 1, state_);
+}
+
+void Scene::initCollision() {
   // Stage 2 runs only when the scene holds collision models (collision_pipeline.hpp).
   std::vector<CollisionModel*> collision_models;
   std::vector<CollisionPipeline*> pipelines;
@@ -117,12 +149,6 @@ void Scene::init() {
                                                  collision_->describe() + " does not provide one");
   }
 
-  force_.setZero(3 * point_count_);
-  last_good_ = state_;
-  substep_start_.assign(kMaxContactHalvings + 1, state_);
-  contact_halvings_ = 0;
-  step_count_ = 0;
-  initialized_ = true;
 }
 
 std::string Scene::findNonFinite(const VecX& v) const {
@@ -204,14 +230,61 @@ StepReport Scene::step() {
   StepReport report;
   report.step = step_count_;
   report.time = state_.time;
+  beginStep();
+  advance(settings_.dt, 0);
+  return endStep(report);
+}
 
-  // Stage 4 needs the last good state: copy into preallocated storage (no allocation).
+void Scene::beginStep() {
+  // Control points scheduled for insertion at the step that starts nearest their time (half a
+  // step of slack absorbs the round-off of t = steps · dt); a layout change may allocate.
+  for (MechanicalState* body : bodies_)
+    if (CurveBody* curve = body->curve())
+      while (const CurveBody::Refinement* due = curve->refinementDue(state_.time + 0.5 * settings_.dt)) {
+        const std::vector<double> abscissas = due->abscissas;
+        curve->markRefinementApplied();
+        refine(*curve, abscissas);
+      }
+  // endStep needs the last good state: copied into preallocated storage (no allocation).
   last_good_ = state_;
   fault_.clear();
   // Scheduled releases (cuts) take effect at the first step that starts at or after their time.
   for (Constraint* c : constraints_) c->updateRelease(state_);
-  advance(settings_.dt, 0);
+}
 
+void Scene::advance(double h, int depth) {
+  detectCollisions(h);
+  substep_start_[depth] = state_;  // preallocated: no allocation
+  integrate(h);
+  if (!fault_.empty() || !collision_) return;
+  const CollisionPipeline::Miss miss = collision_->missedContact(state_);
+  if (miss == CollisionPipeline::Miss::kNone) return;
+  // The contact set of the start did not hold the motion (a strand moved through another, or
+  // deep into it, within the step): redo it as two halves, each with its own detection (Bridson
+  // et al. 2002 stop a step at the first such event; halving keeps the step pipeline as it is).
+  if (depth == kMaxContactHalvings) {
+    // A deep penetration at the finest sub-step is kept (Baumgarte's term pushes it out in the
+    // next steps); a pass-through is not: the threads' topology changed.
+    if (miss == CollisionPipeline::Miss::kPassThrough)
+      noteFault(collision_->describe() + ": a thread passed through another even in " +
+                std::to_string(1 << depth) + " sub-steps of " + std::to_string(h) + " s");
+    return;
+  }
+  ++contact_halvings_;
+  state_ = substep_start_[depth];
+  advance(0.5 * h, depth + 1);
+  if (fault_.empty()) advance(0.5 * h, depth + 1);
+}
+
+void Scene::detectCollisions(double h) {
+  // Only when collision models exist.
+  if (collision_) collision_->beginStep(*this, state_, h);
+  for (ForceField* field : force_fields_) field->beginStep(state_, h);
+}
+
+void Scene::integrate(double h) { integrator_->step(*this, state_, h); }
+
+StepReport Scene::endStep(StepReport report) {
   std::string culprit = fault_;
   if (culprit.empty() && !state_.allFinite()) {
     const std::string body = findNonFinite(state_.v).empty() ? findNonFinite(state_.q) : findNonFinite(state_.v);
@@ -237,32 +310,6 @@ StepReport Scene::step() {
   ++step_count_;
   state_.time = static_cast<double>(++state_.steps) * settings_.dt;
   return report;
-}
-
-void Scene::advance(double h, int depth) {
-  // Stage 2: collision detection at the (sub-)step's start state, only if collision models exist.
-  if (collision_) collision_->beginStep(*this, state_, h);
-  for (ForceField* field : force_fields_) field->beginStep(state_, h);
-  substep_start_[depth] = state_;  // preallocated: no allocation
-  integrator_->step(*this, state_, h);
-  if (!fault_.empty() || !collision_) return;
-  const CollisionPipeline::Miss miss = collision_->missedContact(state_);
-  if (miss == CollisionPipeline::Miss::kNone) return;
-  // The contact set of the start did not hold the motion (a strand moved through another, or
-  // deep into it, within the step): redo it as two halves, each with its own detection (Bridson
-  // et al. 2002 stop a step at the first such event; halving keeps the step pipeline as it is).
-  if (depth == kMaxContactHalvings) {
-    // A deep penetration at the finest sub-step is kept (Baumgarte's term pushes it out in the
-    // next steps); a pass-through is not: the threads' topology changed.
-    if (miss == CollisionPipeline::Miss::kPassThrough)
-      noteFault(collision_->describe() + ": a thread passed through another even in " +
-                std::to_string(1 << depth) + " sub-steps of " + std::to_string(h) + " s");
-    return;
-  }
-  ++contact_halvings_;
-  state_ = substep_start_[depth];
-  advance(0.5 * h, depth + 1);
-  if (fault_.empty()) advance(0.5 * h, depth + 1);
 }
 
 void Scene::MassInverse::solveBlock(int body, Eigen::Ref<VecX> x) const {
@@ -300,7 +347,49 @@ VecX Scene::constraintViolation(const SceneState& s) const {
   return g;
 }
 
+void Scene::refine(CurveBody& body, const std::vector<double>& abscissas) {
+  if (!initialized_) init();
+  // The old layout, to carry the state over (a layout change may allocate).
+  const SceneState old = state_;
+  std::vector<int> old_offsets;
+  for (const MechanicalState* b : bodies_) old_offsets.push_back(b->offset());
+  const int old_points = body.pointCount();
+  const SparseMatrix A = body.refine(abscissas);  // throws before changing anything
+  if (A.cols() != old_points || A.rows() != body.pointCount())
+    throw SceneError(body.origin(), "a refinement matrix of " + std::to_string(body.pointCount()) + " x " +
+                                        std::to_string(old_points),
+                     std::to_string(A.rows()) + " x " + std::to_string(A.cols()));
+
+  point_count_ = 0;
+  for (MechanicalState* b : bodies_) {
+    b->setOffset(point_count_);
+    point_count_ += b->pointCount();
+  }
+  state_.q.resize(3 * point_count_ + extra_count_);
+  state_.v.resize(3 * point_count_ + extra_count_);
+  for (std::size_t k = 0; k < bodies_.size(); ++k) {
+    MechanicalState* b = bodies_[k];
+    const int n = b == &body ? old_points : b->pointCount();
+    const ConstPointsMap q(old.q.data() + 3 * old_offsets[k], n, 3), v(old.v.data() + 3 * old_offsets[k], n, 3);
+    if (b == &body) {
+      b->block(state_.q) = A * q;  // q̃ = A q: the same curve
+      b->block(state_.v) = A * v;  // ṽ = A v: the same velocity field along it
+    } else {
+      b->block(state_.q) = q;
+      b->block(state_.v) = v;
+    }
+  }
+  state_.q.tail(extra_count_) = old.q.tail(extra_count_);  // abscissas: s is unchanged by refinement
+  state_.v.tail(extra_count_) = old.v.tail(extra_count_);
+  ++layout_revision_;
+  bindComponents();
+}
+
 void Scene::setState(const SceneState& s) {
+  if (s.q.size() != state_.q.size() || s.v.size() != state_.v.size())
+    throw SceneError(settings_.source, "a state of " + std::to_string(state_.q.size()) +
+                                           " coordinates (the scene's current layout)",
+                     std::to_string(s.q.size()) + " (a state saved before the points changed?)");
   state_ = s;
   // Releases are a function of the state: restoring a state before a cut restores the rows.
   for (Constraint* c : constraints_) c->updateRelease(state_);

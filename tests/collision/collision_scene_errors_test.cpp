@@ -53,7 +53,7 @@ TEST(CollisionSceneErrors, NameTheFileThePlaceAndWhatWasExpected) {
 
   nlohmann::json loose = test::collisionScene({thread()}, pipeline);
   loose["components"] = nlohmann::json::array({{{"type", "SphereCollisionModel"}}});
-  cases.push_back({loose, {"/components/0", "belongs in the node of a DynamicSpline", "no body"}});
+  cases.push_back({loose, {"/components/0", "belongs in the node of a curve body such as a DynamicSpline", "no body"}});
 
   cases.push_back({test::collisionScene({thread()}, pipeline, 1e-4,
                                         nlohmann::json::array({{{"type", "PlaneObstacle"}, {"friction", -0.2}}})),

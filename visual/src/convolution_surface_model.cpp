@@ -2,7 +2,7 @@
 
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/spline_curve.hpp"
-#include "filum/mechanics/dynamic_spline.hpp"
+#include "filum/core/curve_body.hpp"
 
 namespace filum::visual {
 
@@ -24,9 +24,9 @@ std::unique_ptr<ConvolutionSurfaceModel> ConvolutionSurfaceModel::fromParams(con
 }
 
 void ConvolutionSurfaceModel::init(const Scene&) {
-  const auto* spline = dynamic_cast<const mechanics::DynamicSpline*>(&body());
+  const auto* spline = body().curve();
   if (!spline)
-    throw SceneError(origin(), "a ConvolutionSurfaceModel wraps a DynamicSpline, but its body " + body().describe() +
+    throw SceneError(origin(), "a ConvolutionSurfaceModel wraps a curve body (e.g. a DynamicSpline), but its body " + body().describe() +
                                    " is not one");
   radius_ = options_.radius.value_or(spline->radius());
   segments_ = options_.segments.value_or(4 * (static_cast<int>(spline->basis().breakpoints().size()) - 1));
@@ -37,7 +37,7 @@ void ConvolutionSurfaceModel::init(const Scene&) {
 
 void ConvolutionSurfaceModel::update(const SceneState& s) {
   if (updates_++ % options_.every != 0 && !mesh_.empty()) return;
-  const auto& spline = static_cast<const mechanics::DynamicSpline&>(body());
+  const auto& spline = *body().curve();
   const ConstPointsMap q = body().block(s.q);
   geometry::ConvolutionSurface surface(radius_, options_.sharpness);
   surface.addCurve(spline.basis(), q, segments_);

@@ -5,7 +5,7 @@
 #include "filum/core/mechanical_state.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/arc_length.hpp"
-#include "filum/mechanics/dynamic_spline.hpp"
+#include "filum/core/curve_body.hpp"
 
 namespace filum::visual {
 
@@ -28,9 +28,9 @@ std::unique_ptr<GeneralizedCylinderModel> GeneralizedCylinderModel::fromParams(c
 }
 
 void GeneralizedCylinderModel::init(const Scene&) {
-  const auto* spline = dynamic_cast<const mechanics::DynamicSpline*>(&body());
+  const auto* spline = body().curve();
   if (!spline)
-    throw SceneError(origin(), "a GeneralizedCylinder skins a DynamicSpline, but its body " + body().describe() +
+    throw SceneError(origin(), "a GeneralizedCylinder skins a curve body (e.g. a DynamicSpline), but its body " + body().describe() +
                                    " is not one");
   const geometry::SplineBasis& basis = spline->basis();
   const int pieces = static_cast<int>(basis.breakpoints().size()) - 1;

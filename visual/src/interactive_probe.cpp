@@ -4,7 +4,7 @@
 
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/closest_point.hpp"
-#include "filum/mechanics/dynamic_spline.hpp"
+#include "filum/core/curve_body.hpp"
 #include "filum/visual/sphere_mesh.hpp"
 
 namespace filum::visual {
@@ -21,7 +21,7 @@ bool startGrab(ProbeState& probe, const Scene& scene, double capture) {
   probe.grab_body = nullptr;
   double best = capture;
   for (const MechanicalState* body : scene.bodies()) {
-    const auto* spline = dynamic_cast<const mechanics::DynamicSpline*>(body);
+    const auto* spline = body->curve();
     if (!spline) continue;
     const geometry::ClosestPoint c = geometry::closestPoint(spline->basis(), body->block(scene.state().q), probe.position);
     if (c.distance <= best) {
@@ -38,8 +38,8 @@ ProbeForceField::ProbeForceField(std::shared_ptr<const ProbeState> probe, int sa
     : probe_(std::move(probe)), samples_(samples) {}
 
 void ProbeForceField::init(const Scene& scene) {
-  const auto* spline = dynamic_cast<const mechanics::DynamicSpline*>(&body());
-  if (!spline) throw SceneError(origin(), "the mouse probe acts on DynamicSpline bodies, not on " + body().describe());
+  const auto* spline = body().curve();
+  if (!spline) throw SceneError(origin(), "the mouse probe acts on curve bodies (e.g. DynamicSpline), not on " + body().describe());
   dt_ = scene.settings().dt;
   thread_radius_ = spline->radius();
   const int n = spline->pointCount();
@@ -54,7 +54,7 @@ void ProbeForceField::init(const Scene& scene) {
 
 double ProbeForceField::effectiveMass(double s) const {
   // bᵀ M⁻¹ b with one banded solve (M is the same on x, y and z: use the first column).
-  const auto& spline = static_cast<const mechanics::DynamicSpline&>(body());
+  const auto& spline = *body().curve();
   geometry::BasisRow row;
   spline.basis().evaluate(s, row);
   Points b = Points::Zero(spline.pointCount(), 3);
@@ -98,7 +98,7 @@ void ProbeForceField::addForce(const SceneState& s, VecX& B) const {
   }
   if (grabbing()) {
     // Grab: spring–damper between the probe and P(s*).
-    const auto& spline = static_cast<const mechanics::DynamicSpline&>(body());
+    const auto& spline = *body().curve();
     geometry::BasisRow row;
     spline.basis().evaluate(probe_->grab_abscissa, row);
     const ConstPointsMap v = body().block(s.v);
@@ -117,7 +117,7 @@ double ProbeForceField::potentialEnergy(const SceneState& s) const {
   const ConstPointsMap q = body().block(s.q);
   double energy = 0.0;
   if (grabbing()) {
-    const auto& spline = static_cast<const mechanics::DynamicSpline&>(body());
+    const auto& spline = *body().curve();
     geometry::BasisRow row;
     spline.basis().evaluate(probe_->grab_abscissa, row);
     Vec3 P = Vec3::Zero();
@@ -139,7 +139,7 @@ void ProbeForceField::addJacobian(const SceneState& s, double k_factor, double d
   if (!probe_->touching && !grabbing()) return;
   const int offset = body().offset();
   const auto emit = [&](int i, int j, const Eigen::Matrix3d& block) { out.addBlock(offset + i, offset + j, block); };
-  const auto& spline = static_cast<const mechanics::DynamicSpline&>(body());
+  const auto& spline = *body().curve();
   geometry::BasisRow row;
   if (grabbing()) {
     spline.basis().evaluate(probe_->grab_abscissa, row);

@@ -1,11 +1,9 @@
 #include "filum/visual/sphere_model.hpp"
 
-#include "filum/constraints/projected_point_constraint.hpp"
-#include "filum/constraints/sliding_point_constraint.hpp"
 #include "filum/core/scene.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/arc_length.hpp"
-#include "filum/mechanics/dynamic_spline.hpp"
+#include "filum/core/curve_body.hpp"
 #include "filum/visual/sphere_mesh.hpp"
 
 namespace filum::visual {
@@ -48,7 +46,7 @@ std::unique_ptr<SphereModel> SphereModel::fromParams(const Params& p) {
   }
   if (p.has("path")) {
     o.placement = Placement::kScriptedPath;
-    o.path = constraints::ScriptedPath::fromParams(p, "path");
+    o.path = geometry::ScriptedPath::fromParams(p, "path");
     ++placements;
   }
   if (placements != 1)
@@ -62,9 +60,9 @@ std::unique_ptr<SphereModel> SphereModel::fromParams(const Params& p) {
 }
 
 void SphereModel::init(const Scene& scene) {
-  const auto* spline = bound() ? dynamic_cast<const mechanics::DynamicSpline*>(&body()) : nullptr;
+  const auto* spline = bound() ? body().curve() : nullptr;
   if (needsBody() && !spline)
-    throw SceneError(origin(), "spheres on a curve need a DynamicSpline body, but " + body().describe() + " is not one");
+    throw SceneError(origin(), "spheres on a curve need a curve body (e.g. a DynamicSpline), but " + body().describe() + " is not one");
   if (options_.radius)
     radius_ = *options_.radius;
   else if (spline)
@@ -91,11 +89,7 @@ void SphereModel::init(const Scene& scene) {
     if (!constraint_)
       throw SceneError(origin() + "/constraint", "the name of a constraint of the scene (known: " + known + ")",
                        "\"" + options_.constraint + "\"");
-    if (const auto* point = dynamic_cast<const constraints::ProjectedPointConstraint*>(constraint_))
-      target_ = &point->target();
-    else if (const auto* hole = dynamic_cast<const constraints::SlidingPointConstraint*>(constraint_))
-      target_ = &hole->target();
-    else
+    if (!constraint_->hasTargetPoint())
       throw SceneError(origin() + "/constraint",
                        "a point constraint with a target (e.g. a FixedPointConstraint or a SlidingPointConstraint)",
                        constraint_->describe());
@@ -117,7 +111,7 @@ void SphereModel::update(const SceneState& s) {
         centers_.resize(0, 3);  // released: nothing to draw
       } else {
         centers_.resize(1, 3);
-        centers_.row(0) = target_->position(s).transpose();
+        centers_.row(0) = constraint_->targetPoint(s)->transpose();
       }
       break;
     case Placement::kScriptedPath:

@@ -5,7 +5,7 @@
 #include <set>
 
 #include "filum/core/scene_error.hpp"
-#include "filum/mechanics/dynamic_spline.hpp"
+#include "filum/core/curve_body.hpp"
 #include "filum/visual/generalized_cylinder_model.hpp"
 
 namespace filum::visual {
@@ -23,7 +23,7 @@ const Vec3 kPalette[] = {{0.15, 0.3, 0.85}, {0.85, 0.45, 0.1}, {0.2, 0.65, 0.3},
 
 }  // namespace
 
-VisualScene::VisualScene(Scene& scene) {
+VisualScene::VisualScene(Scene& scene) : scene_(scene), layout_revision_(scene.layoutRevision()) {
   std::vector<VisualModel*> declared;
   scene.root().collect(declared);
   std::set<const MechanicalState*> drawn;
@@ -58,7 +58,7 @@ VisualScene::VisualScene(Scene& scene) {
   // Default skins for the splines nothing draws.
   int colour = 0;
   for (MechanicalState* body : scene.bodies()) {
-    const auto* spline = dynamic_cast<const mechanics::DynamicSpline*>(body);
+    const auto* spline = body->curve();
     if (!spline) continue;
     const Vec3 color = kPalette[colour++ % std::size(kPalette)];
     if (drawn.count(body)) continue;
@@ -82,6 +82,13 @@ VisualScene::VisualScene(Scene& scene) {
 }
 
 void VisualScene::update(const SceneState& s) {
+  // Points were inserted since the last update (Scene::refine): the models that follow a body
+  // rebuild their mappings on its new basis.
+  if (scene_.layoutRevision() != layout_revision_) {
+    for (VisualModel* model : models_)
+      if (model->bound()) model->bind(model->body(), scene_);
+    layout_revision_ = scene_.layoutRevision();
+  }
   for (VisualModel* model : models_) model->update(s);
 }
 

@@ -1,6 +1,6 @@
 // ProbeSphere: the virtual probe of paper Fig. 1a ("the user manipulates a virtual probe
 // represented by the red sphere, via the Phantom"): a ball of radius R whose centre follows a
-// scripted trajectory (constraints::ScriptedPath keyframes) and pushes threads through contacts.
+// scripted trajectory (geometry::ScriptedPath keyframes) and pushes threads through contacts.
 // A haptic device will drive the same component later (the haptics library sets the centre);
 // the force the threads exert on the probe is what the device renders (ContactPipeline::
 // obstacleForce).
@@ -9,13 +9,13 @@
 #include <memory>
 
 #include "filum/collision/obstacle.hpp"
-#include "filum/constraints/scripted_path.hpp"
+#include "filum/geometry/scripted_path.hpp"
 
 namespace filum::collision {
 
 class ProbeSphere final : public Obstacle {
  public:
-  ProbeSphere(double radius, constraints::ScriptedPath path);
+  ProbeSphere(double radius, geometry::ScriptedPath path);
   /// "radius": R (m) > 0, "path": [{"time": t, "position": [x, y, z]}, ...] with
   /// "interpolation": "linear" (default) or "smooth", "friction": μ.
   static std::unique_ptr<ProbeSphere> fromParams(const Params& p);
@@ -28,11 +28,11 @@ class ProbeSphere final : public Obstacle {
   double radius() const { return radius_; }
   const Vec3& center() const { return center_; }
   const Vec3& velocity() const { return velocity_; }
-  const constraints::ScriptedPath& path() const { return path_; }
+  const geometry::ScriptedPath& path() const { return path_; }
 
  private:
   double radius_;
-  constraints::ScriptedPath path_;
+  geometry::ScriptedPath path_;
   Vec3 center_ = Vec3::Zero();    // at the last moveTo (m)
   Vec3 velocity_ = Vec3::Zero();  // m/s
 };

@@ -22,9 +22,7 @@
 
 namespace filum {
 class Scene;
-namespace mechanics {
-class DynamicSpline;
-}
+class CurveBody;
 }  // namespace filum
 
 namespace filum::collision {
@@ -50,7 +48,7 @@ class SphereCollisionModel final : public CollisionModel {
   /// Resamples the spheres on the curve at state s and maps centres and velocities down.
   void update(const SceneState& s);
 
-  const mechanics::DynamicSpline& spline() const { return *spline_; }
+  const CurveBody& curve() const { return *curve_; }
   /// Index of the body in Scene::bodies() and of its first point in the state.
   int bodyIndex() const { return body_index_; }
   int pointOffset() const { return point_offset_; }
@@ -66,7 +64,7 @@ class SphereCollisionModel final : public CollisionModel {
 
  private:
   Settings settings_;
-  const mechanics::DynamicSpline* spline_ = nullptr;
+  const CurveBody* curve_ = nullptr;
   int body_index_ = 0;
   int point_offset_ = 0;
   double radius_ = 0.0;

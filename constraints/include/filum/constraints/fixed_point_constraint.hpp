@@ -19,7 +19,7 @@ class FixedPointConstraint final : public ProjectedPointConstraint {
   /// 0 disables it (acceleration-level constraint only, which drifts), default 0.1/dt.
   FixedPointConstraint(double abscissa, PointTarget target, Baumgarte stabilization = Baumgarte());
   /// Shorthand of the walking skeleton: fixed target (nullopt: initial P(s)) or scripted path.
-  FixedPointConstraint(double abscissa, std::optional<Vec3> target, ScriptedPath path,
+  FixedPointConstraint(double abscissa, std::optional<Vec3> target, geometry::ScriptedPath path,
                        std::optional<double> stabilization);
 
   /// "abscissa": s, "target": [x,y,z] or {"object": node, "abscissa": s2} (default: initial

@@ -13,7 +13,7 @@
 #include <optional>
 #include <string>
 
-#include "filum/constraints/scripted_path.hpp"
+#include "filum/geometry/scripted_path.hpp"
 #include "filum/core/component.hpp"
 #include "filum/core/constraint_rows.hpp"
 #include "filum/core/params.hpp"
@@ -34,7 +34,7 @@ class PointTarget {
   /// Where the constrained point starts (resolved by init).
   PointTarget() = default;
   static PointTarget fixed(const Vec3& x) { return PointTarget(Kind::kFixed, x); }
-  static PointTarget scripted(ScriptedPath path);
+  static PointTarget scripted(geometry::ScriptedPath path);
   /// Attached to the point at abscissa s2 ∈ [0, 1] of the spline held by node `object`.
   static PointTarget attached(std::string object, double abscissa);
 
@@ -69,7 +69,7 @@ class PointTarget {
   void addReaction(const Vec3& F, VecX& B) const;
 
   /// The attached spline and the basis at its abscissa (attached only).
-  const mechanics::DynamicSpline* body() const { return body_; }
+  const CurveBody* body() const { return body_; }
   const geometry::BasisRow& basisRow() const { return row_; }
   /// "object" and JSON place of an attached target, for messages.
   const std::string& objectPath() const { return object_; }
@@ -79,11 +79,11 @@ class PointTarget {
 
   Kind kind_ = Kind::kStart;
   Vec3 position_ = Vec3::Zero();  // fixed (and resolved start) position
-  ScriptedPath path_;
+  geometry::ScriptedPath path_;
   std::string object_;     // attached: node path
   std::string where_;      // attached: JSON place of "object" (file: /pointer)
   double abscissa_ = 0.0;  // attached: s2
-  const mechanics::DynamicSpline* body_ = nullptr;
+  const CurveBody* body_ = nullptr;
   geometry::BasisRow row_;  // attached: basis at s2
 };
 

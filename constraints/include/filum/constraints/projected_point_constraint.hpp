@@ -28,6 +28,8 @@ class ProjectedPointConstraint : public Constraint {
   double abscissa() const { return abscissa_; }
   double stabilization() const { return baumgarte_.omega(); }
   const PointTarget& target() const { return target_; }
+  std::optional<Vec3> targetPoint(const SceneState& s) const override { return target_.position(s); }
+  bool hasTargetPoint() const override { return true; }
   /// The unit directions d_i of the rows.
   const std::vector<Vec3>& directions() const { return directions_; }
   /// X(t) of a fixed or scripted target.

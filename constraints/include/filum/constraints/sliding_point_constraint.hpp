@@ -69,6 +69,8 @@ class SlidingPointConstraint final : public Constraint {
   double abscissaRate(const SceneState& s) const { return s.v[extraIndex()]; }
   double friction() const { return friction_; }
   const PointTarget& target() const { return target_; }
+  std::optional<Vec3> targetPoint(const SceneState& s) const override { return target_.position(s); }
+  bool hasTargetPoint() const override { return true; }
   /// P(s(t)) − X(t).
   Vec3 gap(const SceneState& s) const;
 
@@ -87,7 +89,7 @@ class SlidingPointConstraint final : public Constraint {
   PointTarget target_;
   double friction_;
   Baumgarte baumgarte_;
-  const mechanics::DynamicSpline* spline_ = nullptr;
+  const CurveBody* spline_ = nullptr;
 };
 
 }  // namespace filum::constraints

@@ -47,7 +47,7 @@ class SplineJunctionConstraint final : public Constraint {
 
   int continuity() const { return continuity_; }
   double ratio() const { return ratio_; }
-  const mechanics::DynamicSpline& other() const { return *other_; }
+  const CurveBody& other() const { return *other_; }
   double abscissa() const { return abscissa_; }
   double otherAbscissa() const { return other_abscissa_; }
 
@@ -63,7 +63,7 @@ class SplineJunctionConstraint final : public Constraint {
   std::optional<double> requested_ratio_;
   Baumgarte baumgarte_;
   double ratio_ = 1.0;
-  const mechanics::DynamicSpline* other_ = nullptr;
+  const CurveBody* other_ = nullptr;
   geometry::BasisRow row1_, row2_;
 };
 

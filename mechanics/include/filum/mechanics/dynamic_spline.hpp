@@ -8,14 +8,14 @@
 
 #include <memory>
 
-#include "filum/core/mechanical_state.hpp"
+#include "filum/core/curve_body.hpp"
 #include "filum/core/params.hpp"
 #include "filum/geometry/spline_basis.hpp"
 #include "filum/mechanics/banded_cholesky.hpp"
 
 namespace filum::mechanics {
 
-class DynamicSpline final : public MechanicalState {
+class DynamicSpline final : public CurveBody {
  public:
   /// initial: n × 3 control points (m); mass: total mass (kg) > 0; radius: cross-section
   /// radius (m) > 0, used by collision and skinning.
@@ -26,7 +26,9 @@ class DynamicSpline final : public MechanicalState {
   ///   "control_points": [[x,y,z], ...]  or  {"from": [..], "to": [..], "count": n} — a straight
   ///      thread whose curve runs from `from` to `to`,
   ///   "mass": kg  or  "density": kg/m³ (with the radius and the initial arc length),
-  ///   "radius": m (default 1e-4, a 3-0 suture is 1e-4 m).
+  ///   "radius": m (default 1e-4, a 3-0 suture is 1e-4 m),
+  ///   "refine": [{"time": s, "abscissas": [...]}, ...] control points to insert during the run
+  ///      (CurveBody::refine, the curve unchanged; a uniform cubic B-spline becomes a NUBS).
   static std::unique_ptr<DynamicSpline> fromParams(const Params& p);
 
   std::string typeName() const override { return "DynamicSpline"; }
@@ -40,9 +42,16 @@ class DynamicSpline final : public MechanicalState {
   void addGravity(const Vec3& g, PointsRef B) const override;
   double gravityPotential(const Vec3& g, ConstPointsRef q) const override;
 
-  const geometry::SplineBasis& basis() const { return *basis_; }
-  double mass() const { return mass_; }
-  double radius() const { return radius_; }
+  // CurveBody
+  const geometry::SplineBasis& basis() const override { return *basis_; }
+  double mass() const override { return mass_; }
+  double radius() const override { return radius_; }
+  /// Knot insertion (Oslo, geometry/knot_insertion.hpp) on the curve's knot form: a uniform
+  /// cubic B-spline becomes the NUBS on its uniform knots plus the new ones (the same curve and
+  /// abscissas); the mass matrix is assembled and factored again (M_ij = m ∫ b_i b_j ds, the
+  /// same mass per unit of s, so the same distribution of mass along the thread).
+  SparseMatrix refine(const std::vector<double>& abscissas) override;
+
   /// Arc length of the initial curve (m).
   double restLength() const { return rest_length_; }
   const SparseMatrix& massMatrix() const { return mass_matrix_; }

@@ -37,6 +37,13 @@ class Constraint : public BodyComponent {
   /// a sliding point's tangent), added to B before the tendency solve: B += Q (3N, N).
   virtual void addForce(const SceneState& /*s*/, VecX& /*B*/) const {}
 
+  /// Where a point constraint holds its point at state s (its fixed, scripted or attached
+  /// target), for whoever shows or follows it (a sphere drawn at the target); nullopt for
+  /// constraints without a target point.
+  virtual std::optional<Vec3> targetPoint(const SceneState& /*s*/) const { return std::nullopt; }
+  /// Whether targetPoint gives a point (a point constraint), known once the scene is built.
+  virtual bool hasTargetPoint() const { return false; }
+
   // Extra scalar DOFs owned by this constraint (SceneState layout: after the 3N point
   // coordinates, at extraIndex() .. extraIndex() + extraDofCount() − 1 of q, v and a).
 

@@ -12,8 +12,15 @@
 
 namespace filum {
 
+class CurveBody;
+
 class MechanicalState : public Component {
  public:
+  /// The body as a curve (core/curve_body.hpp) when it is one, else null: how constraints,
+  /// collision and visual reach a body's curve without naming its type.
+  virtual const CurveBody* curve() const { return nullptr; }
+  virtual CurveBody* curve() { return nullptr; }
+
   /// Number of DOF points (control points) of this body.
   virtual int pointCount() const = 0;
 

@@ -25,6 +25,8 @@
 
 namespace filum {
 
+class CurveBody;
+
 /// Model data of the scene itself: constant during a run.
 struct SceneSettings {
   std::string name = "scene";
@@ -105,6 +107,18 @@ class Scene {
   /// Replaces the state (e.g. restores a saved one); scheduled releases follow its time.
   void setState(const SceneState& s);
   long stepCount() const { return step_count_; }
+
+  /// Inserts control points into `body` at the abscissas (its curve unchanged: CurveBody::refine)
+  /// between two steps, and lays the scene out anew in one call: every body keeps its motion
+  /// (the refined one q̃ = A q, ṽ = A v), time and the constraints' extra DOFs are kept, and
+  /// force fields, constraints and the collision pipeline are bound to the new layout (their
+  /// rows, mappings and contact sets are rebuilt); the step matrix lays itself out at its next
+  /// assembly. Visual models follow through CurveBody::layoutRevision. Throws SceneError when
+  /// the body cannot be refined (nothing changed then). A saved SceneState of the old layout no
+  /// longer fits (setState refuses it).
+  void refine(CurveBody& body, const std::vector<double>& abscissas);
+  /// Counts layout changes (refine): 0 for a scene that never changed its points.
+  long layoutRevision() const { return layout_revision_; }
   /// Steps redone in halves because the contact set of their start missed a contact
   /// (CollisionPipeline::missedContact: a pass-through, a deep overlap or a fast slide; since init).
   long contactHalvings() const { return contact_halvings_; }
@@ -137,7 +151,8 @@ class Scene {
     explicit MassInverse(const Scene& scene) : scene_(scene) {}
     void solveBlock(int body, Eigen::Ref<VecX> x) const override;
     bool sameOnEveryAxis() const override { return true; }  // M ⊗ I₃ (paper eq. 3)
-    long revision() const override { return 0; }            // M is factored once, never changes
+    // M is factored once per layout (Scene::refine factors a refined body's M again).
+    long revision() const override { return scene_.layout_revision_; }
 
    private:
     const Scene& scene_;
@@ -147,12 +162,36 @@ class Scene {
   SceneSettings settings_;
   SceneState state_;
   SceneState last_good_;
+  // The step pipeline (DESIGN.md "One time step"), one function per stage; step() runs
+  // beginStep, advance (detectCollisions, integrate, again in halves for missed contacts) and
+  // endStep.
+  /// Keeps the last good state and applies the events due at the step's start (releases: cuts).
+  void beginStep();
   /// Advances state_ by h (detection at its start, then the integrator); redone as two halves,
   /// recursively, while the collision pipeline finds a contact the step's contact set missed.
   void advance(double h, int depth);
+  /// Stages 1–2 at the (sub-)step's start: the collision models map the positions down and
+  /// detect the contact set; force fields see the start state (ForceField::beginStep).
+  void detectCollisions(double h);
+  /// Stages 3–4: the integrator. Each of its evaluations calls computeForce (gravity, force
+  /// fields, contact penalties, mapped forces up through Jᵀ) and applyConstraints (constraints
+  /// and contacts by the one constraint solver), then integrates.
+  void integrate(double h);
+  /// Stage 5: a non-finite or too fast state is rolled back and reported; else the step counts.
+  StepReport endStep(StepReport report);
   static constexpr int kMaxContactHalvings = 6;
   std::vector<SceneState> substep_start_;  // one per halving depth (sized at init)
   long contact_halvings_ = 0;
+  long layout_revision_ = 0;
+  /// Binds force fields, constraints and the collision pipeline to the bodies' current layout
+  /// again (refine).
+  void bindComponents();
+  /// Extra DOF indices of the constraints after the 3N point coordinates.
+  void setExtraIndices();
+  /// Finds the collision pipeline and binds it (Scene::init).
+  void initCollision();
+  /// Buffers sized by the layout: forces, the last good state, the sub-step starts.
+  void resizeWorkspace();
   long step_count_ = 0;
   int point_count_ = 0;
   int extra_count_ = 0;  // extra DOFs of constraints (scene_state.hpp)

@@ -8,7 +8,7 @@
 //   "constraint": "name"      the target X(t) of a point or sliding-point constraint (a
 //                             scripted grip, a fixed point's anchor, a needle hole), hidden
 //                             once the constraint is released;
-//   "path": [{"time", "position"}, ...]  a scripted path (constraints/scripted_path.hpp, with
+//   "path": [{"time", "position"}, ...]  a scripted path (geometry/scripted_path.hpp, with
 //                             "interpolation"), e.g. the same path as a ProbeSphere obstacle.
 // "radius" (m; default the spline's radius), "resolution" (latitude rings, default 12),
 // "color", "opacity". Points on the spline go through a SplineAxisMapping (positions down).
@@ -19,16 +19,12 @@
 #include <string>
 #include <vector>
 
-#include "filum/constraints/scripted_path.hpp"
+#include "filum/geometry/scripted_path.hpp"
 #include "filum/visual/spline_axis_mapping.hpp"
 #include "filum/visual/visual_model.hpp"
 
 namespace filum {
 class Constraint;
-}
-
-namespace filum::constraints {
-class PointTarget;
 }
 
 namespace filum::visual {
@@ -42,7 +38,7 @@ class SphereModel final : public VisualModel {
     std::vector<double> abscissas;    // kOnCurve
     int count = 0;                    // kEvenlyOnCurve
     std::string constraint;           // kConstraintTarget
-    constraints::ScriptedPath path;   // kScriptedPath
+    geometry::ScriptedPath path;   // kScriptedPath
     std::optional<double> radius;     // m
     int resolution = 12;
   };
@@ -69,7 +65,6 @@ class SphereModel final : public VisualModel {
   TriangleMesh unit_;
   std::unique_ptr<SplineAxisMapping> mapping_;
   const Constraint* constraint_ = nullptr;
-  const constraints::PointTarget* target_ = nullptr;  // constraint_'s target
   Points centers_;
   TriangleMesh mesh_;
 };

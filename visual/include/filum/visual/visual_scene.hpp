@@ -30,6 +30,8 @@ class VisualScene {
   bool bounds(Vec3& lower, Vec3& upper) const;
 
  private:
+  Scene& scene_;
+  long layout_revision_ = 0;  // the scene's layout the models are bound to (Scene::refine)
   std::vector<VisualModel*> models_;
   std::vector<std::string> names_;
   std::vector<std::unique_ptr<VisualModel>> defaults_;  // default skins (not in the node tree)

@@ -15,7 +15,7 @@
 #include "filum/core/params.hpp"
 #include "filum/core/types.hpp"
 
-namespace filum::constraints {
+namespace filum::geometry {
 
 class ScriptedPath {
  public:
@@ -48,4 +48,4 @@ class ScriptedPath {
   Interpolation interpolation_ = Interpolation::kLinear;
 };
 
-}  // namespace filum::constraints
+}  // namespace filum::geometry

@@ -1,8 +1,8 @@
-#include "filum/constraints/scripted_path.hpp"
+#include "filum/geometry/scripted_path.hpp"
 
 #include <stdexcept>
 
-namespace filum::constraints {
+namespace filum::geometry {
 
 ScriptedPath::ScriptedPath(std::vector<Keyframe> keyframes, Interpolation interpolation)
     : keyframes_(std::move(keyframes)), interpolation_(interpolation) {
@@ -86,4 +86,4 @@ Vec3 ScriptedPath::acceleration(double t) const {
          (h * h);
 }
 
-}  // namespace filum::constraints
+}  // namespace filum::geometry

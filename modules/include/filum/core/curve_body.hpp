@@ -1,0 +1,81 @@
+// CurveBody: a body whose configuration is a curve P(s) = Σ_i b_i(s) q_i over s ∈ [0, 1]
+// (paper eq. 1): the interface through which constraints, collision, haptics and visual see a
+// one-dimensional body, whatever its kind (the dynamic spline today; rods with rotations later,
+// whose centre line is such a curve). Nothing outside mechanics/ names a concrete body type:
+// MechanicalState::curve() gives this interface or null, no cast needed.
+//
+// Everything a client needs of the curve goes through its basis row at s (BasisRow: the first
+// point and the weights b_j(s), b'_j(s), b''_j(s)): the position, tangent and second derivative,
+// and the mapping row of a point on the body — a force F at s adds b_j(s) F to point first + j
+// (DESIGN.md "mappings"). The parameter range is [0, 1]; pointCount() is the number of control
+// points, which changes only through refine (between steps, with Scene::refine).
+#pragma once
+
+#include "filum/core/curve_basis.hpp"
+#include "filum/core/mechanical_state.hpp"
+#include "filum/core/params.hpp"
+
+#include <string>
+#include <vector>
+
+namespace filum {
+
+class CurveBody : public MechanicalState {
+ public:
+  /// The basis b_i(s) of the curve (its row at s: basis().evaluate(s, row)).
+  virtual const CurveBasis& basis() const = 0;
+  /// Cross-section radius (m), for collision and skinning.
+  virtual double radius() const = 0;
+  /// Total mass (kg).
+  virtual double mass() const = 0;
+
+  const CurveBody* curve() const override { return this; }
+  CurveBody* curve() override { return this; }
+
+  /// Inserts control points without changing the curve (knots at the abscissas s ∈ (0, 1),
+  /// exact B-spline knot insertion — the refinement step of adaptive NUBS): the body's model
+  /// (basis, rest shape, mass) takes the new points. Returns A (ñ × n) such that the new points
+  /// of any configuration are q̃ = A q (and velocities ṽ = A v). Use Scene::refine, which also
+  /// lays the scene out anew; called alone it leaves the scene's state on the old layout.
+  /// Throws SceneError (at this body) when its basis cannot be refined or an abscissa is not
+  /// inside (0, 1).
+  virtual SparseMatrix refine(const std::vector<double>& abscissas) = 0;
+  /// Insertions a scene file schedules ("refine": [{"time": t, "abscissas": [s, ...]}, ...] in the
+  /// body's parameters, times increasing): Scene::step applies each at the first step that starts
+  /// at or after its time.
+  struct Refinement {
+    double time = 0.0;
+    std::vector<double> abscissas;
+  };
+  /// Reads p[key] (absent: none); throws SceneError at the faulty entry.
+  static std::vector<Refinement> refinementsFromParams(const Params& p, const std::string& key);
+  void setRefinements(std::vector<Refinement> refinements) { refinements_ = std::move(refinements); }
+  /// The first scheduled refinement not applied yet if it is due at time t, else null.
+  const Refinement* refinementDue(double t) const {
+    return next_refinement_ < refinements_.size() && refinements_[next_refinement_].time <= t
+               ? &refinements_[next_refinement_]
+               : nullptr;
+  }
+  void markRefinementApplied() { ++next_refinement_; }
+
+  /// Counts the layout changes of this body (refine): whoever keeps indices into its points
+  /// or rows of its basis (mappings, visuals) compares it with the count it was built for.
+  long layoutRevision() const { return layout_revision_; }
+
+  /// The mapping row at s ∈ [0, 1] (clamped): weights and first point, local to this body.
+  void row(double s, BasisRow& out) const { basis().evaluate(s, out); }
+  /// P(s), P'(s) and P''(s) of this body in the scene state `q` (global 3N vector).
+  Vec3 position(const VecX& q, double s) const;
+  Vec3 tangent(const VecX& q, double s) const;
+  Vec3 secondDerivative(const VecX& q, double s) const;
+
+ protected:
+  void noteLayoutChange() { ++layout_revision_; }
+
+ private:
+  long layout_revision_ = 0;
+  std::vector<Refinement> refinements_;
+  std::size_t next_refinement_ = 0;
+};
+
+}  // namespace filum
