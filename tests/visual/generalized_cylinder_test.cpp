@@ -4,6 +4,8 @@
 // carries the control points down to the axis passes the generic mapping test.
 #include <gtest/gtest.h>
 
+#include "filum/core/curve_body.hpp"
+
 #include <cmath>
 #include <numbers>
 
@@ -160,6 +162,24 @@ TEST(GeneralizedCylinder, UpdateFollowsTheControlPoints) {
   for (Eigen::Index i = 0; i < s.q.size(); i += 3) s.q[i + 1] += 0.25;
   l.visuals->update(s);
   EXPECT_LE(((skin.mesh().vertices - before).rowwise() - Vec3(0, 0.25, 0).transpose()).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(GeneralizedCylinder, RebindsToABodyWhosePointsWereInsertedAndKeepsItsAxis) {
+  // Scene::refine inserts two control points into the helix (its curve unchanged); the visual
+  // scene sees the new layout revision at its next update and rebuilds the skin's mapping on the
+  // refined basis. Same curve, same rest curve: the rings sit at the same abscissas (equal arc
+  // length, computed anew on the refined pieces to ArcLengthParameterization's relative tolerance
+  // 1e-12, ~1e-13 m over the helix's 0.2 m) and so on the same axis points (bound 1e-10 m).
+  const Loaded l = load(test::splineScene(test::helix(), json::array({{{"type", "GeneralizedCylinder"}, {"samples", 40}}})));
+  const Points axis = skinOf(l).axis();
+  CurveBody* curve = l.scene->bodies().front()->curve();
+  const int points = curve->pointCount();
+  l.scene->refine(*curve, {0.3, 0.7});
+  ASSERT_EQ(curve->pointCount(), points + 2);
+  l.visuals->update(l.scene->state());
+  ASSERT_EQ(skinOf(l).axis().rows(), axis.rows());
+  EXPECT_LE((skinOf(l).axis() - axis).cwiseAbs().maxCoeff(), 1e-10);
+  expectClosedOrientedManifold(skinOf(l).mesh());
 }
 
 TEST(SplineAxisMapping, PassesTheGenericMappingTest) {
