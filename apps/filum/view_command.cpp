@@ -25,16 +25,17 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Adds {"type": "MouseProbe"} to every node that holds a DynamicSpline.
-void addProbeForces(nlohmann::json& node) {
-  if (node.contains("components") && node["components"].is_array()) {
-    bool spline = false;
-    for (const auto& c : node["components"])
-      if (c.is_object() && c.value("type", "") == "DynamicSpline") spline = true;
-    if (spline) node["components"].push_back({{"type", "MouseProbe"}, {"name", "mouse probe"}});
+/// Gives every curve body of the loaded scene the mouse probe's force field (the scene file is
+/// not touched) and binds the scene again.
+void attachProbe(Scene& scene, const std::shared_ptr<visual::ProbeState>& probe) {
+  for (MechanicalState* body : scene.bodies()) {
+    if (!body->curve()) continue;
+    auto field = std::make_unique<visual::ProbeForceField>(probe);
+    field->setName("mouse probe");
+    field->setOrigin(body->origin() + " (mouse probe of filum view)");
+    body->node()->addComponent(std::move(field));
   }
-  if (node.contains("nodes") && node["nodes"].is_array())
-    for (auto& child : node["nodes"]) addProbeForces(child);
+  scene.init();
 }
 
 /// The depth (along the view) of the spline point whose projection is nearest to pixel (u, v).
@@ -73,21 +74,14 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
     log << "error: filum view: " << visual::renderingUnavailableMessage() << '\n';
     return kRunIoError;
   }
-  // The scene, with the mouse probe's force on every spline.
+  // The scene, with the mouse probe's force on every curve body.
   auto probe = std::make_shared<visual::ProbeState>();
-  Factory factory = makeFactory();
-  factory.add("MouseProbe", "the mouse probe of filum view (push and grab)",
-              [probe](const Params& p) {
-                p.finish();
-                return std::make_unique<visual::ProbeForceField>(probe);
-              });
   std::unique_ptr<Scene> scene;
   nlohmann::json document;
   try {
     document = readJsonFile(options.scene);
-    nlohmann::json patched = document;
-    addProbeForces(patched);
-    scene = loadScene(patched, options.scene, factory);
+    scene = loadScene(document, options.scene, makeFactory());
+    attachProbe(*scene, probe);
   } catch (const SceneError& e) {
     log << "error: " << e.what() << '\n';
     return kRunSceneError;

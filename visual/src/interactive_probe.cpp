@@ -1,6 +1,7 @@
 #include "filum/visual/interactive_probe.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/closest_point.hpp"
@@ -49,19 +50,26 @@ void ProbeForceField::init(const Scene& scene) {
   mapping_ = std::make_unique<SplineAxisMapping>(spline->basis(), s);
   x_.resize(m, 3);
   f_.resize(m, 3);
+  unit_load_.resize(n, 3);
+  response_.resize(n, 3);
+  mass_abscissa_ = std::numeric_limits<double>::quiet_NaN();  // no cached mass (NaN equals nothing)
   sample_mass_ = effectiveMass(0.5);
 }
 
 double ProbeForceField::effectiveMass(double s) const {
-  // bᵀ M⁻¹ b with one banded solve (M is the same on x, y and z: use the first column).
+  // bᵀ M⁻¹ b with one banded solve (M is the same on x, y and z: use the first column), in the
+  // workspace sized by init, and kept for the last abscissa asked (the grab's, every call).
+  if (s == mass_abscissa_) return mass_at_abscissa_;
   const auto& spline = *body().curve();
   geometry::BasisRow row;
   spline.basis().evaluate(s, row);
-  Points b = Points::Zero(spline.pointCount(), 3);
-  for (int j = 0; j < row.count; ++j) b(row.first + j, 0) = row.value[j];
-  Points x = b;
-  spline.solveMass(x);
-  return 1.0 / b.col(0).dot(x.col(0));
+  unit_load_.setZero();
+  for (int j = 0; j < row.count; ++j) unit_load_(row.first + j, 0) = row.value[j];
+  response_ = unit_load_;
+  spline.solveMass(response_);
+  mass_abscissa_ = s;
+  mass_at_abscissa_ = 1.0 / unit_load_.col(0).dot(response_.col(0));
+  return mass_at_abscissa_;
 }
 
 double ProbeForceField::pushStiffness() const {

@@ -39,7 +39,8 @@ struct ProbeState {
 /// (m) of it; returns whether a point was grabbed. Uses the scene's current state.
 bool startGrab(ProbeState& probe, const Scene& scene, double capture);
 
-/// The probe's forces on one DynamicSpline (scene type "MouseProbe", added by `filum view`).
+/// The probe's forces on one curve body (added to every curve body by `filum view`, not a
+/// scene-file component).
 class ProbeForceField final : public ForceField {
  public:
   /// samples: points along the curve tested against the sphere (0: 4 per control point).
@@ -68,6 +69,8 @@ class ProbeForceField final : public ForceField {
   double dt_ = 1e-4, thread_radius_ = 0.0, sample_mass_ = 0.0;
   std::unique_ptr<SplineAxisMapping> mapping_;
   mutable Points x_, f_;  // workspace: sample positions and forces
+  mutable Points unit_load_, response_;  // workspace of effectiveMass: b and M⁻¹ b
+  mutable double mass_abscissa_ = 0.0, mass_at_abscissa_ = 0.0;  // its last answer
 };
 
 /// The probe's sphere as a visual model: drawn while the mouse button is held, red when it
