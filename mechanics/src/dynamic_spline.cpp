@@ -1,12 +1,14 @@
 #include "filum/mechanics/dynamic_spline.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/bspline_curve.hpp"
 #include "filum/geometry/gauss_legendre.hpp"
 #include "filum/geometry/knot_insertion.hpp"
+#include "filum/geometry/knot_removal.hpp"
 #include "filum/geometry/nonuniform_bspline.hpp"
 #include "filum/geometry/spline_curve.hpp"
 #include "filum/geometry/uniform_cubic_bspline.hpp"
@@ -25,16 +27,28 @@ DynamicSpline::DynamicSpline(std::unique_ptr<geometry::SplineBasis> basis, Point
       factor_(mass_matrix_, basis_->degree()),
       basis_integrals_(basisIntegrals(*basis_)) {}
 
-SparseMatrix DynamicSpline::refine(const std::vector<double>& abscissas) {
+geometry::BSplineCurve DynamicSpline::knotForm() const {
   // Only a B-spline's control points are those of its knot form (Catmull-Rom's are not).
-  geometry::BSplineCurve curve;
   try {
     if (basis_->name() == "catmull_rom") throw std::invalid_argument("");
-    curve = geometry::toBSplineCurve(*basis_, initial_);
+    return geometry::toBSplineCurve(*basis_, initial_);
   } catch (const std::invalid_argument&) {
-    throw SceneError(origin(), "a B-spline basis (uniform_cubic_bspline or a NUBS) to insert control points into",
+    throw SceneError(origin(), "a B-spline basis (uniform_cubic_bspline or a NUBS) to insert or remove control points",
                      "the " + basis_->name() + " basis of " + describe());
   }
+}
+
+void DynamicSpline::adopt(int degree, std::vector<double> knots, const SparseMatrix& R) {
+  basis_ = std::make_unique<geometry::NonUniformBSpline>(degree, std::move(knots));
+  initial_ = R * initial_;  // the rest shape, mapped like any configuration
+  mass_matrix_ = mechanics::massMatrix(*basis_, mass_);
+  factor_ = BandedCholesky(mass_matrix_, basis_->degree());
+  basis_integrals_ = basisIntegrals(*basis_);
+  noteLayoutChange();
+}
+
+SparseMatrix DynamicSpline::refine(const std::vector<double>& abscissas) {
+  const geometry::BSplineCurve curve = knotForm();
   // s ∈ [0, 1] maps affinely onto the knot domain [t_d, t_n] (bspline_curve.hpp).
   const double u0 = curve.knots[curve.degree], u1 = curve.knots[pointCount()];
   std::vector<double> new_knots;
@@ -51,13 +65,45 @@ SparseMatrix DynamicSpline::refine(const std::vector<double>& abscissas) {
     throw SceneError(origin(), "knots that keep the curve valid (multiplicity <= degree)", e.what());
   }
   SparseMatrix A = geometry::knotInsertionMatrix(curve.degree, curve.knots, refined);
-  basis_ = std::make_unique<geometry::NonUniformBSpline>(curve.degree, std::move(refined));
-  initial_ = A * initial_;  // the rest shape, refined like any configuration
-  mass_matrix_ = mechanics::massMatrix(*basis_, mass_);
-  factor_ = BandedCholesky(mass_matrix_, basis_->degree());
-  basis_integrals_ = basisIntegrals(*basis_);
-  noteLayoutChange();
+  adopt(curve.degree, std::move(refined), A);
   return A;
+}
+
+SparseMatrix DynamicSpline::coarsen(double abscissa, ConstPointsRef q, double tolerance) {
+  const geometry::BSplineCurve rest = knotForm();
+  const int d = rest.degree, n = pointCount();
+  const double u0 = rest.knots[d], u1 = rest.knots[n];
+  // The interior knot nearest to u(s); it must be that knot to round-off of the map s → u.
+  const double u = u0 + abscissa * (u1 - u0);
+  double knot = 0.0, gap = std::numeric_limits<double>::infinity();
+  for (int i = d + 1; i < n; ++i)
+    if (std::abs(rest.knots[i] - u) < gap) gap = std::abs(rest.knots[i] - u), knot = rest.knots[i];
+  if (!(gap <= 1e-12 * (u1 - u0)))
+    throw SceneError(origin(), "the abscissa of an interior knot of " + describe() + " to remove",
+                     std::to_string(abscissa));
+  // R column by column: removeKnot is linear in the points (fixed rows, least squares on the
+  // d − 1 points around the knot), so it maps unit points e_j to column j of R.
+  geometry::BSplineCurve unit{d, rest.knots, Points::Zero(n, 3)};
+  std::vector<Eigen::Triplet<double>> entries;
+  std::vector<double> coarse_knots;
+  for (int j = 0; j < n; j += 3) {
+    unit.control_points.setZero();
+    for (int c = 0; c < 3 && j + c < n; ++c) unit.control_points(j + c, c) = 1.0;
+    const geometry::KnotRemoval removal = geometry::removeKnot(unit, knot);
+    const Points& p = removal.curve.control_points;
+    for (int i = 0; i < p.rows(); ++i)
+      for (int c = 0; c < 3 && j + c < n; ++c)
+        if (p(i, c) != 0.0) entries.emplace_back(i, j + c, p(i, c));
+    coarse_knots = removal.curve.knots;
+  }
+  SparseMatrix R(n - 1, n);
+  R.setFromTriplets(entries.begin(), entries.end());
+  // How far the curve moves, for the state and for the rest shape (convex-hull bound).
+  const double moved = std::max(geometry::removeKnot(geometry::BSplineCurve{d, rest.knots, Points(q)}, knot).error_bound,
+                                geometry::removeKnot(rest, knot).error_bound);
+  if (!(moved <= tolerance)) return SparseMatrix();
+  adopt(d, std::move(coarse_knots), R);
+  return R;
 }
 
 void DynamicSpline::addGravity(const Vec3& g, PointsRef B) const {

@@ -353,13 +353,26 @@ void Scene::refine(CurveBody& body, const std::vector<double>& abscissas) {
   const SceneState old = state_;
   std::vector<int> old_offsets;
   for (const MechanicalState* b : bodies_) old_offsets.push_back(b->offset());
-  const int old_points = body.pointCount();
   const SparseMatrix A = body.refine(abscissas);  // throws before changing anything
-  if (A.cols() != old_points || A.rows() != body.pointCount())
-    throw SceneError(body.origin(), "a refinement matrix of " + std::to_string(body.pointCount()) + " x " +
-                                        std::to_string(old_points),
-                     std::to_string(A.rows()) + " x " + std::to_string(A.cols()));
+  relayout(body, A, old, old_offsets);
+}
 
+bool Scene::coarsen(CurveBody& body, double abscissa, double tolerance) {
+  if (!initialized_) init();
+  const SceneState old = state_;
+  std::vector<int> old_offsets;
+  for (const MechanicalState* b : bodies_) old_offsets.push_back(b->offset());
+  const SparseMatrix R = body.coarsen(abscissa, body.block(state_.q), tolerance);
+  if (R.rows() == 0) return false;  // the curve would move further than the tolerance
+  relayout(body, R, old, old_offsets);
+  return true;
+}
+
+void Scene::relayout(const CurveBody& body, const SparseMatrix& A, const SceneState& old,
+                     const std::vector<int>& old_offsets) {
+  if (A.rows() != body.pointCount())
+    throw SceneError(body.origin(), "a layout map with one row per new point (" + std::to_string(body.pointCount()) + ")",
+                     std::to_string(A.rows()) + " rows");
   point_count_ = 0;
   for (MechanicalState* b : bodies_) {
     b->setOffset(point_count_);
@@ -369,17 +382,17 @@ void Scene::refine(CurveBody& body, const std::vector<double>& abscissas) {
   state_.v.resize(3 * point_count_ + extra_count_);
   for (std::size_t k = 0; k < bodies_.size(); ++k) {
     MechanicalState* b = bodies_[k];
-    const int n = b == &body ? old_points : b->pointCount();
+    const int n = b == &body ? static_cast<int>(A.cols()) : b->pointCount();
     const ConstPointsMap q(old.q.data() + 3 * old_offsets[k], n, 3), v(old.v.data() + 3 * old_offsets[k], n, 3);
     if (b == &body) {
-      b->block(state_.q) = A * q;  // q̃ = A q: the same curve
-      b->block(state_.v) = A * v;  // ṽ = A v: the same velocity field along it
+      b->block(state_.q) = A * q;  // q̃ = A q: the same curve (refine) or its fit (coarsen)
+      b->block(state_.v) = A * v;  // ṽ = A v: the velocity field the same way
     } else {
       b->block(state_.q) = q;
       b->block(state_.v) = v;
     }
   }
-  state_.q.tail(extra_count_) = old.q.tail(extra_count_);  // abscissas: s is unchanged by refinement
+  state_.q.tail(extra_count_) = old.q.tail(extra_count_);  // abscissas: s is kept by both
   state_.v.tail(extra_count_) = old.v.tail(extra_count_);
   ++layout_revision_;
   bindComponents();

@@ -1,5 +1,6 @@
 // Control points inserted between steps (Scene::refine, CurveBody::refine: knot insertion on the
-// curve's B-spline form) with constraints and contacts attached. Refinement changes the
+// curve's B-spline form) or removed (Scene::coarsen: knot removal within a tolerance) with
+// constraints and contacts attached. Refinement changes the
 // representation, not the physics:
 //   - the curve is the same: P̃(s) = Σ b̃_j(s) q̃_j with q̃ = A q equals P(s) for every s;
 //   - so is the velocity field Ṗ(s), and so the energy: the kinetic energy ½ ∫ m |Ṗ|² ds =
@@ -130,6 +131,57 @@ TEST(RefineBody, AScheduledRefinementOutsideTheCurveIsRefusedWithItsPlace) {
     EXPECT_NE(std::string(e.what()).find("/nodes/0/components/0/refine/0/abscissas"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("1.5"), std::string::npos) << e.what();
   }
+}
+
+TEST(CoarsenBody, AJustInsertedPointComesOutExactlyAndTheMotionContinues) {
+  // Removing a knot that was just inserted is exact (the curve is as smooth there as before the
+  // insertion): the curve, its velocity field and its energy are those before both, to the
+  // round-off of the least-squares fit (a 2 × 2 QR solve per removed point: a few ε |q|).
+  auto scene = loadScene(std::string(FILUM_SOURCE_DIR) + "/apps/scenes/threads.json", app::makeFactory());
+  for (int k = 0; k < 100; ++k) ASSERT_TRUE(scene->step().ok);
+  CurveBody* curve = scene->bodies()[2]->curve();
+  const int points = curve->pointCount();
+  const CurveSamples s0 = sampleCurves(*scene);
+  const Energy e0 = scene->energy(scene->state());
+  scene->refine(*curve, {0.45});
+  ASSERT_TRUE(scene->coarsen(*curve, 0.45, 1e-12));
+  EXPECT_EQ(curve->pointCount(), points);
+  EXPECT_EQ(scene->layoutRevision(), 2);
+  expectSameCurves(s0, sampleCurves(*scene));
+  const Energy e1 = scene->energy(scene->state());
+  EXPECT_LE(std::abs(e1.kinetic - e0.kinetic), 5e-12 * energyScale(e0));
+  EXPECT_LE(std::abs(e1.potential - e0.potential), 5e-12 * energyScale(e0) + 1e-12);
+  for (int k = 0; k < 100; ++k) ASSERT_TRUE(scene->step().ok) << "step " << k << " after coarsening";
+}
+
+TEST(CoarsenBody, ABentCurveKeepsItsPointUnlessTheToleranceAllowsTheFitAndThenMovesWithinIt) {
+  // After 0.2 s of falling the loop is bent: removing its knot at s = 3/7 (uniform cubic with 10
+  // points: interior knots at k/7) moves the curve. With tolerance 0 the removal is refused and
+  // nothing changes; with 1 mm it is done, and every sample of the curve moves by at most the
+  // convex-hull bound, which is <= the tolerance.
+  auto scene = loadScene(std::string(FILUM_SOURCE_DIR) + "/apps/scenes/threads.json", app::makeFactory());
+  for (int k = 0; k < 200; ++k) ASSERT_TRUE(scene->step().ok);
+  CurveBody* curve = scene->bodies()[0]->curve();
+  const int points = curve->pointCount();
+  const CurveSamples s0 = sampleCurves(*scene);
+  EXPECT_FALSE(scene->coarsen(*curve, 3.0 / 7.0, 0.0));
+  EXPECT_EQ(curve->pointCount(), points);
+  EXPECT_EQ(scene->layoutRevision(), 0);
+  ASSERT_TRUE(scene->coarsen(*curve, 3.0 / 7.0, 1e-3));
+  EXPECT_EQ(curve->pointCount(), points - 1);
+  const CurveSamples s1 = sampleCurves(*scene);
+  double moved = 0.0;
+  for (std::size_t i = 0; i < s0.positions.size(); ++i) moved = std::max(moved, (s1.positions[i] - s0.positions[i]).norm());
+  EXPECT_GT(moved, 0.0);
+  EXPECT_LE(moved, 1e-3);
+  for (int k = 0; k < 100; ++k) ASSERT_TRUE(scene->step().ok) << "step " << k << " after coarsening";
+}
+
+TEST(CoarsenBody, AnAbscissaAwayFromAKnotIsRefusedWithTheBody) {
+  auto scene = loadScene(std::string(FILUM_SOURCE_DIR) + "/apps/scenes/threads.json", app::makeFactory());
+  CurveBody* curve = scene->bodies()[0]->curve();
+  EXPECT_THROW(scene->coarsen(*curve, 0.5, 1.0), SceneError);  // knots at k/7: 0.5 is none
+  EXPECT_EQ(scene->layoutRevision(), 0);
 }
 
 TEST(RefineBody, ABasisWithoutKnotFormOrAnAbscissaOutsideTheCurveIsRefusedWithoutChange) {

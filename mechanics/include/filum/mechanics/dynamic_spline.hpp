@@ -10,6 +10,7 @@
 
 #include "filum/core/curve_body.hpp"
 #include "filum/core/params.hpp"
+#include "filum/geometry/bspline_curve.hpp"
 #include "filum/geometry/spline_basis.hpp"
 #include "filum/mechanics/banded_cholesky.hpp"
 
@@ -51,12 +52,20 @@ class DynamicSpline final : public CurveBody {
   /// abscissas); the mass matrix is assembled and factored again (M_ij = m ∫ b_i b_j ds, the
   /// same mass per unit of s, so the same distribution of mass along the thread).
   SparseMatrix refine(const std::vector<double>& abscissas) override;
+  /// Knot removal (geometry::removeKnot, least squares on the d − 1 points around the knot) of
+  /// the knot at s; R is linear in the points, built column by column from removeKnot.
+  SparseMatrix coarsen(double abscissa, ConstPointsRef q, double tolerance) override;
 
   /// Arc length of the initial curve (m).
   double restLength() const { return rest_length_; }
   const SparseMatrix& massMatrix() const { return mass_matrix_; }
 
  private:
+  /// The curve's B-spline form at rest (throws SceneError for a basis without one).
+  geometry::BSplineCurve knotForm() const;
+  /// Takes the basis on `knots` and the rest shape R · initial, rebuilds the mass matrix.
+  void adopt(int degree, std::vector<double> knots, const SparseMatrix& R);
+
   std::unique_ptr<geometry::SplineBasis> basis_;
   Points initial_;            // control points at t = 0 (n × 3, m)
   double mass_;               // total mass m (kg)

@@ -40,6 +40,15 @@ class CurveBody : public MechanicalState {
   /// Throws SceneError (at this body) when its basis cannot be refined or an abscissa is not
   /// inside (0, 1).
   virtual SparseMatrix refine(const std::vector<double>& abscissas) = 0;
+  /// Removes one control point: the knot at the abscissa s (an interior knot of the body's
+  /// B-spline form; geometry/knot_removal.hpp), if the curve moves by at most `tolerance` (m)
+  /// there — for the configuration q (this body's points) and for the rest shape alike. Removal
+  /// is exact only where the curve is smooth enough (a knot inserted earlier and not yet bent
+  /// there comes out exactly); otherwise the points are fitted by least squares and the convex
+  /// hull bound says by how much the curve moves. Returns R ((n − 1) × n, q̃ = R q) and updates
+  /// the model, or an empty matrix and changes nothing when the bound exceeds the tolerance.
+  /// Use Scene::coarsen. Throws SceneError when s is not at a knot of the body.
+  virtual SparseMatrix coarsen(double abscissa, ConstPointsRef q, double tolerance) = 0;
   /// Insertions a scene file schedules ("refine": [{"time": t, "abscissas": [s, ...]}, ...] in the
   /// body's parameters, times increasing): Scene::step applies each at the first step that starts
   /// at or after its time.

@@ -117,7 +117,11 @@ class Scene {
   /// the body cannot be refined (nothing changed then). A saved SceneState of the old layout no
   /// longer fits (setState refuses it).
   void refine(CurveBody& body, const std::vector<double>& abscissas);
-  /// Counts layout changes (refine): 0 for a scene that never changed its points.
+  /// Removes the control point of `body` whose knot is at the abscissa when the curve moves by
+  /// at most `tolerance` (m; CurveBody::coarsen), and lays the scene out anew as refine does.
+  /// Returns false, with nothing changed, when the removal would move the curve further.
+  bool coarsen(CurveBody& body, double abscissa, double tolerance);
+  /// Counts layout changes (refine, coarsen): 0 for a scene that never changed its points.
   long layoutRevision() const { return layout_revision_; }
   /// Steps redone in halves because the contact set of their start missed a contact
   /// (CollisionPipeline::missedContact: a pass-through, a deep overlap or a fast slide; since init).
@@ -186,6 +190,9 @@ class Scene {
   /// Binds force fields, constraints and the collision pipeline to the bodies' current layout
   /// again (refine).
   void bindComponents();
+  /// After `body` changed its points by q̃ = A q (A: new × old): new offsets, the state carried
+  /// over from `old` (bodies at old_offsets), the components bound again.
+  void relayout(const CurveBody& body, const SparseMatrix& A, const SceneState& old, const std::vector<int>& old_offsets);
   /// Extra DOF indices of the constraints after the 3N point coordinates.
   void setExtraIndices();
   /// Finds the collision pipeline and binds it (Scene::init).
