@@ -240,7 +240,14 @@ StepReport Scene::step() {
   fault_.clear();
   // Scheduled releases (cuts) take effect at the first step that starts at or after their time.
   for (Constraint* c : constraints_) c->updateRelease(state_);
-  advance(settings_.dt, 0);
+  try {
+    advance(settings_.dt, 0);
+  } catch (const std::exception& e) {
+    // A numerical routine that refused its input (a non-finite query point, a resampling
+    // beyond its limit): a fault of the step like any other, rolled back below.
+    // The routine does not say which component called it: the scene file is the place.
+    if (fault_.empty()) fault_ = settings_.source + ": the step failed: " + e.what();
+  }
 
   std::string culprit = fault_;
   if (culprit.empty() && !state_.allFinite()) {
