@@ -1,5 +1,6 @@
 #include "filum/run_command.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include "filum/core/params.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
+#include "filum/output_settings.hpp"
 #include "filum/run_output.hpp"
 #include "filum/run_visual.hpp"
 #include "filum/timing_summary.hpp"
@@ -23,26 +25,22 @@ using Clock = std::chrono::steady_clock;
 
 double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
-struct OutputSettings {
-  double interval = 0.01;
-  int curve_samples = 64;
-};
-
-/// The scene file's "output" block, checked like every other parameter.
-OutputSettings readOutputSettings(const nlohmann::json& document, const std::string& source) {
-  OutputSettings settings;
-  if (!document.contains("output")) return settings;
-  const Params top(document, source, "");
-  const Params output = top.object("output");
-  settings.interval = output.positive("interval", settings.interval);
-  settings.curve_samples = output.integer("curve_samples", 2, settings.curve_samples);
-  output.finish();
-  return settings;
+void writeSummary(const std::string& directory, const TimingSummary& timing, std::ostream& log) {
+  const std::string path = directory + "/timing.json";
+  std::ofstream out(path);
+  out << timing.json();
+  out.close();
+  if (!out) throw std::runtime_error(path + ": write failed (disk full or file size limit?)");
+  log << timing.text();
 }
 
-void writeSummary(const std::string& directory, const TimingSummary& timing, std::ostream& log) {
-  std::ofstream(directory + "/timing.json") << timing.json();
-  log << timing.text();
+// The command line's overrides, checked against the scene's limits (scene.hpp): the message
+// names the scene's dt, which a --duration shorter than dt / 2 or too long for it contradicts.
+std::string checkOverrides(const RunOptions& options, const Scene& scene, double duration) {
+  const std::string steps = stepCountProblem(duration, scene.settings().dt);
+  if (steps.empty()) return "";
+  return options.scene + ": /dt (with --duration " + describeJson(duration) + "): expected a run of 1 to " +
+         std::to_string(kMaxSteps) + " steps of dt = " + describeJson(scene.settings().dt) + " s, found " + steps;
 }
 
 }  // namespace
@@ -59,13 +57,20 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   } catch (const SceneError& e) {
     log << "error: " << e.what() << '\n';
     return kRunSceneError;
+  } catch (const std::exception& e) {  // a check missing in the loader: still the file, never an abort
+    log << "error: " << options.scene << ": cannot load the scene: " << e.what() << '\n';
+    return kRunSceneError;
   }
   const double dt = scene->settings().dt;
   const double duration = options.duration.value_or(scene->settings().duration);
   const double interval = options.interval.value_or(output.interval);
   const int samples = options.curve_samples.value_or(output.curve_samples);
-  if (!(duration > 0.0) || !(interval > 0.0) || samples < 2) {
-    log << "error: --duration and --every must be positive and --samples at least 2\n";
+  if (!(duration > 0.0) || !(interval > 0.0) || samples < 2 || samples > kMaxCurveSamples) {
+    log << "error: --duration and --every must be positive and --samples in [2, " << kMaxCurveSamples << "]\n";
+    return kRunSceneError;
+  }
+  if (const std::string problem = checkOverrides(options, *scene, duration); !problem.empty()) {
+    log << "error: " << problem << '\n';
     return kRunSceneError;
   }
   const std::string directory =
@@ -91,13 +96,24 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   const long render_every = visuals ? std::max(1L, std::lround(visuals->renderInterval() / dt)) : 0;
   double render_wall = 0.0;  // step wall time since the last rendered frame (s)
   std::vector<double> step_seconds;
-  step_seconds.reserve(steps);
+  step_seconds.reserve(std::min(steps, 1L << 20));  // steps <= kMaxSteps; grows past 8 MB only if the run does
   log << "scene '" << scene->settings().name << "': " << scene->bodies().size() << " bodies, "
       << scene->dofPointCount() << " control points, " << scene->constraints().size() << " constraints, "
       << scene->integrator().typeName() << ", dt = " << dt << " s, " << steps << " steps -> " << directory << '\n';
 
+  std::unique_ptr<RunOutput> output_files;
+  // The run stops: what happened, the frames kept, the summary (exit 3).
+  auto diverged = [&](const std::string& message) {
+    log << "error: " << message << '\n'
+        << "the " << (output_files ? output_files->frames() : 0) << " frames written so far in " << directory
+        << " are intact\n";
+    if (visuals) visuals->finish(*scene);
+    writeSummary(directory, TimingSummary::fromStepTimes(step_seconds, dt, seconds(Clock::now() - start)), log);
+    return kRunDiverged;
+  };
   try {
-    RunOutput out(directory, samples);
+    output_files = std::make_unique<RunOutput>(directory, samples);
+    RunOutput& out = *output_files;
     out.writeFrame(*scene);
     if (visuals) {
       visuals->writeMeshes(*scene);
@@ -108,13 +124,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
       const auto before = Clock::now();
       const StepReport report = scene->step();
       const auto after = Clock::now();
-      if (!report.ok) {
-        log << "error: " << report.message << '\n'
-            << "the " << out.frames() << " frames written so far in " << directory << " are intact\n";
-        if (visuals) visuals->finish(*scene);
-        writeSummary(directory, TimingSummary::fromStepTimes(step_seconds, dt, seconds(after - start)), log);
-        return kRunDiverged;
-      }
+      if (!report.ok) return diverged(report.message);
       step_seconds.push_back(seconds(after - before));
       render_wall += seconds(after - before);
       if (k % frame_every == 0 || k == steps) {
@@ -139,11 +149,19 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     log << "wrote " << out.frames() << " frames to " << directory
         << " (control_points.csv, curve.csv, energy.csv, curve.pvd, timing.json" << (visuals ? visuals->summary() : "")
         << ")\n";
+    writeSummary(directory, TimingSummary::fromStepTimes(step_seconds, dt, seconds(Clock::now() - start)), log);
+  } catch (const NonFiniteFrame& e) {
+    // A finite state whose curve or energy overflows: nothing of the frame was written.
+    try {
+      return diverged(scene->settings().source + ": " + e.what());
+    } catch (const std::exception& io) {
+      log << "error: " << io.what() << '\n';
+      return kRunIoError;
+    }
   } catch (const std::exception& e) {
     log << "error: " << e.what() << '\n';
     return kRunIoError;
   }
-  writeSummary(directory, TimingSummary::fromStepTimes(step_seconds, dt, seconds(Clock::now() - start)), log);
   return kRunOk;
 }
 

@@ -1,5 +1,6 @@
 #include "filum/run_output.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -36,38 +37,59 @@ RunOutput::RunOutput(const std::string& directory, int curve_samples)
 
 void RunOutput::writeFrame(const Scene& scene) {
   const SceneState& s = scene.state();
-  if (!s.allFinite()) throw std::runtime_error("refusing to write a non-finite state at t = " + exact(s.time));
   const std::string t = exact(s.time);
+  if (!s.allFinite()) throw NonFiniteFrame("refusing to write a non-finite state at t = " + t + " s");
+  // Everything of the frame is computed and checked first: a frame is written whole or not at
+  // all, and no file ever holds a non-finite value (finite control points near 1e308 can still
+  // give infinite curve points or energies).
   std::vector<visual::PolyLine> lines;
   const std::vector<double> abscissas = mechanics::uniformAbscissas(curve_samples_);
+  for (const MechanicalState* body : scene.bodies()) {
+    const auto* spline = body->curve();
+    if (!spline) continue;
+    visual::PolyLine line{body->node()->path(), Points(curve_samples_, 3), abscissas};
+    mechanics::SplinePointMapping(spline->basis(), abscissas).apply(body->block(s.q), line.points);
+    if (!line.points.allFinite())
+      throw NonFiniteFrame("refusing to write the non-finite curve of " + body->describe() + " at t = " + t + " s");
+    lines.push_back(std::move(line));
+  }
+  const Energy e = scene.energy(s);
+  const VecX g = scene.constraintViolation(s);
+  const double violation = g.size() ? g.cwiseAbs().maxCoeff() : 0.0;
+  if (!std::isfinite(e.kinetic) || !std::isfinite(e.potential) || !std::isfinite(e.total()) || !std::isfinite(violation))
+    throw NonFiniteFrame("refusing to write a non-finite energy or constraint violation at t = " + t +
+                         " s (kinetic " + exact(e.kinetic) + " J, potential " + exact(e.potential) + " J, violation " +
+                         exact(violation) + ")");
+
+  std::size_t line_index = 0;
   for (const MechanicalState* body : scene.bodies()) {
     const std::string name = body->node()->path();
     const ConstPointsMap q = body->block(s.q);
     for (int i = 0; i < q.rows(); ++i)
       control_points_ << t << ',' << name << ',' << i << ',' << exact(q(i, 0)) << ',' << exact(q(i, 1)) << ','
                       << exact(q(i, 2)) << '\n';
-    const auto* spline = body->curve();
-    if (!spline) continue;
-    visual::PolyLine line{name, Points(curve_samples_, 3), abscissas};
-    mechanics::SplinePointMapping(spline->basis(), abscissas).apply(q, line.points);
+    if (!body->curve()) continue;
+    const Points& points = lines[line_index++].points;
     for (int k = 0; k < curve_samples_; ++k)
-      curve_ << t << ',' << name << ',' << k << ',' << exact(abscissas[k]) << ',' << exact(line.points(k, 0)) << ','
-             << exact(line.points(k, 1)) << ',' << exact(line.points(k, 2)) << '\n';
-    lines.push_back(std::move(line));
+      curve_ << t << ',' << name << ',' << k << ',' << exact(abscissas[k]) << ',' << exact(points(k, 0)) << ','
+             << exact(points(k, 1)) << ',' << exact(points(k, 2)) << '\n';
   }
-  const Energy e = scene.energy(s);
-  const VecX g = scene.constraintViolation(s);
   energy_ << t << ',' << exact(e.kinetic) << ',' << exact(e.potential) << ',' << exact(e.total()) << ','
-          << exact(g.size() ? g.cwiseAbs().maxCoeff() : 0.0) << '\n';
+          << exact(violation) << '\n';
 
   char file[64];
   std::snprintf(file, sizeof file, "vtk/curve_%06d.vtp", frame_);
   visual::writeVtp(directory_ + "/" + file, lines, "abscissa");
   series_.add(s.time, file);
-  control_points_.flush();
-  curve_.flush();
-  energy_.flush();
+  flushOrThrow(control_points_, "control_points.csv");
+  flushOrThrow(curve_, "curve.csv");
+  flushOrThrow(energy_, "energy.csv");
   ++frame_;
+}
+
+void RunOutput::flushOrThrow(std::ofstream& out, const char* name) const {
+  out.flush();
+  if (!out) throw std::runtime_error(directory_ + "/" + name + ": write failed (disk full or file size limit?)");
 }
 
 }  // namespace filum::app

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include "filum/core/scene.hpp"
@@ -15,17 +16,26 @@
 
 namespace filum::app {
 
+/// A frame that holds a non-finite value: nothing of it was written (the run diverged).
+class NonFiniteFrame : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class RunOutput {
  public:
   /// Creates `directory` (and vtk/ inside). curve_samples >= 2.
   RunOutput(const std::string& directory, int curve_samples);
 
-  /// Writes one frame of the scene's current state. Throws if a value is not finite.
+  /// Writes one frame of the scene's current state. Throws NonFiniteFrame (and writes nothing)
+  /// if a value is not finite, std::runtime_error naming the file if a write fails.
   void writeFrame(const Scene& scene);
   int frames() const { return frame_; }
   const std::string& directory() const { return directory_; }
 
  private:
+  void flushOrThrow(std::ofstream& out, const char* name) const;
+
   std::string directory_;
   int curve_samples_;
   int frame_ = 0;

@@ -1,11 +1,14 @@
 #include "filum/collision/sphere_collision_model.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "filum/core/node.hpp"
+#include "filum/core/params.hpp"
 #include "filum/core/scene.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/core/curve_body.hpp"
+#include "filum/mechanics/dynamic_spline.hpp"  // arcLength
 
 namespace filum::collision {
 
@@ -33,6 +36,15 @@ void SphereCollisionModel::init(const Scene& scene) {
     throw SceneError(origin() + "/spacing",
                      "a spacing <= 2 radius (" + std::to_string(2.0 * radius_) + " m) so that neighbouring spheres touch",
                      std::to_string(spacing) + " m");
+  // Checked before the mapping allocates its K = L / h + 1 spheres.
+  const double rest_length = mechanics::arcLength(curve_->basis(), curve_->initialPositions());
+  const double spheres = rest_length / spacing + 1.0;
+  if (!(spheres <= kMaxSpheresPerThread))
+    throw SceneError(origin() + (settings_.spacing > 0.0 ? "/spacing" : "/radius"),
+                     "at most " + std::to_string(kMaxSpheresPerThread) +
+                         " spheres along the thread (sphere_sampling_mapping.hpp: every step visits each sphere)",
+                     describeJson(std::floor(spheres)) + " spheres of spacing " + describeJson(spacing) + " m on " +
+                         describeJson(rest_length) + " m");
   exclusion_ = settings_.exclusion >= 0.0 ? settings_.exclusion : 4.0 * radius_;
   mapping_ = std::make_unique<SphereSamplingMapping>(curve_->basis(), spacing);
   mapping_->resample(curve_->initialPositions());

@@ -73,7 +73,12 @@ void SphereSamplingMapping::resample(ConstPointsRef q) {
   }
   length_ = table_length_.back();
   // K = ⌈L / h⌉ + 1 centres, spacing L / (K − 1) <= h.
-  const int count = std::max(2, static_cast<int>(std::ceil(length_ / spacing_ - 1e-9)) + 1);
+  const double wanted = std::ceil(length_ / spacing_ - 1e-9) + 1.0;
+  if (!(wanted <= 4.0 * kMaxSpheresPerThread))
+    throw std::runtime_error("a thread of length " + std::to_string(length_) + " m would need " + std::to_string(wanted) +
+                             " spheres of spacing " + std::to_string(spacing_) + " m (at most " +
+                             std::to_string(4 * kMaxSpheresPerThread) + ")");
+  const int count = std::max(2, static_cast<int>(wanted));
   actual_spacing_ = length_ / (count - 1);
 
   // ℓ ↦ s by cubic Hermite interpolation of the inverse on each table interval, ds/dℓ = 1/|P'|:

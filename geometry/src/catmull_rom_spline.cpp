@@ -14,7 +14,9 @@ CatmullRomSpline::CatmullRomSpline(int control_points) : n_(control_points) {
 
 void CatmullRomSpline::evaluate(double s, BasisRow& row) const {
   const int segments = n_ - 3;
-  const double u = std::clamp(s, 0.0, 1.0) * segments;
+  // s > 0 is false for NaN: a NaN abscissa (a diverging stage) evaluates at 0 instead of
+  // indexing control point INT_MIN; the scene reports the non-finite state after the step.
+  const double u = (s > 0.0 ? std::min(s, 1.0) : 0.0) * segments;
   const int j = std::min(static_cast<int>(std::floor(u)), segments - 1);
   const double t = u - j, t2 = t * t, t3 = t2 * t;
   const double du = segments;  // du/ds

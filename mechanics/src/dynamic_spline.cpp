@@ -152,12 +152,47 @@ std::unique_ptr<geometry::SplineBasis> makeBasis(const Params& p, const std::str
 
 namespace {
 
+const char* const kControlPointLimit =
+    "dynamic_spline.hpp: memory and step time grow with the count; 600 times the largest reference body, rope.json's 165";
+
+void checkCoordinates(const Params& p, const std::string& key, const Vec3& x) {
+  if (x.cwiseAbs().maxCoeff() > kMaxCoordinate)
+    p.fail(key, "coordinates within ±1e6 m (dynamic_spline.hpp: scenes are in metres; beyond, squared lengths and "
+                "energies approach overflow)");
+}
+
+Points controlPointList(const Params& p) {
+  const Points q = p.points("control_points", 1, kMaxControlPoints, kControlPointLimit);
+  for (Eigen::Index i = 0; i < q.rows(); ++i)
+    if (q.row(i).cwiseAbs().maxCoeff() > kMaxCoordinate)
+      p.fail("control_points", "control points within ±1e6 m of the origin (dynamic_spline.hpp: scenes are in metres; "
+                               "beyond, squared lengths and energies approach overflow)",
+             "point " + std::to_string(i) + " at " + describeJson(p.raw("control_points")[i]));
+  return q;
+}
+
+// The factored mass matrix M = m ∫ b_i b_j ds: a mass so small that M's pivots underflow is
+// reported at the parameter that gave it, not as an abort.
+std::unique_ptr<DynamicSpline> build(const Params& p, std::unique_ptr<geometry::SplineBasis> basis, Points q,
+                                     double mass, double radius) {
+  try {
+    return std::make_unique<DynamicSpline>(std::move(basis), std::move(q), mass, radius);
+  } catch (const std::runtime_error& e) {
+    p.fail(p.has("mass") ? "mass" : "density",
+           "a mass whose matrix M = m ∫ b_i b_j ds is positive definite in double precision",
+           describeJson(p.raw(p.has("mass") ? "mass" : "density")) + ", total mass " + describeJson(mass) +
+               " kg (" + e.what() + ")");
+  }
+}
+
 Points straightThread(const Params& line) {
   // Collinear, equally spaced control points q_i = from + (i − 1) h, h = (to − from)/(n − 3):
   // the uniform cubic B-spline then runs exactly from P(0) = q_1 = from to P(1) = q_{n−2} = to.
   const Vec3 from = line.vec3("from");
   const Vec3 to = line.vec3("to");
-  const int n = line.integer("count", 4);
+  const int n = line.integer("count", 4, kMaxControlPoints, kControlPointLimit);
+  checkCoordinates(line, "from", from);
+  checkCoordinates(line, "to", to);
   if ((to - from).norm() == 0.0) line.fail("to", "a point different from 'from' (a thread of non-zero length)");
   line.finish();
   const Vec3 h = (to - from) / (n - 3);
@@ -173,23 +208,28 @@ std::unique_ptr<DynamicSpline> DynamicSpline::fromParams(const Params& p) {
   if (p.has("control_points") && p.raw("control_points").is_object()) {
     q = straightThread(p.object("control_points"));
   } else {
-    q = p.points("control_points", 1);
+    q = controlPointList(p);
   }
   auto basis = makeBasis(p, "basis", static_cast<int>(q.rows()));
   const double radius = p.positive("radius", 1e-4);
   const double length = arcLength(*basis, q);
-  if (!(length > 0.0)) p.fail("control_points", "control points that span a curve of non-zero length", "length 0");
+  if (!(length > 0.0) || !std::isfinite(length))
+    p.fail("control_points", "control points that span a curve of finite, non-zero length",
+           "length " + describeJson(length) + " m");
   double mass = 0.0;
   if (p.has("mass") && p.has("density")) p.fail("density", "either 'mass' or 'density', not both");
   if (p.has("mass")) {
     mass = p.positive("mass");
   } else if (p.has("density")) {
     mass = p.positive("density") * std::numbers::pi * radius * radius * length;
+    if (!(mass > 0.0) || !std::isfinite(mass))
+      p.fail("density", "a density giving a positive, finite mass (ρ π r² L)",
+             describeJson(p.raw("density")) + ", mass " + describeJson(mass) + " kg");
   } else {
     p.fail("mass", "the thread's 'mass' (kg) or its 'density' (kg/m³)");
   }
-  auto spline = std::make_unique<DynamicSpline>(std::move(basis), std::move(q), mass, radius);
-  spline->setRefinements(refinementsFromParams(p, "refine"));
+  auto spline = build(p, std::move(basis), std::move(q), mass, radius);
+  spline->setRefinements(CurveBody::refinementsFromParams(p, "refine"));
   return spline;
 }
 

@@ -250,10 +250,10 @@ std::string StepMatrix::assemble(const Scene& scene, const SceneState& s, double
     if (!fitted) analyse(scene);
   }
   if (!fitted) return "step matrix M - theta h D - kappa h^2 K: its entries did not fit any layout";
-  return factorBlocks();
+  return factorBlocks(scene);
 }
 
-std::string StepMatrix::factorBlocks() {
+std::string StepMatrix::factorBlocks(const Scene& scene) {
   // Sparse blocks: check the pattern is the one analysed and add each entry into the slot found
   // then; a new pattern rebuilds the block (symbolic analysis again).
   for (Block& block : blocks_) {
@@ -286,7 +286,12 @@ std::string StepMatrix::factorBlocks() {
       if (rebuild) rebuildSparse(block);
       failure = block.sparse.factor(block.lower, rebuild);
     }
-    if (!failure.empty()) return "step matrix M - theta h D - kappa h^2 K: " + failure;
+    if (!failure.empty()) {
+      // Which body: the block's own, or all of them when a force couples the bodies.
+      const std::string of = coupled_ ? "of the coupled bodies"
+                                      : "of " + scene.bodies()[point_body_[block.first_point]]->describe();
+      return "step matrix M - theta h D - kappa h^2 K " + of + ": " + failure;
+    }
   }
   return "";
 }

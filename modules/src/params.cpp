@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -156,11 +157,24 @@ double Params::abscissa(const std::string& key) const {
 }
 
 int Params::integer(const std::string& key, int minimum) const {
+  // 1e8: no count of a scene comes near it, and it fits an int with room for the sums of counts.
+  return integer(key, minimum, 100000000, "the largest count any scene parameter takes");
+}
+
+int Params::integer(const std::string& key, int minimum, int maximum, const std::string& why) const {
   const json& value = require(key);
-  if (!value.is_number_integer()) fail(key, "an integer >= " + std::to_string(minimum));
-  const long long i = value.get<long long>();
-  if (i < minimum || i > 100000000) fail(key, "an integer >= " + std::to_string(minimum));
+  const std::string range = "an integer >= " + std::to_string(minimum);
+  if (!value.is_number_integer()) fail(key, range);
+  // Unsigned values beyond 2^63 (18446744073709551615) are out of range, not negative.
+  const bool huge = value.is_number_unsigned() && value.get<unsigned long long>() > 9223372036854775807ull;
+  const long long i = huge ? std::numeric_limits<long long>::max() : value.get<long long>();
+  if (i < minimum) fail(key, range);
+  if (i > maximum) fail(key, range + " and <= " + std::to_string(maximum) + " (" + why + ")");
   return static_cast<int>(i);
+}
+
+int Params::integer(const std::string& key, int minimum, int maximum, int fallback, const std::string& why) const {
+  return has(key) ? integer(key, minimum, maximum, why) : fallback;
 }
 
 int Params::integer(const std::string& key, int minimum, int fallback) const {
@@ -205,6 +219,14 @@ Vec3 Params::vec3(const std::string& key) const {
 
 Vec3 Params::vec3(const std::string& key, const Vec3& fallback) const {
   return has(key) ? vec3(key) : fallback;
+}
+
+Points Params::points(const std::string& key, int minimum, int maximum, const std::string& why) const {
+  const json& value = require(key);
+  if (value.is_array() && value.size() > static_cast<std::size_t>(maximum))
+    fail(key, "a list of at most " + std::to_string(maximum) + " points (" + why + ")",
+         "a list of " + std::to_string(value.size()));
+  return points(key, minimum);
 }
 
 Points Params::points(const std::string& key, int minimum) const {

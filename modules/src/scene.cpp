@@ -5,9 +5,19 @@
 #include <cmath>
 
 #include "filum/core/flush_denormals.hpp"
+#include "filum/core/params.hpp"
 #include "filum/core/scene_error.hpp"
 
 namespace filum {
+
+std::string stepCountProblem(double duration, double dt) {
+  const double steps = std::round(duration / dt);
+  const auto number = [](double x) { return describeJson(nlohmann::json(x)); };
+  if (steps < 1.0) return number(duration) + " s, shorter than dt / 2 = " + number(dt / 2) + " s (0 steps)";
+  if (steps > static_cast<double>(kMaxSteps))
+    return number(duration) + " s, " + number(steps) + " steps of dt = " + number(dt) + " s";
+  return "";
+}
 
 Scene::Scene() : root_(std::make_unique<Node>("root")) {}
 
@@ -38,7 +48,14 @@ void Scene::bindBodyComponent(BodyComponent& component) {
     throw SceneError(where, component.typeName() + " '" + component.name() + "' needs a body, but " + place +
                                 " holds no mechanical state (e.g. a DynamicSpline)");
   }
-  component.bind(*body, *this);
+  try {
+    component.bind(*body, *this);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    // A library's own refusal (std::invalid_argument, a failed factorization): at its component.
+    throw SceneError(component.origin(), component.typeName() + " cannot be set up: " + e.what());
+  }
 }
 
 void Scene::init() {
@@ -56,13 +73,18 @@ void Scene::init() {
   std::vector<ConstraintSolver*> solvers;
   root_->collect(integrators);
   root_->collect(solvers);
-  if (integrators.size() != 1)
-    throw SceneError(settings_.source, "exactly one integrator in the scene",
-                     std::to_string(integrators.size()));
+  if (integrators.empty()) throw SceneError(settings_.source + ": /integrator", "an integrator in the scene", "none");
+  if (integrators.size() > 1)
+    throw SceneError(integrators[1]->origin(), "exactly one integrator in the scene (the one of /integrator)",
+                     "a second one, " + integrators[1]->typeName());
+  if (solvers.size() > 1)
+    throw SceneError(solvers[1]->origin(), "at most one constraint solver (the one of /constraint_solver)",
+                     "a second one, " + solvers[1]->typeName());
   integrator_ = integrators.front();
   constraint_solver_ = solvers.empty() ? nullptr : solvers.front();
   if (!constraints_.empty() && !constraint_solver_)
-    throw SceneError(settings_.source, "a constraint solver since the scene has constraints", "none");
+    throw SceneError(settings_.source + ": /constraint_solver", "a constraint solver since the scene has constraints",
+                     "none");
 
   // Lay the bodies out in one state vector, in declaration order.
   point_count_ = 0;
@@ -141,7 +163,13 @@ void Scene::initCollision() {
                        "\"CollisionPipeline\"})",
                        "none");
     collision_ = pipelines.front();
-    collision_->init(*this);
+    try {
+      collision_->init(*this);
+    } catch (const SceneError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw SceneError(collision_->origin(), collision_->typeName() + " cannot be set up: " + e.what());
+    }
     // Contacts as constraint rows need the constraint solver: the pipeline's own by default.
     if (!constraint_solver_ && collision_->addsContactRows()) constraint_solver_ = collision_->defaultConstraintSolver();
     if (integrator_->needsJacobians() && !collision_->hasJacobian())
@@ -195,7 +223,9 @@ void Scene::applyConstraints(const SceneState& s, const BlockInverse& inverse, V
   if (extra_count_ > 0 && a.size() == 3 * point_count_ + extra_count_)
     for (const Constraint* c : constraints_)
       if (c->extraDofCount() > 0) c->extraAcceleration(s, a);
-  if (fault_.empty() && !a.allFinite()) fault_ = constraint_solver_->describe() + " produced non-finite accelerations";
+  if (fault_.empty() && !a.allFinite()) fault_ = constraint_solver_->describe() +
+                  " produced non-finite accelerations (redundant or conflicting constraints, such as two at one point "
+                  "of a body, make its system singular)";
 }
 
 void Scene::computeAcceleration(const SceneState& s, VecX& a) {
@@ -231,7 +261,14 @@ StepReport Scene::step() {
   report.step = step_count_;
   report.time = state_.time;
   beginStep();
-  advance(settings_.dt, 0);
+  try {
+    advance(settings_.dt, 0);
+  } catch (const std::exception& e) {
+    // A numerical routine that refused its input (a non-finite query point, a resampling
+    // beyond its limit): a fault of the step like any other, rolled back by endStep.
+    // The routine does not say which component called it: the scene file is the place.
+    if (fault_.empty()) fault_ = settings_.source + ": the step failed: " + e.what();
+  }
   return endStep(report);
 }
 

@@ -6,6 +6,11 @@
 #include <vector>
 
 #include "filum/core/body_component.hpp"
+#include "filum/core/collision_pipeline.hpp"
+#include "filum/core/constraint_solver.hpp"
+#include "filum/core/integrator.hpp"
+#include "filum/core/input_file.hpp"
+#include "filum/core/json_shape.hpp"
 #include "filum/core/scene_error.hpp"
 
 namespace filum {
@@ -13,19 +18,6 @@ namespace filum {
 using nlohmann::json;
 
 namespace {
-
-void lineAndColumn(const std::string& text, std::size_t byte, int& line, int& column) {
-  line = 1;
-  column = 1;
-  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-}
 
 // Replays a text that failed to parse through nlohmann's SAX interface, following the JSON
 // pointer of the value being read, to say where the error is and which value it concerns.
@@ -91,7 +83,16 @@ std::unique_ptr<Component> createComponent(const Params& untyped, const Factory&
   const std::string name = untyped.string("name", type);
   const std::string object = untyped.string("object", "");
   const Params p = untyped.withOwner(type);
-  std::unique_ptr<Component> component = factory.create(type, p, p.where("type"));
+  std::unique_ptr<Component> component;
+  try {
+    component = factory.create(type, p, p.where("type"));
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    // A check the component's own parameter reading missed (a library refusing a value): the
+    // component's place, never an uncaught exception.
+    throw SceneError(p.where() + " (" + type + ")", std::string("cannot build the component: ") + e.what());
+  }
   component->setName(name);
   component->setOrigin(p.where());
   if (auto* body_component = dynamic_cast<BodyComponent*>(component.get())) {
@@ -102,26 +103,62 @@ std::unique_ptr<Component> createComponent(const Params& untyped, const Factory&
   return component;
 }
 
-void loadNode(const Params& p, Node& node, const Factory& factory) {
-  if (p.has("components"))
+// Nodes and components of a scene, at most: every component is set up, evaluated at every step
+// and drawn, and contacts pair collision models two by two; 1,000 nodes and 10,000 components
+// are about 100 times the largest reference scenes (11 nodes, 11 components in a node). The
+// count is checked as the scene is read, before each node or component is built.
+struct SceneBudget {
+  static constexpr int kMaxNodes = 1000;
+  static constexpr int kMaxComponents = 10000;
+  int nodes = 0;
+  int components = 0;
+};
+
+void spend(const Params& p, const std::string& key, int& used, int maximum, const std::string& what) {
+  const nlohmann::json& list = p.raw(key);
+  if (!list.is_array()) return;  // objects() says what was expected
+  const long long total = static_cast<long long>(used) + static_cast<long long>(list.size());
+  if (total > maximum)
+    p.fail(key, "at most " + std::to_string(maximum) + " " + what +
+                    " in a scene (scene_loader.cpp: each is set up and evaluated at every step; 100 times the largest "
+                    "reference scene)",
+           "a list of " + std::to_string(list.size()) + ", " + std::to_string(total) + " so far");
+  used = static_cast<int>(total);
+}
+
+void loadNode(const Params& p, Node& node, const Factory& factory, SceneBudget& budget) {
+  if (p.has("components")) {
+    spend(p, "components", budget.components, SceneBudget::kMaxComponents, "components");
     for (const Params& c : p.objects("components")) node.addComponent(createComponent(c, factory));
+  }
   if (p.has("nodes")) {
+    spend(p, "nodes", budget.nodes, SceneBudget::kMaxNodes, "nodes");
     std::set<std::string> names;
     for (const Params& child : p.objects("nodes")) {
       const std::string name = child.string("name");
       if (name.empty() || name.find('/') != std::string::npos)
         child.fail("name", "a non-empty node name without '/'");
       if (!names.insert(name).second) child.fail("name", "a name unique among its sibling nodes");
-      loadNode(child, node.addChild(name), factory);
+      loadNode(child, node.addChild(name), factory, budget);
     }
   }
   p.finish();
 }
 
+// The component of a role block ("integrator": {...}): it must be of that role, or it would
+// count as a second integrator, say, with no place.
+template <class Role>
 void addRoleComponent(const Params& top, const std::string& key, const std::string& role, Scene& scene,
                       const Factory& factory) {
   if (top.has(key)) {
-    scene.root().addComponent(createComponent(top.object(key), factory));
+    const Params block = top.object(key);
+    std::unique_ptr<Component> component = createComponent(block, factory);
+    if (!dynamic_cast<Role*>(component.get())) {
+      const std::string example = factory.defaultFor(role);
+      block.fail("type", "a component of role " + role + (example.empty() ? "" : " (e.g. \"" + example + "\")"),
+                 "\"" + component->typeName() + "\", which is not a " + role);
+    }
+    scene.root().addComponent(std::move(component));
     return;
   }
   const std::string type = factory.defaultFor(role);
@@ -137,11 +174,22 @@ void addRoleComponent(const Params& top, const std::string& key, const std::stri
 }  // namespace
 
 json readJsonFile(const std::string& path) {
+  // A scene is a few kB (the largest reference scene, 12 kB); the document nlohmann builds takes
+  // about ten times its text in memory, so 16 MiB of text is far beyond any scene and still
+  // far below the machine's memory. A FIFO or a device would block or never end.
+  constexpr std::uintmax_t kMaxSceneFileBytes = 16u << 20;
+  const std::string problem = inputFileProblem(path, kMaxSceneFileBytes);
+  if (problem == "no such file")
+    throw SceneError(path, "cannot open the scene file (does it exist and is it readable?)");
+  if (!problem.empty())
+    throw SceneError(path, "a regular scene file of at most " + byteSize(kMaxSceneFileBytes) +
+                               " (the limit keeps the parsed document within memory)", problem);
   std::ifstream in(path);
   if (!in) throw SceneError(path, "cannot open the scene file (does it exist and is it readable?)");
   std::stringstream buffer;
   buffer << in.rdbuf();
   const std::string text = buffer.str();
+  checkJsonShape(text, path);  // nesting depth and duplicate keys, before the document is built
   try {
     return json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
   } catch (const json::exception& e) {
@@ -174,19 +222,28 @@ std::unique_ptr<Scene> loadScene(const json& document, const std::string& source
   settings.source = source;
   settings.name = top.string("name", source);
   settings.dt = top.positive("dt", settings.dt);
+  if (settings.dt < kMinTimeStep || settings.dt > kMaxTimeStep)
+    top.fail("dt", "a time step in [1e-9, 1] s (scene.hpp: below 1e-9 s no scene gains stability, above 1 s gravity "
+                   "alone moves a point 5 m per step)");
   settings.duration = top.positive("duration", settings.duration);
+  const std::string steps = stepCountProblem(settings.duration, settings.dt);
+  if (!steps.empty())
+    top.fail("duration", "a duration of 1 to " + std::to_string(kMaxSteps) +
+                             " steps of dt (at least dt / 2; at most 1e8 steps, the step log of `filum run` and "
+                             "hours of computing)", steps);
   settings.gravity = top.vec3("gravity", settings.gravity);
   settings.max_speed = top.positive("max_speed", settings.max_speed);
   top.has("output");  // read by the applications (filum run), not by the kernel
   top.has("camera");  // read by the visual side
 
-  addRoleComponent(top, "integrator", "Integrator", *scene, factory);
-  addRoleComponent(top, "constraint_solver", "ConstraintSolver", *scene, factory);
+  addRoleComponent<Integrator>(top, "integrator", "Integrator", *scene, factory);
+  addRoleComponent<ConstraintSolver>(top, "constraint_solver", "ConstraintSolver", *scene, factory);
   // The collision pipeline (collision_pipeline.hpp): "collision": {"type": ...}, or the factory's
   // default; it stays idle, never called, unless the scene holds collision models.
-  addRoleComponent(top, "collision", "CollisionPipeline", *scene, factory);
+  addRoleComponent<CollisionPipeline>(top, "collision", "CollisionPipeline", *scene, factory);
   if (!top.has("nodes")) top.fail("nodes", "a list of nodes (bodies)");
-  loadNode(top, scene->root(), factory);  // reads "nodes" (and "components" at the root)
+  SceneBudget budget;
+  loadNode(top, scene->root(), factory, budget);  // reads "nodes" (and "components" at the root)
   top.finish();
   scene->init();
   return scene;

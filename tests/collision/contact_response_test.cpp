@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 #include "collision_scenes.hpp"
 #include "filum/collision/capsule_obstacle.hpp"
 #include "filum/collision/implicit_surface_obstacle.hpp"
@@ -89,9 +91,15 @@ TEST(PenaltyContact, ImplicitEulerRestsAThreadOnAPlane) {
   const auto& centers = test::pipelineOf(*scene).models().front()->centers();
   const int K = test::pipelineOf(*scene).models().front()->sphereCount();
   const double lowest = centers.topRows(K).col(2).minCoeff(), highest = centers.topRows(K).col(2).maxCoeff();
-  // 1e-4 kg on ~61 spheres, k = 200 N/m each: static penetration m g/(k K) ≈ 8e-8 m.
-  EXPECT_NEAR(lowest, 1e-3, 2e-5);
-  EXPECT_NEAR(highest, 1e-3, 2e-5);
+  // 1e-4 kg on K ≈ 61 spheres, k = 200 N/m each: the mean static penetration is
+  // δ = m g/(k K) ≈ 8e-8 m, so the centres rest at r − δ = 1e-3 m − δ. The load is not spread
+  // evenly (the end spheres carry the spline's end mass, more or less than the mean), but each
+  // sphere's share lies between 0 and 2 m g / K: every centre is within δ of r − δ. (Asserted
+  // 2e-5 m before, 250 δ.)
+  const double delta = 1e-4 * 9.81 / (200.0 * K);
+  std::cout << "  resting centres: " << lowest << " .. " << highest << " m (r - delta = " << 1e-3 - delta << " m)\n";
+  EXPECT_NEAR(lowest, 1e-3 - delta, delta);
+  EXPECT_NEAR(highest, 1e-3 - delta, delta);
   EXPECT_LT(scene->state().v.cwiseAbs().maxCoeff(), 1e-4);
 }
 
@@ -101,21 +109,23 @@ TEST(ContactPipeline, SaveRestoreAndReplaysAreBitIdentical) {
     document["collision"]["response"] = response;
     auto first = test::loadCollisionScene(document);
     auto second = test::loadCollisionScene(document);
+    // Every step must succeed: runs rolled back at the same step would also compare equal.
     for (int k = 0; k < 100; ++k) {
-      first->step();
-      second->step();
+      ASSERT_TRUE(first->step().ok) << response << " step " << k;
+      ASSERT_TRUE(second->step().ok) << response << " step " << k;
     }
     const SceneState saved = first->state();
-    for (int k = 0; k < 100; ++k) first->step();
+    for (int k = 0; k < 100; ++k) ASSERT_TRUE(first->step().ok) << response << " step " << 100 + k;
     const SceneState after = first->state();
+    ASSERT_EQ(after.steps, 200) << response;
     // The replica ran the same steps: identical to the bit.
-    for (int k = 0; k < 100; ++k) second->step();
+    for (int k = 0; k < 100; ++k) ASSERT_TRUE(second->step().ok) << response << " step " << 100 + k;
     EXPECT_EQ(second->state().q, after.q) << response;
     EXPECT_EQ(second->state().v, after.v) << response;
     // Restored to step 100, the same 100 steps again give the same state: the contact set
     // depends on the state only.
     first->setState(saved);
-    for (int k = 0; k < 100; ++k) first->step();
+    for (int k = 0; k < 100; ++k) ASSERT_TRUE(first->step().ok) << response << " replayed step " << 100 + k;
     EXPECT_EQ(first->state().q, after.q) << response;
     EXPECT_EQ(first->state().v, after.v) << response;
   }

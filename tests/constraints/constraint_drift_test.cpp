@@ -2,6 +2,8 @@
 // stabilization (paper §4; talk 002 "Lagrange multipliers + Baumgarte scheme").
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -16,9 +18,27 @@ namespace {
 using nlohmann::json;
 using test::ConstraintThread;
 
+// Bounds of the stabilized violation over 10 s at dt = 1e-4 s, each derived from where the
+// violation comes from (measured values in the comments, issue 14):
+//  - g linear in q with a fixed target: only round-off. g sums a few products of coordinates of
+//    about 0.1 m, and the Baumgarte terms pull each step's round-off back before it accumulates:
+//    64 ulps of 0.1 m, 1.4e-15 m (measured 4e-18 .. 4.5e-16 m, the C2 junction's curvature rows
+//    the largest);
+constexpr double kRoundOff = 64 * std::numeric_limits<double>::epsilon() * 0.1;
+//  - a scripted target: the smooth path's acceleration jumps at its keyframes by up to
+//    ΔẌ = 6 |Δx| / T² = 6 · 0.0245 m / (2 s)² = 0.037 m/s², and an RK4 step across the jump
+//    misses O(ΔẌ dt²) = 3.7e-10 m of position (measured 1.7e-10 m);
+constexpr double kPathJump = 6.0 * 0.0245 / (2.0 * 2.0) * 1e-4 * 1e-4;
+//  - the sliding point: g = P(s) − X is nonlinear in s, so the stages' combination misses the
+//    curvature term ½ |P''(s)| ṡ² dt² per step; with |P''| <= 0.1 m (a 10 cm thread bent on its
+//    own length) and |ṡ| <= 0.5 /s (it slides by less than half its length per second), that is
+//    1.25e-10 m (an estimate of the magnitudes, not a measurement; measured 2.5e-11 m).
+constexpr double kSlidingCurvature = 0.5 * 0.1 * 0.5 * 0.5 * 1e-4 * 1e-4;
+
 struct Case {
   std::string name;
   std::vector<ConstraintThread> threads;
+  double bound = kRoundOff;  // of the stabilized violation (m), see above
 };
 
 std::vector<Case> cases() {
@@ -35,7 +55,7 @@ std::vector<Case> cases() {
                           {"path", {{{"time", 1.0}, {"position", {0.0, 0.0, 0.0}}},
                                     {{"time", 3.0}, {"position", {0.01, 0.02, 0.01}}},
                                     {{"time", 5.0}, {"position", {0.0, 0.01, 0.0}}}}}}};
-    out.push_back({"fixed point on a smooth scripted path", {t}});
+    out.push_back({"fixed point on a smooth scripted path", {t}, kPathJump});
   }
   {
     ConstraintThread t;
@@ -55,7 +75,7 @@ std::vector<Case> cases() {
   {
     ConstraintThread t;
     t.constraints = {fixedStart, json{{"type", "SlidingPointConstraint"}, {"abscissa", 0.3}, {"friction", 1e-5}}};
-    out.push_back({"sliding point", {t}});
+    out.push_back({"sliding point", {t}, kSlidingCurvature});
   }
   {
     ConstraintThread a, b;
@@ -99,9 +119,8 @@ double maxOf(const std::vector<double>& v) { return *std::max_element(v.begin(),
 
 TEST(ConstraintDrift, StabilizationHoldsEveryConstraintBelow1e8OverTenToTheFiveSteps) {
   // With the Baumgarte terms (ω = 0.1/dt = 1000/s) the violation is what RK4 leaves in one
-  // step, O(dt⁵) times the derivatives of g, pulled back at once: the bound 1e-8 m of the
-  // issue holds with orders of magnitude to spare (measured: ≤ 2e-10, the smooth scripted
-  // path's acceleration jumps at keyframes; round-off level, ~1e-17, for the others).
+  // step, pulled back at once: each case is held to the bound its source allows (Case::bound,
+  // derived above), far below the 1e-8 m of the test's name.
   //
   // Without them (ω = 0) the rows still enforce g̈ exactly, and what happens depends on g:
   //  - g linear in q with a fixed target (fixed point, axis, plane, clamp, junction,
@@ -119,7 +138,7 @@ TEST(ConstraintDrift, StabilizationHoldsEveryConstraintBelow1e8OverTenToTheFiveS
     const std::vector<double> drift = run(c, 0.0, 100000);
     std::cout << "  " << c.name << ": stabilized max " << maxOf(held) << " m; without stabilization " << drift.front()
               << " m (first second) -> " << drift.back() << " m (last second)\n";
-    EXPECT_LE(maxOf(held), 1e-8);
+    EXPECT_LE(maxOf(held), c.bound);
     // Drift, not divergence: an unstabilized run that blew up would prove nothing.
     ASSERT_TRUE(std::isfinite(maxOf(drift)));
     EXPECT_GT(drift.back(), 2.0 * drift.front());

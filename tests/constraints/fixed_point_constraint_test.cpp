@@ -1,6 +1,10 @@
 // The fixed point by Lagrange multipliers with Baumgarte stabilization (paper §4).
 #include <gtest/gtest.h>
 
+#include <iostream>
+
+#include <limits>
+
 #include "filum/constraints/fixed_point_constraint.hpp"
 #include "filum/core/scene.hpp"
 #include "filum/geometry/spline_curve.hpp"
@@ -21,16 +25,21 @@ double maxViolationOver(Scene& scene, int steps) {
   return worst;
 }
 
-TEST(FixedPointConstraint, HoldsItsTargetWithinAMicrometreOver10000Steps) {
-  // The multipliers make L A = E hold exactly at every stage; what is left is the integrator's
-  // local error on g, O(dt^{p+1}), which the Baumgarte terms pull back at rate ω. For a 10 cm
-  // thread swinging at ~1 m/s this is orders of magnitude below 1e-6 m (the bound).
+TEST(FixedPointConstraint, HoldsItsTargetToRoundOffOver10000Steps) {
+  // The multipliers make L A = E hold exactly at every stage, and g = P(0) − X is linear in q
+  // with a fixed target: Runge-Kutta and symplectic Euler preserve linear invariants exactly,
+  // so only round-off is left, pulled back by the Baumgarte terms before it accumulates. g
+  // sums a few products of coordinates of about 0.1 m: the bound is 64 ulps of 0.1 m,
+  // 1.4e-15 m (measured about 1e-17 m; the "micrometre" is 9 orders looser).
+  const double bound = 64 * std::numeric_limits<double>::epsilon() * 0.1;
   for (const char* integrator : {"RungeKutta4", "SymplecticEuler"}) {
     ThreadSceneOptions o;
     o.integrator = integrator;
     o.viscous_damping = 0.5;
     auto scene = test::loadThreadScene(o);
-    EXPECT_LE(maxViolationOver(*scene, 10000), 1e-6) << integrator;
+    const double worst = maxViolationOver(*scene, 10000);
+    std::cout << "  " << integrator << ": fixed point violation <= " << worst << " m\n";
+    EXPECT_LE(worst, bound) << integrator;
   }
 }
 

@@ -216,5 +216,23 @@ TEST(SlidingPoint, RealSutureIsPulledThroughUnderImplicitEulerAt1ms) {
   EXPECT_TRUE(h.active());
 }
 
+// Redundant constraints: two sliding points at one abscissa give identical rows and a singular
+// system. Its NaN abscissas used to index the basis out of range (a segmentation fault); the step
+// now fails, names the solver and the cause, and rolls back.
+TEST(SlidingPoint, RedundantHolesAreReportedAndRolledBack) {
+  ConstraintThread t;
+  t.constraints = {json{{"type", "SlidingPointConstraint"}, {"abscissa", 0.3}},
+                   json{{"type", "SlidingPointConstraint"}, {"abscissa", 0.3}},
+                   json{{"type", "FixedPointConstraint"}, {"abscissa", 0.5}}};
+  auto scene = loadScene(test::constraintScene({t}), "redundant", app::makeFactory());
+  const SceneState start = scene->state();
+  const StepReport report = scene->step();
+  ASSERT_FALSE(report.ok);
+  EXPECT_NE(report.message.find("LagrangeMultiplierSolver"), std::string::npos) << report.message;
+  EXPECT_NE(report.message.find("singular"), std::string::npos) << report.message;
+  EXPECT_EQ(scene->state().time, start.time);
+  EXPECT_TRUE(scene->state().q == start.q);
+}
+
 }  // namespace
 }  // namespace filum

@@ -4,6 +4,8 @@
 // and what was found.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -102,6 +104,34 @@ const std::vector<BadScene> kCases = {
     {"unknown_component_type.json", " /nodes/0/components/1/type",
      "expected a known component type (",  // the sorted list grows with every library
      "found \"SpringForceFeild\""},
+    // Limits of the machine and of the physics, checked before anything is allocated; each
+    // message says where its limit comes from.
+    {"huge_control_point_count.json", " /nodes/0/components/0/control_points/count (DynamicSpline)",
+     "expected an integer >= 4 and <= 100000 (dynamic_spline.hpp: memory and step time", "found 100000000"},
+    {"far_control_point.json", " /nodes/0/components/0/control_points (DynamicSpline)",
+     "expected control points within ±1e6 m of the origin", "found point 2 at [1e+308, 0, 0]"},
+    {"tiny_density.json", " /nodes/0/components/0/density (DynamicSpline)",
+     "expected a density giving a positive, finite mass", "found 5e-324, mass 0.0 kg"},
+    {"tiny_mass.json", " /nodes/0/components/0/mass (DynamicSpline)",
+     "expected a mass whose matrix M = m ∫ b_i b_j ds is positive definite in double precision",
+     "found 5e-324, total mass 5e-324 kg (BandedCholesky: matrix is not positive definite"},
+    {"tiny_sphere_spacing.json", " /nodes/0/components/1/spacing",
+     "expected at most 1000000 spheres along the thread (sphere_sampling_mapping.hpp",
+     "found 100000001.0 spheres of spacing 1e-09 m on 0.1 m"},
+    {"huge_mesh_header.json", " /nodes/0/components/1/file (MeshModel)", "expected a readable .obj, .off or .ply mesh",
+     "a header announcing 1000000000 vertices and 1 faces in a file of 25 bytes"},
+    {"tiny_time_step.json", " /dt", "expected a time step in [1e-9, 1] s (scene.hpp", "found 1e-300"},
+    {"short_duration.json", " /duration", "expected a duration of 1 to 100000000 steps of dt",
+     "found 0.0001 s, shorter than dt / 2 = 0.0005 s (0 steps)"},
+    {"wrong_role_block.json", " /constraint_solver/type", "expected a component of role ConstraintSolver",
+     "found \"RungeKutta4\", which is not a ConstraintSolver"},
+    // The shape of the text, checked before the document is built: the place is line:column and
+    // the pointer of the member that holds the fault.
+    {"deeply_nested_array.json", "6:132: /nodes/0/components/0/control_points/count",
+     "expected arrays and objects nested at most 64 deep", "found a value nested deeper than that", Target::kUnparsed},
+    {"duplicate_key.json", "7:27: /nodes/0/components/0/control_points/count",
+     "expected each key once in an object", "found 'count' again; it was first given at line 6, column 65",
+     Target::kUnparsed},
     // Not JSON at all: the place is line:column, the parser says what it expected and found.
     {"invalid_json_syntax.json", "7:13", "invalid JSON", "unexpected string literal; expected '}'",
      Target::kUnparsed},
@@ -246,6 +276,75 @@ TEST(SceneErrorsData, NonFiniteNumbersInAParsedDocumentAreRefused) {
       EXPECT_EQ(std::string(e.what()),
                 std::string("in-memory: /gravity/2: expected a finite number (z of a 3-vector [x, y, z]), ") + c.found);
     }
+  }
+}
+
+// Arrays nested 100,000 deep (a stack overflow before): refused by the shape check, which keeps
+// its own stack, before nlohmann builds the document.
+TEST(SceneErrorsData, NestingFarBeyondTheLimitIsRefusedWithoutRecursion) {
+  const std::filesystem::path dir = std::filesystem::path(FILUM_BINARY_DIR) / "test_output" / "deep_nesting";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "deep.json").string();
+  std::ofstream(path) << "{\"nodes\": " << std::string(100000, '[') << std::string(100000, ']') << "}";
+  const std::string message = loadError(path);
+  EXPECT_EQ(message.rfind(path + ":1:", 0), 0u) << message;
+  EXPECT_NE(message.find(": /nodes: expected arrays and objects nested at most 64 deep"), std::string::npos) << message;
+}
+
+// A FIFO (or a device) given as the scene or as a mesh file would block forever or never end:
+// refused before a byte is read, at the place that names it.
+TEST(SceneErrorsData, AFifoIsRefusedAsSceneAndAsMeshFile) {
+  const std::filesystem::path dir = std::filesystem::path(FILUM_BINARY_DIR) / "test_output" / "fifo";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string fifo = (dir / "pipe.off").string();
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  std::string message = loadError(fifo);
+  EXPECT_NE(message.find(fifo + ": expected a regular scene file"), std::string::npos) << message;
+  EXPECT_NE(message.find("found a FIFO (named pipe)"), std::string::npos) << message;
+
+  nlohmann::json scene = readJsonFile(std::string(FILUM_TEST_DATA_DIR) + "/minimal_thread.json");
+  for (const char* type : {"MeshModel", "TriangleMeshObstacle"}) {
+    if (!app::makeFactory().knows(type)) continue;  // TriangleMeshObstacle needs FILUM_WITH_CGAL
+    nlohmann::json bad = scene;
+    bad["nodes"][1]["components"].push_back({{"type", type}, {"file", "pipe.off"}});
+    const std::string path = (dir / (std::string(type) + ".json")).string();
+    std::ofstream(path) << bad.dump(2);
+    message = loadError(path);
+    EXPECT_EQ(message.rfind(path + ": /nodes/1/components/1/file (" + std::string(type) + "): expected ", 0), 0u)
+        << message;
+    EXPECT_NE(message.find("a FIFO (named pipe)"), std::string::npos) << message;
+  }
+}
+
+// 10,001 components in one node (a mutated copy with 80,000 made a check hang): refused at the
+// list, before any of them is built, with the limit and its reason.
+TEST(SceneErrorsData, TooManyComponentsAreRefusedBeforeTheyAreBuilt) {
+  nlohmann::json bad = readJsonFile(std::string(FILUM_TEST_DATA_DIR) + "/minimal_thread.json");
+  for (int k = 0; k < 10000; ++k) bad["nodes"][0]["components"].push_back({{"type", "ViscousDamping"}});
+  try {
+    loadScene(bad, "in-memory", app::makeFactory());
+    ADD_FAILURE() << "10,003 components were accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("in-memory: /nodes/0/components: expected at most 10000 components in a "
+                                          "scene (scene_loader.cpp: ",
+                                          0),
+              0u)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("found a list of 10003, 10003 so far"), std::string::npos) << e.what();
+  }
+}
+
+// A component of the wrong role placed among a node's components still has a place.
+TEST(SceneErrorsData, ASecondIntegratorIsNamedByItsPlace) {
+  nlohmann::json bad = readJsonFile(std::string(FILUM_TEST_DATA_DIR) + "/minimal_thread.json");
+  bad["nodes"][0]["components"].push_back({{"type", "RungeKutta4"}});
+  try {
+    loadScene(bad, "in-memory", app::makeFactory());
+    ADD_FAILURE() << "a second integrator was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("in-memory: /nodes/0/components/3: expected exactly one integrator", 0), 0u)
+        << e.what();
   }
 }
 

@@ -1,8 +1,10 @@
 // The uniform cubic B-spline of the paper (§2): closed-form values, its knot form, C2 but not C3.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
+#include "filum/geometry/catmull_rom_spline.hpp"
 #include "filum/geometry/knot_vector.hpp"
 #include "filum/geometry/nonuniform_bspline.hpp"
 #include "filum/geometry/spline_curve.hpp"
@@ -88,6 +90,23 @@ TEST(UniformCubicBSpline, SecondDerivativeIsContinuousButThirdJumps) {
   const double N = n - 3;
   const Vec3 expected = N * N * N * (q.row(2) - 4 * q.row(3) + 6 * q.row(4) - 4 * q.row(5) + q.row(6)).transpose();
   EXPECT_LE((third_right - third_left - expected).norm(), 1e-6 * expected.norm());
+}
+
+// A NaN abscissa (a diverging Runge-Kutta stage of a sliding point) evaluates the first piece
+// instead of control point INT_MIN (a segmentation fault); the scene then reports the non-finite
+// state and rolls the step back. Catmull-Rom shares the piece lookup.
+TEST(UniformCubicBSpline, ANaNAbscissaStaysWithinTheControlPoints) {
+  const UniformCubicBSpline basis(10);
+  BasisRow row, first;
+  basis.evaluate(std::numeric_limits<double>::quiet_NaN(), row);
+  basis.evaluate(0.0, first);
+  EXPECT_EQ(row.first, first.first);
+  EXPECT_EQ(row.count, 4);
+  for (int j = 0; j < 4; ++j) EXPECT_EQ(row.value[j], first.value[j]);
+  const CatmullRomSpline catmull_rom(10);
+  catmull_rom.evaluate(std::numeric_limits<double>::quiet_NaN(), row);
+  EXPECT_GE(row.first, 0);
+  EXPECT_LE(row.first + row.count, 10);
 }
 
 TEST(UniformCubicBSpline, RejectsFewerThanFourControlPoints) {

@@ -108,12 +108,14 @@ TEST(Dynamics, SaveAndRestoreGivesBitIdenticalContinuations) {
   ThreadSceneOptions o;
   o.viscous_damping = 0.5;
   auto scene = test::loadThreadScene(o);
-  for (int k = 0; k < 100; ++k) scene->step();
+  // Every step must succeed: two rolled-back runs would also compare equal.
+  for (int k = 0; k < 100; ++k) ASSERT_TRUE(scene->step().ok) << "step " << k;
   const SceneState saved = scene->state();
-  for (int k = 0; k < 200; ++k) scene->step();
+  for (int k = 0; k < 200; ++k) ASSERT_TRUE(scene->step().ok) << "step " << 100 + k;
   const SceneState first = scene->state();
   scene->setState(saved);
-  for (int k = 0; k < 200; ++k) scene->step();
+  for (int k = 0; k < 200; ++k) ASSERT_TRUE(scene->step().ok) << "replayed step " << 100 + k;
+  EXPECT_EQ(first.steps, 300);
   EXPECT_EQ(scene->state().time, first.time);
   EXPECT_TRUE(scene->state().q == first.q);
   EXPECT_TRUE(scene->state().v == first.v);

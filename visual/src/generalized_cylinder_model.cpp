@@ -11,8 +11,16 @@ namespace filum::visual {
 
 std::unique_ptr<GeneralizedCylinderModel> GeneralizedCylinderModel::fromParams(const Params& p) {
   Options o;
-  if (p.has("samples")) o.samples = p.integer("samples", 2);
-  o.sides = p.integer("sides", 3, o.sides);
+  // Limits of a skin mesh (rings × sides vertices, rebuilt every frame): as many rings as curve
+  // samples in the output (output_settings.hpp), sides far beyond what a picture shows, and at
+  // most kMaxSkinVertices in all.
+  if (p.has("samples"))
+    o.samples = p.integer("samples", 2, 100000, "rings along the axis: the limit of the output's curve samples");
+  o.sides = p.integer("sides", 3, 1024, o.sides, "vertices per ring: 1024 are finer than any pixel of a frame");
+  if (o.samples && static_cast<long>(*o.samples) * o.sides > kMaxSkinVertices)
+    p.fail("samples", "samples × sides <= " + std::to_string(kMaxSkinVertices) +
+                          " vertices (a skin mesh is rebuilt every frame; 48 bytes per vertex)",
+           std::to_string(*o.samples) + " × " + std::to_string(o.sides));
   if (p.has("radius") || p.has("radius_profile")) o.profile = RadiusProfile::fromParams(p, 1.0);
   const std::string caps = p.string("caps", "round");
   if (caps == "round")
@@ -21,7 +29,7 @@ std::unique_ptr<GeneralizedCylinderModel> GeneralizedCylinderModel::fromParams(c
     o.caps = CapStyle::kFlat;
   else
     p.fail("caps", "\"round\" or \"flat\"", "\"" + caps + "\"");
-  o.cap_rings = p.integer("cap_rings", 1, 0);
+  o.cap_rings = p.integer("cap_rings", 1, 1024, 0, "rings of a round cap: at most the sides of the ring");
   auto model = std::make_unique<GeneralizedCylinderModel>(std::move(o));
   model->setMaterial(Material::fromParams(p, Material{Vec3(0.15, 0.3, 0.85), 1.0}));
   return model;
@@ -35,6 +43,12 @@ void GeneralizedCylinderModel::init(const Scene&) {
   const geometry::SplineBasis& basis = spline->basis();
   const int pieces = static_cast<int>(basis.breakpoints().size()) - 1;
   const int rings = options_.samples.value_or(std::max(16, 6 * pieces));
+  // The default rings follow the control points: checked here, before the mesh is allocated.
+  if (static_cast<long>(rings) * options_.sides > kMaxSkinVertices)
+    throw SceneError(origin(), "a skin of at most " + std::to_string(kMaxSkinVertices) +
+                                   " vertices (rings × sides; give fewer \"samples\" or \"sides\")",
+                     std::to_string(rings) + " rings × " + std::to_string(options_.sides) + " sides on " +
+                         body().describe());
   if (!options_.profile) options_.profile = RadiusProfile(spline->radius());
 
   // Rings at equal arc length on the rest curve: u_k = k / (m − 1) of the rest length.

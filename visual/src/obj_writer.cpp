@@ -32,7 +32,8 @@ void writeObj(const std::string& path, const std::vector<NamedMesh>& meshes) {
     }
     first += mesh.vertexCount();
   }
-  if (!out) throw std::runtime_error(path + ": write failed");
+  out.close();  // flushes: a full disk or a file size limit shows here, not in a destructor
+  if (!out) throw std::runtime_error(path + ": write failed (disk full or file size limit?)");
 }
 
 }  // namespace filum::visual

@@ -33,7 +33,9 @@ TriangleMesh readOff(const std::string& path) {
   std::vector<Eigen::Vector3i> triangles;
   for (long f = 0; f < face_count; ++f) {
     int n = 0;
-    if (!(words >> n) || n < 3) throw std::runtime_error(path + ": face " + std::to_string(f) + ": expected a vertex count >= 3");
+    if (!(words >> n) || n < 3 || n > vertex_count)
+      throw std::runtime_error(path + ": face " + std::to_string(f) + ": expected a vertex count in [3, " +
+                               std::to_string(vertex_count) + "] (the vertices of the file)");
     std::vector<int> polygon(n);
     for (int k = 0; k < n; ++k)
       if (!(words >> polygon[k]) || polygon[k] < 0 || polygon[k] >= vertex_count)

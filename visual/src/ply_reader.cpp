@@ -1,5 +1,8 @@
 #include "filum/visual/ply_reader.hpp"
 
+#include "filum/core/input_file.hpp"
+
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -131,7 +134,14 @@ TriangleMesh readPly(const std::string& path) {
   TriangleMesh mesh;
   std::vector<Eigen::Vector3i> triangles;
   long vertex_count = 0;
+  const std::uintmax_t file_bytes = inputFileSize(path);
   for (const Element& e : elements) {
+    // Before allocating: an entry takes at least one byte per property (binary char).
+    const auto entry_bytes = static_cast<long double>(std::max<std::size_t>(1, e.properties.size()));
+    if (e.count < 0 || e.count * entry_bytes > static_cast<long double>(file_bytes))
+      throw std::runtime_error(path + ": element '" + e.name + "' announces " + std::to_string(e.count) +
+                               " entries of " + std::to_string(e.properties.size()) + " properties in a file of " +
+                               std::to_string(file_bytes) + " bytes (at least one byte per property)");
     const bool vertex = e.name == "vertex", face = e.name == "face";
     if (vertex) {
       vertex_count = e.count;
@@ -140,8 +150,13 @@ TriangleMesh readPly(const std::string& path) {
     for (long i = 0; i < e.count; ++i) {
       for (const Property& p : e.properties) {
         if (p.list) {
-          const long n = static_cast<long>(reader.next(p.count_type));
-          std::vector<int> polygon(std::max(0L, n));
+          const double announced = reader.next(p.count_type);
+          // Checked before the list is allocated: a list holds at most one entry per byte of the file.
+          if (!(announced >= 0.0 && announced <= static_cast<double>(file_bytes)))
+            reader.fail("element " + std::to_string(i) + ": a list of " + std::to_string(announced) +
+                        " entries in a file of " + std::to_string(file_bytes) + " bytes");
+          const long n = static_cast<long>(announced);
+          std::vector<int> polygon(n);
           for (long k = 0; k < n; ++k) polygon[k] = static_cast<int>(reader.next(p.type));
           if (face && (p.name == "vertex_indices" || p.name == "vertex_index")) {
             if (n < 3) reader.fail("face " + std::to_string(i) + " has fewer than 3 vertices");

@@ -25,7 +25,8 @@ void writePly(const std::string& path, const TriangleMesh& mesh) {
   }
   for (int f = 0; f < mesh.triangleCount(); ++f)
     out << "3 " << mesh.triangles(f, 0) << ' ' << mesh.triangles(f, 1) << ' ' << mesh.triangles(f, 2) << '\n';
-  if (!out) throw std::runtime_error(path + ": write failed");
+  out.close();  // flushes: a full disk or a file size limit shows here, not in a destructor
+  if (!out) throw std::runtime_error(path + ": write failed (disk full or file size limit?)");
 }
 
 }  // namespace filum::visual

@@ -21,7 +21,8 @@ void PvdSeries::addStep(double time, const std::vector<std::string>& relative_fi
       out << "    <DataSet timestep=\"" << t << "\" group=\"\" part=\"" << e.part << "\" file=\"" << e.file << "\"/>\n";
     }
     out << "  </Collection>\n</VTKFile>\n";
-    if (!out) throw std::runtime_error(temporary + ": write failed");
+    out.close();  // flushes: a full disk or a file size limit shows here, not in a destructor
+    if (!out) throw std::runtime_error(temporary + ": write failed (disk full or file size limit?)");
   }
   if (std::rename(temporary.c_str(), path_.c_str()) != 0) throw std::runtime_error(path_ + ": cannot replace");
 }

@@ -51,4 +51,16 @@ void appendSphere(const TriangleMesh& unit, const Vec3& center, double radius, T
   out.triangles.bottomRows(unit.triangles.rows()) = unit.triangles.array() + static_cast<int>(v0);
 }
 
+void sphereSet(const TriangleMesh& unit, const Points& centers, double radius, TriangleMesh& out) {
+  const Eigen::Index k = centers.rows(), nv = unit.vertices.rows(), nf = unit.triangles.rows();
+  out.vertices.resize(k * nv, 3);
+  out.normals.resize(k * nv, 3);
+  out.triangles.resize(k * nf, 3);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    out.vertices.middleRows(i * nv, nv) = (radius * unit.vertices).rowwise() + centers.row(i);
+    out.normals.middleRows(i * nv, nv) = unit.normals;
+    out.triangles.middleRows(i * nf, nf) = unit.triangles.array() + static_cast<int>(i * nv);
+  }
+}
+
 }  // namespace filum::visual

@@ -4,6 +4,7 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/arc_length.hpp"
 #include "filum/core/curve_body.hpp"
+#include "filum/visual/generalized_cylinder_model.hpp"
 #include "filum/visual/sphere_mesh.hpp"
 
 namespace filum::visual {
@@ -36,7 +37,7 @@ std::unique_ptr<SphereModel> SphereModel::fromParams(const Params& p) {
   }
   if (p.has("count")) {
     o.placement = Placement::kEvenlyOnCurve;
-    o.count = p.integer("count", 1);
+    o.count = p.integer("count", 1, 100000, "one sphere mesh each; the limit of the output's curve samples");
     ++placements;
   }
   if (p.has("constraint")) {
@@ -53,7 +54,17 @@ std::unique_ptr<SphereModel> SphereModel::fromParams(const Params& p) {
     p.fail("", "exactly one of \"center\", \"abscissa\", \"abscissas\", \"count\", \"constraint\" or \"path\"",
            std::to_string(placements) + " of them");
   if (p.has("radius")) o.radius = p.positive("radius");
-  o.resolution = p.integer("resolution", 2, o.resolution);
+  o.resolution = p.integer("resolution", 2, 256, o.resolution, "latitude rings: 256 are finer than any pixel");
+  // A sphere mesh has about 2 resolution² vertices, one per sphere: the same budget as a skin.
+  const long spheres = o.placement == Placement::kEvenlyOnCurve ? o.count
+                      : o.placement == Placement::kOnCurve    ? static_cast<long>(o.abscissas.size())
+                                                              : 1;
+  const long vertices = 2L * o.resolution * o.resolution * spheres;
+  if (vertices > kMaxSkinVertices)
+    p.fail(p.has("count") ? "count" : p.has("abscissas") ? "abscissas" : "resolution",
+           "spheres × 2 resolution² <= " + std::to_string(kMaxSkinVertices) +
+               " vertices (the meshes are rebuilt every frame; generalized_cylinder_model.hpp)",
+           std::to_string(vertices) + " vertices");
   auto model = std::make_unique<SphereModel>(std::move(o));
   model->setMaterial(Material::fromParams(p, Material{Vec3(0.85, 0.2, 0.15), 1.0}));
   return model;
@@ -118,11 +129,7 @@ void SphereModel::update(const SceneState& s) {
       centers_.row(0) = options_.path.position(s.time).transpose();
       break;
   }
-  mesh_ = TriangleMesh{};
-  mesh_.vertices.resize(0, 3);
-  mesh_.normals.resize(0, 3);
-  mesh_.triangles.resize(0, 3);
-  for (Eigen::Index i = 0; i < centers_.rows(); ++i) appendSphere(unit_, centers_.row(i).transpose(), radius_, mesh_);
+  sphereSet(unit_, centers_, radius_, mesh_);
 }
 
 }  // namespace filum::visual

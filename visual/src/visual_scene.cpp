@@ -21,6 +21,18 @@ std::string safeName(std::string text) {
 // Default skin colours, one per spline in declaration order.
 const Vec3 kPalette[] = {{0.15, 0.3, 0.85}, {0.85, 0.45, 0.1}, {0.2, 0.65, 0.3}, {0.7, 0.2, 0.6}, {0.1, 0.6, 0.7}};
 
+// Runs a model's set-up; a library's own refusal (std::exception) is reported at the model.
+template <class SetUp>
+void atOrigin(const VisualModel& model, SetUp setUp) {
+  try {
+    setUp();
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw SceneError(model.origin(), model.typeName() + " cannot be set up: " + e.what());
+  }
+}
+
 }  // namespace
 
 VisualScene::VisualScene(Scene& scene) : scene_(scene), layout_revision_(scene.layoutRevision()) {
@@ -42,10 +54,10 @@ VisualScene::VisualScene(Scene& scene) : scene_(scene), layout_revision_(scene.l
     }
     MechanicalState* body = node ? node->mechanicalState() : nullptr;
     if (body) {
-      model->bind(*body, scene);
+      atOrigin(*model, [&] { model->bind(*body, scene); });
       if (model->drawsBody()) drawn.insert(body);
     } else if (!model->needsBody()) {
-      model->initWithoutBody(scene);
+      atOrigin(*model, [&] { model->initWithoutBody(scene); });
     } else {
       const std::string where = model->objectPath().empty() ? model->origin() : model->origin() + "/object";
       const std::string place = !node || node->path().empty() ? "the root node" : "node '" + node->path() + "'";

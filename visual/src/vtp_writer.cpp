@@ -60,7 +60,8 @@ void writeVtp(const std::string& path, const std::vector<PolyLine>& lines, const
   long offset = 0;
   for (const PolyLine& line : lines) out << "          " << (offset += line.points.rows()) << '\n';
   out << "        </DataArray>\n      </Lines>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
-  if (!out) throw std::runtime_error(path + ": write failed");
+  out.close();  // flushes: a full disk or a file size limit shows here, not in a destructor
+  if (!out) throw std::runtime_error(path + ": write failed (disk full or file size limit?)");
 }
 
 void writeMeshVtp(const std::string& path, const TriangleMesh& mesh) {
@@ -89,7 +90,8 @@ void writeMeshVtp(const std::string& path, const TriangleMesh& mesh) {
   out << "        </DataArray>\n        <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n";
   for (int f = 0; f < mesh.triangleCount(); ++f) out << "          " << 3 * (f + 1) << '\n';
   out << "        </DataArray>\n      </Polys>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
-  if (!out) throw std::runtime_error(path + ": write failed");
+  out.close();  // flushes: a full disk or a file size limit shows here, not in a destructor
+  if (!out) throw std::runtime_error(path + ": write failed (disk full or file size limit?)");
 }
 
 }  // namespace filum::visual

@@ -1,6 +1,8 @@
 // The one translation unit of filum that includes CGAL (see triangle_mesh_surface.hpp).
 #include "filum/collision/triangle_mesh_surface.hpp"
 
+#include "filum/core/input_file.hpp"
+
 #include <filesystem>
 #include <stdexcept>
 
@@ -79,7 +81,12 @@ TriangleMeshSurface::~TriangleMeshSurface() = default;
 
 std::unique_ptr<TriangleMeshSurface> TriangleMeshSurface::read(const std::string& path, double scale,
                                                                const Vec3& translation) {
-  if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such file");
+  // Before CGAL reads a byte: a FIFO or a device would block or never end; a header announcing
+  // more vertices than the file can hold would allocate them (input_file.hpp).
+  if (const std::string problem = inputFileProblem(path, kMaxMeshFileBytes); !problem.empty())
+    throw std::runtime_error(path + ": " + problem);
+  if (const std::string problem = meshHeaderProblem(path); !problem.empty())
+    throw std::runtime_error(path + ": " + problem);
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
   bool ok = false;

@@ -44,6 +44,12 @@ struct PointWeights {
   }
 };
 
+/// Spheres along one thread, at most (checked on the rest length when a scene is loaded): the
+/// broad and narrow phases visit every sphere at every step, and 1e6 is 1000 times the spheres
+/// of the reference scenes. A thread stretched during a run may hold 4 times as many; beyond,
+/// resampling throws (the step is rolled back and reported) instead of exhausting memory.
+inline constexpr int kMaxSpheresPerThread = 1000000;
+
 class SphereSamplingMapping final : public Mapping {
  public:
   /// basis: the spline's basis (cloned); spacing: target curvilinear distance h (m) > 0.

@@ -16,6 +16,14 @@
 
 namespace filum::mechanics {
 
+/// Control points of one body, at most: a body's state, banded matrices and per-step work grow
+/// linearly with the count, and 1e5 is 600 times the largest reference body (rope.json, 165) while a
+/// step of it still fits in memory many times over. Checked before anything is allocated.
+inline constexpr int kMaxControlPoints = 100000;
+/// Coordinates of control points, at most this far from the origin (m): scenes are in metres,
+/// and beyond 1e6 m squared distances and energies (stiffness × length²) approach overflow.
+inline constexpr double kMaxCoordinate = 1e6;
+
 class DynamicSpline final : public CurveBody {
  public:
   /// initial: n × 3 control points (m); mass: total mass (kg) > 0; radius: cross-section

@@ -131,7 +131,7 @@ class StepMatrix final : public BlockInverse, public JacobianAccumulator {
   /// Lower-triangle add a_rc += value in a band block (local coordinates, r >= c).
   void addLower(Block& block, int r, int c, double value);
   /// Scatters this assembly's triplets into the sparse blocks; factors every block.
-  std::string factorBlocks();
+  std::string factorBlocks(const Scene& scene);
   /// Rebuilds a sparse block's matrix and slot table from this assembly's triplets.
   void rebuildSparse(Block& block);
   /// Z = B⁻¹ U and the factored capacitance matrix of a band block with rank-one terms.

@@ -34,6 +34,10 @@ class Params {
   /// An integer >= minimum.
   int integer(const std::string& key, int minimum) const;
   int integer(const std::string& key, int minimum, int fallback) const;
+  /// An integer in [minimum, maximum], checked before the caller allocates anything for it;
+  /// `why` says where the maximum comes from (memory, physics) and goes into the message.
+  int integer(const std::string& key, int minimum, int maximum, const std::string& why) const;
+  int integer(const std::string& key, int minimum, int maximum, int fallback, const std::string& why) const;
   std::string string(const std::string& key) const;
   std::string string(const std::string& key, const std::string& fallback) const;
   bool boolean(const std::string& key, bool fallback) const;
@@ -42,6 +46,8 @@ class Params {
   Vec3 vec3(const std::string& key, const Vec3& fallback) const;
   /// A list of [x, y, z] with at least `minimum` entries.
   Points points(const std::string& key, int minimum) const;
+  /// The same with at most `maximum` entries (checked before allocating); `why` as for integer().
+  Points points(const std::string& key, int minimum, int maximum, const std::string& why) const;
 
   /// A nested object as Params (the key must hold an object).
   Params object(const std::string& key) const;

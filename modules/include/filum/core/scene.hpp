@@ -28,6 +28,23 @@ namespace filum {
 class CurveBody;
 
 /// Model data of the scene itself: constant during a run.
+/// Limits of the time stepping, checked when a scene is loaded and when `filum run -t` overrides
+/// the duration (scene_loader.cpp, run_command.cpp).
+///  - dt >= 1e-9 s: the stiffest reference material (2 GPa, 910 kg/m³: waves at 1.5 km/s) on
+///    control points 0.1 mm apart is stable explicitly below 7e-8 s; a smaller step only piles
+///    up steps and round-off;
+///  - dt <= 1 s: gravity alone moves a point 5 m in one such step;
+///  - at most 1e8 steps per run: `filum run` keeps each step's wall time (8 bytes) for its
+///    timing summary (800 MB at the limit), and 1e8 steps of the smallest scene take hours;
+///  - duration >= dt / 2: a shorter run rounds to zero steps.
+inline constexpr double kMinTimeStep = 1e-9;
+inline constexpr double kMaxTimeStep = 1.0;
+inline constexpr long kMaxSteps = 100000000;
+
+/// "" when a run of `duration` at `dt` has between 1 and kMaxSteps steps; otherwise what was
+/// found ("0 steps (duration 1e-05 s < dt / 2)", ...). dt is within its limits.
+std::string stepCountProblem(double duration, double dt);
+
 struct SceneSettings {
   std::string name = "scene";
   std::string source;              // file it was loaded from

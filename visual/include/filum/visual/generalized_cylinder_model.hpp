@@ -22,6 +22,10 @@
 
 namespace filum::visual {
 
+/// Vertices of one skin mesh, at most (rings × sides): 4e6 vertices take about 200 MB with their
+/// normals and triangles, rebuilt every frame.
+inline constexpr long kMaxSkinVertices = 4000000;
+
 class GeneralizedCylinderModel final : public VisualModel {
  public:
   struct Options {

@@ -12,4 +12,8 @@ TriangleMesh unitSphere(int rings);
 /// Appends the sphere (centre, radius) built from `unit` to `out` (vertices, normals, triangles).
 void appendSphere(const TriangleMesh& unit, const Vec3& center, double radius, TriangleMesh& out);
 
+/// Replaces `out` by one sphere of `radius` at each row of `centers` (k × 3), sized once: k
+/// appends would reallocate the growing mesh k times (quadratic in k).
+void sphereSet(const TriangleMesh& unit, const Points& centers, double radius, TriangleMesh& out);
+
 }  // namespace filum::visual

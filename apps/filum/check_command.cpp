@@ -1,0 +1,35 @@
+#include "filum/check_command.hpp"
+
+#include <iostream>
+
+#include "filum/all_components.hpp"
+#include "filum/core/scene_error.hpp"
+#include "filum/core/scene_loader.hpp"
+#include "filum/output_settings.hpp"
+#include "filum/run_command.hpp"
+#include "filum/visual/camera.hpp"
+#include "filum/visual/visual_scene.hpp"
+
+namespace filum::app {
+
+int checkScene(const std::string& path, std::ostream& out) {
+  try {
+    const nlohmann::json document = readJsonFile(path);
+    auto scene = loadScene(document, path, makeFactory());
+    readOutputSettings(document, path);  // read by `filum run`
+    visual::readCamera(document, path);  // read by --render and `filum view`
+    visual::VisualScene visuals(*scene);  // binds what the visual models follow (--meshes, --render, view)
+    visuals.update(scene->state());
+    out << path << ": ok (" << scene->bodies().size() << " bodies, " << scene->dofPointCount() << " control points, "
+        << scene->constraints().size() << " constraints)\n";
+    return 0;
+  } catch (const SceneError& e) {
+    out << "error: " << e.what() << '\n';
+    return kRunSceneError;
+  } catch (const std::exception& e) {  // a check missing in the loader: still the file, never an abort
+    out << "error: " << path << ": cannot load the scene: " << e.what() << '\n';
+    return kRunSceneError;
+  }
+}
+
+}  // namespace filum::app
