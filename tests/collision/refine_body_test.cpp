@@ -16,7 +16,7 @@
 // 2e-13 J for sliding.json (n = 30, EI = 1.6e-7 N m², |q| = 0.1 m, h = 3.7 mm) and 1e-13 J for
 // threads.json (70 points, EI = 2.4e-6 N m², |q| = 0.08 m, h = 11 mm): bound 1e-12 J on top.
 // Positions are sums of d + 1 = 4 products, exact to 4ε |q| ≈ 1e-17 m for |q| ~ 0.1 m (bound
-// 1e-15 m).
+// 1e-15 m); velocities likewise to 4ε |v| (bound 1e-14 |v| + 1e-15 m/s).
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -55,30 +55,46 @@ void expectSameCurves(const CurveSamples& a, const CurveSamples& b) {
   }
 }
 
-void runRefined(const std::string& file, int body, const std::vector<double>& abscissas, long before, long after) {
+/// A reference scene of apps/scenes after `steps` steps (each must succeed).
+std::unique_ptr<Scene> loadStepped(const std::string& file, long steps) {
   auto scene = loadScene(std::string(FILUM_SOURCE_DIR) + "/apps/scenes/" + file, app::makeFactory());
-  for (long k = 0; k < before; ++k) ASSERT_TRUE(scene->step().ok) << file << " step " << k;
-  auto* curve = const_cast<CurveBody*>(scene->bodies()[body]->curve());
+  for (long k = 0; k < steps; ++k) {
+    const StepReport report = scene->step();
+    EXPECT_TRUE(report.ok) << file << " step " << k << ": " << report.message;
+    if (!report.ok) break;
+  }
+  return scene;
+}
+
+/// The same curves and energies as sampled before a layout change (tolerances in the header).
+void expectSameMotion(const Scene& scene, const CurveSamples& before, const Energy& e0) {
+  expectSameCurves(before, sampleCurves(scene));
+  const Energy e1 = scene.energy(scene.state());
+  EXPECT_LE(std::abs(e1.kinetic - e0.kinetic), 5e-12 * energyScale(e0));
+  EXPECT_LE(std::abs(e1.potential - e0.potential), 5e-12 * energyScale(e0) + 1e-12);
+}
+
+/// Sum of the constraints' extra DOFs (sliding abscissas), 0 when there are none.
+double extraSum(const Scene& scene) {
+  const Eigen::Index points = 3 * scene.dofPointCount();
+  return scene.state().q.tail(scene.state().q.size() - points).sum();
+}
+
+void runRefined(const std::string& file, int body, const std::vector<double>& abscissas, long before, long after) {
+  auto scene = loadStepped(file, before);
+  CurveBody* curve = scene->bodies()[body]->curve();
   ASSERT_NE(curve, nullptr);
   const int points = curve->pointCount();
   const Energy e0 = scene->energy(scene->state());
   const CurveSamples s0 = sampleCurves(*scene);
-  const double extra0 = scene->state().q.size() > 3 * scene->dofPointCount()
-                            ? scene->state().q.tail(scene->state().q.size() - 3 * scene->dofPointCount()).sum()
-                            : 0.0;
+  const double extra0 = extraSum(*scene);
 
   scene->refine(*curve, abscissas);
 
   EXPECT_EQ(curve->pointCount(), points + static_cast<int>(abscissas.size()));
   EXPECT_EQ(scene->layoutRevision(), 1);
-  expectSameCurves(s0, sampleCurves(*scene));
-  const Energy e1 = scene->energy(scene->state());
-  EXPECT_LE(std::abs(e1.kinetic - e0.kinetic), 5e-12 * energyScale(e0)) << file;
-  EXPECT_LE(std::abs(e1.potential - e0.potential), 5e-12 * energyScale(e0) + 1e-12) << file;
-  const double extra1 = scene->state().q.size() > 3 * scene->dofPointCount()
-                            ? scene->state().q.tail(scene->state().q.size() - 3 * scene->dofPointCount()).sum()
-                            : 0.0;
-  EXPECT_EQ(extra0, extra1) << "the constraints' extra DOFs (abscissas) are copied";
+  expectSameMotion(*scene, s0, e0);
+  EXPECT_EQ(extra0, extraSum(*scene)) << "the constraints' extra DOFs (abscissas) are copied";
 
   const VecX g0 = scene->constraintViolation(scene->state());
   for (long k = 0; k < after; ++k) {
@@ -137,8 +153,7 @@ TEST(CoarsenBody, AJustInsertedPointComesOutExactlyAndTheMotionContinues) {
   // Removing a knot that was just inserted is exact (the curve is as smooth there as before the
   // insertion): the curve, its velocity field and its energy are those before both, to the
   // round-off of the least-squares fit (a 2 × 2 QR solve per removed point: a few ε |q|).
-  auto scene = loadScene(std::string(FILUM_SOURCE_DIR) + "/apps/scenes/threads.json", app::makeFactory());
-  for (int k = 0; k < 100; ++k) ASSERT_TRUE(scene->step().ok);
+  auto scene = loadStepped("threads.json", 100);
   CurveBody* curve = scene->bodies()[2]->curve();
   const int points = curve->pointCount();
   const CurveSamples s0 = sampleCurves(*scene);
@@ -147,10 +162,7 @@ TEST(CoarsenBody, AJustInsertedPointComesOutExactlyAndTheMotionContinues) {
   ASSERT_TRUE(scene->coarsen(*curve, 0.45, 1e-12));
   EXPECT_EQ(curve->pointCount(), points);
   EXPECT_EQ(scene->layoutRevision(), 2);
-  expectSameCurves(s0, sampleCurves(*scene));
-  const Energy e1 = scene->energy(scene->state());
-  EXPECT_LE(std::abs(e1.kinetic - e0.kinetic), 5e-12 * energyScale(e0));
-  EXPECT_LE(std::abs(e1.potential - e0.potential), 5e-12 * energyScale(e0) + 1e-12);
+  expectSameMotion(*scene, s0, e0);
   for (int k = 0; k < 100; ++k) ASSERT_TRUE(scene->step().ok) << "step " << k << " after coarsening";
 }
 
@@ -159,8 +171,7 @@ TEST(CoarsenBody, ABentCurveKeepsItsPointUnlessTheToleranceAllowsTheFitAndThenMo
   // points: interior knots at k/7) moves the curve. With tolerance 0 the removal is refused and
   // nothing changes; with 1 mm it is done, and every sample of the curve moves by at most the
   // convex-hull bound, which is <= the tolerance.
-  auto scene = loadScene(std::string(FILUM_SOURCE_DIR) + "/apps/scenes/threads.json", app::makeFactory());
-  for (int k = 0; k < 200; ++k) ASSERT_TRUE(scene->step().ok);
+  auto scene = loadStepped("threads.json", 200);
   CurveBody* curve = scene->bodies()[0]->curve();
   const int points = curve->pointCount();
   const CurveSamples s0 = sampleCurves(*scene);
@@ -186,7 +197,7 @@ TEST(CoarsenBody, AnAbscissaAwayFromAKnotIsRefusedWithTheBody) {
 
 TEST(RefineBody, ABasisWithoutKnotFormOrAnAbscissaOutsideTheCurveIsRefusedWithoutChange) {
   auto scene = loadScene(std::string(FILUM_SOURCE_DIR) + "/apps/scenes/threads.json", app::makeFactory());
-  auto* curve = const_cast<CurveBody*>(scene->bodies()[0]->curve());
+  CurveBody* curve = scene->bodies()[0]->curve();
   const int points = curve->pointCount();
   EXPECT_THROW(scene->refine(*curve, {1.0}), SceneError);
   EXPECT_THROW(scene->refine(*curve, {std::nan("")}), SceneError);
