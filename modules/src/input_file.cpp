@@ -1,11 +1,7 @@
 #include "filum/core/input_file.hpp"
 
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <system_error>
 
 namespace filum {
@@ -45,60 +41,6 @@ std::uintmax_t inputFileSize(const std::string& path) {
   std::error_code error;
   const std::uintmax_t size = fs::file_size(path, error);
   return error ? 0 : size;
-}
-
-namespace {
-
-std::string lowerExtension(const std::string& path) {
-  std::string extension = fs::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  return extension;
-}
-
-// "OFF V F E" (comments after '#'); the counts may follow on the same line or the next ones.
-std::string offHeaderProblem(std::ifstream& in, std::uintmax_t size) {
-  std::string text, line;
-  for (int lines = 0; lines < 64 && std::getline(in, line); ++lines) {
-    text += line.substr(0, line.find('#')) + '\n';
-    std::istringstream words(text);
-    std::string header;
-    long long vertices = -1, faces = -1;
-    if (!(words >> header >> vertices >> faces)) continue;
-    if (vertices < 0 || faces < 0) return "";  // the reader says what it expected
-    const auto bytes = static_cast<long double>(size);
-    if (vertices * 6.0L > bytes || faces * 8.0L > bytes)
-      return "a header announcing " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
-             " faces in a file of " + std::to_string(size) + " bytes (a vertex takes at least 6 bytes, a face 8)";
-    return "";
-  }
-  return "";
-}
-
-// "element <name> <count>" lines up to "end_header".
-std::string plyHeaderProblem(std::ifstream& in, std::uintmax_t size) {
-  std::string line;
-  for (int lines = 0; lines < 1000 && std::getline(in, line); ++lines) {
-    std::istringstream words(line);
-    std::string tag, name;
-    long long count = 0;
-    words >> tag;
-    if (tag == "end_header") return "";
-    if (tag == "element" && (words >> name >> count) && (count < 0 || static_cast<std::uintmax_t>(count) > size))
-      return "a header announcing " + std::to_string(count) + " elements '" + name + "' in a file of " +
-             std::to_string(size) + " bytes (an element takes at least one byte)";
-  }
-  return "";
-}
-
-}  // namespace
-
-std::string meshHeaderProblem(const std::string& path) {
-  const std::string extension = lowerExtension(path);
-  if (extension != ".off" && extension != ".ply") return "";
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return "";
-  const std::uintmax_t size = inputFileSize(path);
-  return extension == ".off" ? offHeaderProblem(in, size) : plyHeaderProblem(in, size);
 }
 
 }  // namespace filum

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "filum/run_command.hpp"
-#include "filum/visual/mesh_file_reader.hpp"
+#include "filum/geometry/mesh_file.hpp"
 #include "filum/visual/offscreen_renderer.hpp"
 #include "support/vtk_xml_reader.hpp"
 #include "visual/visual_test_support.hpp"
@@ -40,10 +40,11 @@ TEST(RunVisual, MeshesArePlayableInParaViewAndMatchTheFinalObj) {
   // The last skin frame equals the final OBJ's first object (9 significant digits there).
   const test::VtpMesh last = test::readVtpMesh((out / entries[10].file).string());
   EXPECT_EQ(entries[10].part, 0);
-  const visual::TriangleMesh obj = visual::readMeshFile((out / "meshes" / "final_thread_GeneralizedCylinder.ply").string());
-  ASSERT_EQ(obj.vertexCount(), last.number_of_points);
+  const geometry::PolygonSoup obj =
+      geometry::readMeshFile((out / "meshes" / "final_thread_GeneralizedCylinder.ply").string());
+  ASSERT_EQ(obj.vertices.rows(), last.number_of_points);
   double worst = 0.0;
-  for (int v = 0; v < obj.vertexCount(); ++v)
+  for (int v = 0; v < obj.vertices.rows(); ++v)
     for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(obj.vertices(v, k) - last.points[3 * v + k]));
   EXPECT_LE(worst, 1e-9);
   EXPECT_TRUE(fs::exists(out / "meshes" / "final.obj"));

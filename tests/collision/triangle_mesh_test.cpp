@@ -177,6 +177,19 @@ TEST(TriangleMeshObstacle, SceneErrorsNameTheFileAndThePlace) {
     EXPECT_NE(what.find("mesh.json: /nodes/0/components/0/file"), std::string::npos) << what;
     EXPECT_NE(what.find("no_such_mesh.off"), std::string::npos) << what;
   }
+  // Units of the file: "mm" and the scale multiply; an unknown unit names its JSON path.
+  const nlohmann::json in_mm = {{"file", kOrgan}, {"units", "mm"}, {"scale", 2.0}};
+  const auto obstacle = TriangleMeshObstacle::fromParams(Params(in_mm, "mesh.json", "/nodes/0/components/0"));
+  const auto off = TriangleMeshSurface::read(kOrgan);
+  EXPECT_TRUE(obstacle->surface().vertices() == 0.002 * off->vertices());
+  scene["nodes"][0]["components"][0]["units"] = "inch";
+  try {
+    loadScene(scene, "mesh.json", app::makeFactory());
+    FAIL() << "an unknown unit was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("mesh.json: /nodes/0/components/0/units"), std::string::npos) << e.what();
+  }
+  scene["nodes"][0]["components"][0] = {{"type", "TriangleMeshObstacle"}, {"file", "no_such_mesh.off"}};
   // An open mesh (one triangle) is refused: the inside test needs a closed surface.
   const auto dir = std::filesystem::temp_directory_path();
   std::ofstream(dir / "filum_open.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";

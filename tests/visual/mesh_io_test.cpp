@@ -1,5 +1,6 @@
-// Mesh files (issue 7): OBJ, OFF and PLY readers (organs and vessels from files), OBJ and PLY
-// writers read back, and the MeshModel and SphereModel components.
+// Mesh files (issue 7): meshes read from files (geometry/mesh_file.hpp, tested on its own in
+// tests/geometry/mesh_file_test.cpp) with their normals, OBJ and PLY writers read back, and the
+// MeshModel and SphereModel components.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -8,10 +9,8 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/spline_curve.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
-#include "filum/visual/mesh_file_reader.hpp"
-#include "filum/visual/obj_reader.hpp"
+#include "filum/geometry/mesh_file.hpp"
 #include "filum/visual/obj_writer.hpp"
-#include "filum/visual/ply_reader.hpp"
 #include "filum/visual/ply_writer.hpp"
 #include "filum/visual/sphere_mesh.hpp"
 #include "filum/visual/sphere_model.hpp"
@@ -23,6 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+
+TriangleMesh readMeshFile(const std::string& path) { return triangleMesh(geometry::readMeshFile(path)); }
 
 fs::path scratch(const std::string& name) {
   const fs::path dir = fs::path(FILUM_BINARY_DIR) / "test_output" / "visual";
@@ -86,11 +87,10 @@ TEST(MeshFiles, BinaryPlyIsRead) {
       out.write(reinterpret_cast<const char*>(t), sizeof t);
     }
   }
-  const TriangleMesh m = readPly(path.string());
+  const TriangleMesh m = readMeshFile(path.string());
   EXPECT_EQ(m.vertexCount(), 4);
   EXPECT_EQ(m.triangleCount(), 4);
   EXPECT_DOUBLE_EQ(m.vertices(3, 2), 1.0);
-  computeVertexNormals(const_cast<TriangleMesh&>(m));
   EXPECT_NEAR(test::signedVolume(m), 1.0 / 6.0, 1e-7);
 }
 
@@ -124,6 +124,16 @@ TEST(MeshModel, ReadsPlacesAndRefusesMissingFiles) {
   EXPECT_LE((organ->vertices.row(1) - Vec3(0, 0.01, -0.05).transpose()).norm(), 1e-15);
   EXPECT_GT(test::signedVolume(*organ), 0.0);
 
+  // The same file in millimetres: "units" and "scale" multiply.
+  scene["nodes"][1]["components"][0]["units"] = "mm";
+  auto in_mm = loadScene(scene, "test", test::visualFactory());
+  VisualScene visuals_mm(*in_mm);
+  visuals_mm.update(in_mm->state());
+  for (std::size_t i = 0; i < visuals_mm.models().size(); ++i) {
+    if (visuals_mm.modelName(i) == "organ_MeshModel") {
+      EXPECT_LE((visuals_mm.models()[i]->mesh().vertices.row(1) - Vec3(0, 1e-5, -0.05).transpose()).norm(), 1e-18);
+    }
+  }
   scene["nodes"][1]["components"][0]["file"] = "no_such_mesh.off";
   try {
     loadScene(scene, "scene.json", test::visualFactory());

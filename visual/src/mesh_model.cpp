@@ -7,7 +7,8 @@
 
 #include <Eigen/Geometry>
 
-#include "filum/visual/mesh_file_reader.hpp"
+#include "filum/geometry/mesh_file.hpp"
+#include "filum/geometry/mesh_units.hpp"
 
 namespace filum::visual {
 
@@ -15,14 +16,14 @@ std::unique_ptr<MeshModel> MeshModel::fromParams(const Params& p) {
   const std::string file = p.string("file");
   std::filesystem::path path(file);
   if (path.is_relative()) path = std::filesystem::path(p.file()).parent_path() / path;
-  const double scale = p.positive("scale", 1.0);
+  const double scale = geometry::meshScale(p);  // "units" × "scale": metres per unit of the file
   const Vec3 degrees = p.vec3("rotation", Vec3::Zero());
   const Vec3 translation = p.vec3("translation", Vec3::Zero());
   TriangleMesh mesh;
   try {
-    mesh = readMeshFile(path.string());
+    mesh = triangleMesh(geometry::readMeshFile(path.string()));
   } catch (const std::runtime_error& e) {
-    p.fail("file", "a readable .obj, .off or .ply mesh", std::string("\"") + file + "\" (" + e.what() + ")");
+    p.fail("file", "a readable .obj, .off, .ply or .stl mesh", std::string("\"") + file + "\" (" + e.what() + ")");
   }
   // x_world = R (scale x) + t, R = Rz Ry Rx; normals turn with R.
   const double k = std::numbers::pi / 180.0;

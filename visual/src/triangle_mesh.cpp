@@ -1,5 +1,7 @@
 #include "filum/visual/triangle_mesh.hpp"
 
+#include <utility>
+
 #include <Eigen/Geometry>
 
 namespace filum::visual {
@@ -22,6 +24,14 @@ void computeVertexNormals(TriangleMesh& mesh) {
     else
       mesh.normals.row(v) = Vec3::UnitZ().transpose();
   }
+}
+
+TriangleMesh triangleMesh(geometry::PolygonSoup soup) {
+  TriangleMesh mesh;
+  mesh.vertices = std::move(soup.vertices);
+  mesh.triangles = std::move(soup.triangles);
+  computeVertexNormals(mesh);
+  return mesh;
 }
 
 void meshBounds(const TriangleMesh& mesh, Vec3& lower, Vec3& upper) {

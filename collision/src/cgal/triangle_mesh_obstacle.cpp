@@ -4,6 +4,8 @@
 
 #include <Eigen/Geometry>
 
+#include "filum/geometry/mesh_units.hpp"
+
 namespace filum::collision {
 
 TriangleMeshObstacle::TriangleMeshObstacle(std::shared_ptr<const TriangleMeshSurface> surface)
@@ -11,7 +13,7 @@ TriangleMeshObstacle::TriangleMeshObstacle(std::shared_ptr<const TriangleMeshSur
 
 std::unique_ptr<TriangleMeshObstacle> TriangleMeshObstacle::fromParams(const Params& p) {
   const std::string file = p.string("file");
-  const double scale = p.positive("scale", 1.0);
+  const double scale = geometry::meshScale(p);  // "units" × "scale": metres per unit of the file
   const Vec3 translation = p.vec3("translation", Vec3::Zero());
   // Relative paths are relative to the scene file's folder.
   std::filesystem::path path(file);
@@ -20,7 +22,7 @@ std::unique_ptr<TriangleMeshObstacle> TriangleMeshObstacle::fromParams(const Par
   try {
     surface = TriangleMeshSurface::read(path.string(), scale, translation);
   } catch (const std::exception& e) {
-    p.fail("file", "a closed triangle mesh file (.off, .obj, .stl, .ply) readable by CGAL", "\"" + file + "\" (" + e.what() + ")");
+    p.fail("file", "a closed triangle mesh file (.off, .obj, .stl, .ply)", "\"" + file + "\" (" + e.what() + ")");
   }
   auto obstacle = std::make_unique<TriangleMeshObstacle>(std::move(surface));
   obstacle->readCommon(p);

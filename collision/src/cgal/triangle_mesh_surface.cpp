@@ -1,15 +1,13 @@
 // The one translation unit of filum that includes CGAL (see triangle_mesh_surface.hpp).
 #include "filum/collision/triangle_mesh_surface.hpp"
 
-#include "filum/core/input_file.hpp"
-
-#include <filesystem>
 #include <stdexcept>
+
+#include "filum/geometry/mesh_file.hpp"
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
-#include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
@@ -81,32 +79,13 @@ TriangleMeshSurface::~TriangleMeshSurface() = default;
 
 std::unique_ptr<TriangleMeshSurface> TriangleMeshSurface::read(const std::string& path, double scale,
                                                                const Vec3& translation) {
-  // Before CGAL reads a byte: a FIFO or a device would block or never end; a header announcing
-  // more vertices than the file can hold would allocate them (input_file.hpp).
-  if (const std::string problem = inputFileProblem(path, kMaxMeshFileBytes); !problem.empty())
-    throw std::runtime_error(path + ": " + problem);
-  if (const std::string problem = meshHeaderProblem(path); !problem.empty())
-    throw std::runtime_error(path + ": " + problem);
-  std::vector<Point> points;
-  std::vector<std::vector<std::size_t>> polygons;
-  bool ok = false;
-  try {
-    ok = CGAL::IO::read_polygon_soup(path, points, polygons);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(path + ": " + e.what());
-  }
-  if (!ok || points.empty() || polygons.empty())
-    throw std::runtime_error(path + ": CGAL could not read a polygon mesh from it (formats: .off, .obj, .stl, .ply)");
-  Points vertices(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t v = 0; v < points.size(); ++v)
-    vertices.row(static_cast<Eigen::Index>(v)) = (scale * toVec3(points[v]) + translation).transpose();
-  // Polygons fanned into triangles (v0, v_k, v_{k+1}).
-  std::vector<Triangle> triangles;
-  for (const auto& polygon : polygons) {
-    if (polygon.size() < 3) throw std::runtime_error(path + ": a face has fewer than 3 vertices");
-    for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
-      triangles.push_back({static_cast<int>(polygon[0]), static_cast<int>(polygon[k]), static_cast<int>(polygon[k + 1])});
-  }
+  // filum's reader (mesh_file.hpp), not CGAL's: CGAL's OBJ reader refuses common exports
+  // (groups, materials, "v/vt/vn" corners), and ours checks the file before reading it.
+  geometry::PolygonSoup soup = geometry::readMeshFile(path);
+  const Points vertices = (scale * soup.vertices).rowwise() + translation.transpose();
+  std::vector<Triangle> triangles(static_cast<std::size_t>(soup.triangles.rows()));
+  for (std::size_t f = 0; f < triangles.size(); ++f)
+    for (int c = 0; c < 3; ++c) triangles[f][c] = soup.triangles(static_cast<Eigen::Index>(f), c);
   try {
     return std::make_unique<TriangleMeshSurface>(vertices, triangles);
   } catch (const std::invalid_argument& e) {

@@ -5,8 +5,9 @@
 //     triangle_primitive), closest_point() with accelerated distance queries;
 //   - inside test: CGAL::Side_of_triangle_mesh (ray shooting through its own AABB tree, parity
 //     of the crossings), exact for a closed, consistently oriented mesh.
-// Signed distance d(x) = ±|x − closest(x)|, negative inside. Files are read by CGAL's readers
-// (CGAL::IO::read_polygon_soup: .off, .obj, .stl, .ply); polygons are fanned into triangles.
+// Signed distance d(x) = ±|x − closest(x)|, negative inside. Files are read by filum's reader
+// (geometry/mesh_file.hpp: .off, .obj, .stl, .ply; polygons fanned into triangles, STL corners
+// merged), not CGAL's, whose OBJ reader refuses common exports.
 #pragma once
 
 #include <array>
@@ -32,8 +33,9 @@ class TriangleMeshSurface {
   TriangleMeshSurface(const TriangleMeshSurface&) = delete;
   TriangleMeshSurface& operator=(const TriangleMeshSurface&) = delete;
 
-  /// Reads a mesh with CGAL (format by extension: .off, .obj, .stl, .ply), scales it by `scale`
-  /// and translates it by `translation`. Throws std::runtime_error naming the file and problem.
+  /// Reads a mesh file (geometry::readMeshFile; format by extension: .off, .obj, .stl, .ply),
+  /// scales it by `scale` (metres per unit of the file) and translates it by `translation` (m).
+  /// Throws std::runtime_error naming the file and problem.
   static std::unique_ptr<TriangleMeshSurface> read(const std::string& path, double scale = 1.0,
                                                    const Vec3& translation = Vec3::Zero());
 

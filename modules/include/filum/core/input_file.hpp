@@ -15,14 +15,10 @@ std::string inputFileProblem(const std::string& path, std::uintmax_t max_bytes);
 /// The size of a file that inputFileProblem accepted (bytes).
 std::uintmax_t inputFileSize(const std::string& path);
 
-/// For .off and .ply files: "" when the counts their header announces fit in the file (an OFF
-/// vertex takes at least 6 bytes, "x y z\n", and a face 8, "3 a b c\n"; a PLY element at least
-/// one byte), so that a reader may allocate them; otherwise what the header announces. Other
-/// formats, and headers that do not parse (the reader reports those): "".
-std::string meshHeaderProblem(const std::string& path);
-
 /// Mesh files (.obj, .off, .ply, .stl), at most: 256 MiB is a mesh of several million
-/// triangles, beyond what a step's collision queries or a frame's drawing can use.
+/// triangles, beyond what a step's collision queries or a frame's drawing can use. The counts a
+/// mesh header announces are checked against the bytes by the reader itself
+/// (geometry/mesh_file.hpp), before it allocates for them.
 inline constexpr std::uintmax_t kMaxMeshFileBytes = 256u << 20;
 
 /// "12.0 MiB" for messages.

@@ -1,9 +1,10 @@
 // MeshModel (scene type "MeshModel"): a rigid triangle mesh read from a file — an organ, a
-// vessel tree, a tissue pad — drawn and exported with the bodies. "file" (.obj, .off or .ply;
-// relative to the scene file), "scale" (default 1; e.g. 0.001 for a mesh in millimetres),
-// "rotation" ([rx, ry, rz] in degrees, applied about x, then y, then z), "translation" (m),
-// "color", "opacity". The file is read when the scene is loaded: a missing or malformed file is
-// a scene error naming the file and the JSON path.
+// vessel tree, a tissue pad — drawn and exported with the bodies. "file" (.obj, .off, .ply or
+// .stl, read by geometry/mesh_file.hpp; relative to the scene file), "units" ("m", "cm" or "mm":
+// the unit of the file's coordinates, default "m") and "scale" (default 1), which multiply
+// (geometry/mesh_units.hpp), "rotation" ([rx, ry, rz] in degrees, applied about x, then y, then
+// z), "translation" (m), "color", "opacity". The file is read when the scene is loaded: a
+// missing or malformed file is a scene error naming the file and the JSON path.
 #pragma once
 
 #include <memory>

@@ -6,11 +6,12 @@
 #include <Eigen/Core>
 
 #include "filum/core/types.hpp"
+#include "filum/geometry/mesh_file.hpp"
 
 namespace filum::visual {
 
 /// F triangles, one per row: indices into the vertices, counter-clockwise seen from outside.
-using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+using Triangles = geometry::TriangleIndices;
 
 struct TriangleMesh {
   Points vertices;      // V × 3 (m)
@@ -24,6 +25,10 @@ struct TriangleMesh {
 
 /// Area-weighted vertex normals of the triangles (unit; a vertex of no triangle gets +z).
 void computeVertexNormals(TriangleMesh& mesh);
+
+/// A mesh read from a file (geometry::readMeshFile: OBJ, OFF, PLY, STL) with its smooth vertex
+/// normals: triangleMesh(geometry::readMeshFile(path)).
+TriangleMesh triangleMesh(geometry::PolygonSoup soup);
 
 /// Axis-aligned bounds of the vertices: lower and upper corners. Precondition: V > 0.
 void meshBounds(const TriangleMesh& mesh, Vec3& lower, Vec3& upper);
