@@ -27,6 +27,20 @@ DynamicSpline::DynamicSpline(std::unique_ptr<geometry::SplineBasis> basis, Point
       factor_(mass_matrix_, basis_->degree()),
       basis_integrals_(basisIntegrals(*basis_)) {}
 
+void DynamicSpline::initialVelocities(PointsRef v) const {
+  if (initial_velocities_.rows() == 0)
+    v.setZero();
+  else
+    v = initial_velocities_;
+}
+
+void DynamicSpline::setInitialVelocities(Points velocities) {
+  if (velocities.rows() != initial_.rows())
+    throw std::invalid_argument("DynamicSpline::setInitialVelocities: " + std::to_string(velocities.rows()) +
+                                " velocities for " + std::to_string(initial_.rows()) + " control points");
+  initial_velocities_ = std::move(velocities);
+}
+
 geometry::BSplineCurve DynamicSpline::knotForm() const {
   // Only a B-spline's control points are those of its knot form (Catmull-Rom's are not).
   try {
@@ -41,6 +55,7 @@ geometry::BSplineCurve DynamicSpline::knotForm() const {
 void DynamicSpline::adopt(int degree, std::vector<double> knots, const SparseMatrix& R) {
   basis_ = std::make_unique<geometry::NonUniformBSpline>(degree, std::move(knots));
   initial_ = R * initial_;  // the rest shape, mapped like any configuration
+  if (initial_velocities_.rows() > 0) initial_velocities_ = R * initial_velocities_;  // Ṗ = Σ b_i q̇_i: the same map
   mass_matrix_ = mechanics::massMatrix(*basis_, mass_);
   factor_ = BandedCholesky(mass_matrix_, basis_->degree());
   basis_integrals_ = basisIntegrals(*basis_);
@@ -171,6 +186,17 @@ Points controlPointList(const Params& p) {
   return q;
 }
 
+// "velocities": one per control point, each component within ±kMaxSpeed.
+Points velocityList(const Params& p, int count) {
+  const Points v = p.points("velocities", count, count,
+                            "dynamic_spline.hpp: one velocity per control point, " + std::to_string(count) + " here");
+  for (Eigen::Index i = 0; i < v.rows(); ++i)
+    if (v.row(i).cwiseAbs().maxCoeff() > kMaxSpeed)
+      p.fail("velocities", "velocities within ±1e6 m/s (dynamic_spline.hpp: beyond, kinetic energies approach overflow)",
+             "velocity " + std::to_string(i) + " " + describeJson(p.raw("velocities")[i]));
+  return v;
+}
+
 // The factored mass matrix M = m ∫ b_i b_j ds: a mass so small that M's pivots underflow is
 // reported at the parameter that gave it, not as an abort.
 std::unique_ptr<DynamicSpline> build(const Params& p, std::unique_ptr<geometry::SplineBasis> basis, Points q,
@@ -229,6 +255,7 @@ std::unique_ptr<DynamicSpline> DynamicSpline::fromParams(const Params& p) {
     p.fail("mass", "the thread's 'mass' (kg) or its 'density' (kg/m³)");
   }
   auto spline = build(p, std::move(basis), std::move(q), mass, radius);
+  if (p.has("velocities")) spline->setInitialVelocities(velocityList(p, spline->pointCount()));
   spline->setRefinements(CurveBody::refinementsFromParams(p, "refine"));
   return spline;
 }

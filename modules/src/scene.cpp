@@ -103,6 +103,7 @@ void Scene::init() {
   setExtraIndices();
   state_.q.conservativeResize(3 * point_count_ + extra_count_);
   state_.v.setZero(3 * point_count_ + extra_count_);
+  for (MechanicalState* body : bodies_) body->initialVelocities(body->block(state_.v));
   for (const Constraint* c : constraints_) c->initialExtra(state_.q);
   for (Constraint* c : constraints_) c->updateRelease(state_);
   if (integrator_->needsJacobians())

@@ -101,7 +101,7 @@ TEST(SplineBasis, GaussQuadraturePerPieceIsExactBetweenBreakpoints) {
     EXPECT_EQ(pieces.back(), 1.0);
     for (std::size_t k = 0; k + 1 < pieces.size(); ++k) ASSERT_LT(pieces[k], pieces[k + 1]);
     const int n = basis->controlPointCount();
-    auto gram = [&](int nodes, int halves) {
+    auto gram = [&, &basis = basis](int nodes, int halves) {  // a structured binding is captured by name (clang 14)
       const QuadratureRule rule = gaussLegendre(nodes);
       MatX G = MatX::Zero(n, n);
       BasisRow row;
@@ -185,7 +185,7 @@ TEST(SplineBasis, CurveDerivativesAreContinuousUpToTheAdvertisedOrder) {
     const std::vector<double> pieces = basis->breakpoints();
     for (std::size_t b = 1; b + 1 < pieces.size(); ++b) {
       const double sb = pieces[b];
-      auto derivative = [&](double s, int m) {
+      auto derivative = [&, &basis = basis](double s, int m) {  // binding captured by name (clang 14)
         const CurveDerivatives c = curveDerivatives(*basis, q, s);
         return m == 0 ? c.point : (m == 1 ? c.first : c.second);
       };

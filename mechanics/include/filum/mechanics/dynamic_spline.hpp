@@ -23,6 +23,9 @@ inline constexpr int kMaxControlPoints = 100000;
 /// Coordinates of control points, at most this far from the origin (m): scenes are in metres,
 /// and beyond 1e6 m squared distances and energies (stiffness × length²) approach overflow.
 inline constexpr double kMaxCoordinate = 1e6;
+/// Initial velocity components, at most (m/s): far beyond any motion in surgery, and kinetic
+/// energies ½ m v² stay far from overflow.
+inline constexpr double kMaxSpeed = 1e6;
 
 class DynamicSpline final : public CurveBody {
  public:
@@ -36,6 +39,8 @@ class DynamicSpline final : public CurveBody {
   ///      thread whose curve runs from `from` to `to`,
   ///   "mass": kg  or  "density": kg/m³ (with the radius and the initial arc length),
   ///   "radius": m (default 1e-4, a 3-0 suture is 1e-4 m),
+  ///   "velocities": [[vx,vy,vz], ...] one per control point (m/s), the velocities at t = 0
+  ///      (default: at rest),
   ///   "refine": [{"time": s, "abscissas": [...]}, ...] control points to insert during the run
   ///      (CurveBody::refine, the curve unchanged; a uniform cubic B-spline becomes a NUBS).
   static std::unique_ptr<DynamicSpline> fromParams(const Params& p);
@@ -43,6 +48,9 @@ class DynamicSpline final : public CurveBody {
   std::string typeName() const override { return "DynamicSpline"; }
   int pointCount() const override { return static_cast<int>(initial_.rows()); }
   const Points& initialPositions() const override { return initial_; }
+  void initialVelocities(PointsRef v) const override;
+  /// Velocities at t = 0 (n × 3, m/s); zero unless set.
+  void setInitialVelocities(Points velocities);
   void solveMass(PointsRef B) const override { factor_.solve(B); }
   void multiplyMass(ConstPointsRef x, PointsRef out) const override { out.noalias() = mass_matrix_ * x; }
   /// factor·(M ⊗ I₃) from the sparse M: 2d + 1 isotropic entries per control point.
@@ -76,6 +84,7 @@ class DynamicSpline final : public CurveBody {
 
   std::unique_ptr<geometry::SplineBasis> basis_;
   Points initial_;            // control points at t = 0 (n × 3, m)
+  Points initial_velocities_;  // their velocities at t = 0 (n × 3, m/s; empty: at rest)
   double mass_;               // total mass m (kg)
   double radius_;             // cross-section radius (m)
   double rest_length_;        // arc length of the initial curve (m)

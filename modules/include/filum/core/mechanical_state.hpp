@@ -27,6 +27,10 @@ class MechanicalState : public Component {
   /// Positions the body starts from (m), pointCount() × 3.
   virtual const Points& initialPositions() const = 0;
 
+  /// Velocities the body starts with (m/s), written into `v` (pointCount() × 3); at rest unless
+  /// the body says otherwise.
+  virtual void initialVelocities(PointsRef v) const { v.setZero(); }
+
   /// In place B := M⁻¹ B for this body's block (the paper's M A = B solve, eq. 3).
   virtual void solveMass(PointsRef B) const = 0;
 
