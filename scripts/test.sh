@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Quick start 2: install what is missing, build, and run every test (ctest, 2 jobs).
+# Quick start 2: install what is missing, build, and run every test (ctest, 2 jobs) but the long
+# stress suite (ctest -L stress, hours: run it on its own).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/setup.sh"
-ctest --test-dir "$root/build" -j2 --output-on-failure
+ctest --test-dir "$root/build" -j2 --output-on-failure -LE stress
