@@ -121,8 +121,11 @@ def run_one(job):
         document = json.loads(strip_comments(f.read()))
     folder = os.path.join(workdir, name + "." + variant_name)
     os.makedirs(folder, exist_ok=True)
-    # Next to the original, so that files it names (data/organ.off) resolve the same way.
-    path = os.path.join(os.path.dirname(scene_path), ".stress_%s_%s_%d.json" % (name, variant_name, os.getpid()))
+    # Beside a link to the original's data/, so that files it names (data/organ.off) resolve.
+    data = os.path.join(os.path.dirname(scene_path), "data")
+    if os.path.isdir(data):
+        os.symlink(data, os.path.join(folder, "data"))
+    path = os.path.join(folder, "scene.json")
     with open(path, "w", encoding="utf-8") as f:
         json.dump(variant(document, variant_name, steps), f)
     out_dir = os.path.join(folder, "out")
@@ -133,8 +136,6 @@ def run_one(job):
         code, text = proc.returncode, proc.stdout + proc.stderr
     except subprocess.TimeoutExpired:
         code, text = None, "timeout after %d s" % timeout
-    finally:
-        os.remove(path)
     wall = time.monotonic() - start
     done = None
     timing = os.path.join(out_dir, "timing.json")

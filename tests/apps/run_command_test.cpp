@@ -7,12 +7,15 @@
 #include <sstream>
 
 #include "filum/run_command.hpp"
+#include "support/run_scene.hpp"
 #include "support/scenes.hpp"
 
 namespace filum::app {
 namespace {
 
 namespace fs = std::filesystem;
+using test::freshDirectory;
+using test::runQuietly;
 
 std::string readAll(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -21,31 +24,12 @@ std::string readAll(const fs::path& path) {
   return buffer.str();
 }
 
-fs::path freshDirectory(const std::string& name) {
-  const fs::path dir = fs::path(FILUM_BINARY_DIR) / "test_output" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-int run(const std::string& scene, const fs::path& out, double duration, std::string& log) {
-  RunOptions options;
-  options.scene = scene;
-  options.out = out.string();
-  options.duration = duration;
-  options.progress = false;
-  std::ostringstream log_stream, progress;
-  const int status = runScene(options, log_stream, progress);
-  log = log_stream.str();
-  return status;
-}
-
 TEST(RunCommand, TwoRunsOfTheSameSceneAreBitIdentical) {
   const std::string scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/hanging_thread.json";
   const fs::path a = freshDirectory("determinism_a"), b = freshDirectory("determinism_b");
   std::string log;
-  ASSERT_EQ(run(scene, a, 0.2, log), kRunOk) << log;
-  ASSERT_EQ(run(scene, b, 0.2, log), kRunOk) << log;
+  ASSERT_EQ(runQuietly(scene, a, 0.2, log), kRunOk) << log;
+  ASSERT_EQ(runQuietly(scene, b, 0.2, log), kRunOk) << log;
   for (const char* file : {"control_points.csv", "curve.csv", "energy.csv", "curve.pvd", "vtk/curve_000020.vtp"}) {
     const std::string first = readAll(a / file);
     ASSERT_FALSE(first.empty()) << file;
@@ -65,7 +49,7 @@ TEST(RunCommand, ADivergingSceneIsRolledBackReportedAndItsFilesKept) {
   std::ofstream(scene) << document.dump(2);
 
   std::string log;
-  ASSERT_EQ(run(scene.string(), dir / "out", 0.01, log), kRunDiverged) << log;
+  ASSERT_EQ(runQuietly(scene.string(), dir / "out", 0.01, log), kRunDiverged) << log;
   EXPECT_NE(log.find("diverged at step"), std::string::npos) << log;
   EXPECT_NE(log.find("(DynamicSpline)"), std::string::npos) << log;
   EXPECT_NE(log.find("/nodes/0/components/0"), std::string::npos) << log;
@@ -98,7 +82,7 @@ TEST(RunCommand, ABadSceneIsRefusedBeforeAnythingIsWritten) {
   document["nodes"][0]["components"][0]["mass"] = -1.0;
   std::ofstream(scene) << document.dump(2);
   std::string log;
-  EXPECT_EQ(run(scene.string(), dir / "out", 0.01, log), kRunSceneError);
+  EXPECT_EQ(runQuietly(scene.string(), dir / "out", 0.01, log), kRunSceneError);
   EXPECT_NE(log.find("/nodes/0/components/0/mass"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(dir / "out"));
 }

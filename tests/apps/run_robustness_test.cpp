@@ -15,36 +15,20 @@
 #include <string>
 
 #include "filum/run_command.hpp"
+#include "support/run_scene.hpp"
 #include "support/scenes.hpp"
 
 namespace filum::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path freshDirectory(const std::string& name) {
-  const fs::path dir = fs::path(FILUM_BINARY_DIR) / "test_output" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using test::freshDirectory;
+using test::runQuietly;
 
 fs::path writeScene(const fs::path& dir, const nlohmann::json& document) {
   const fs::path scene = dir / "scene.json";
   std::ofstream(scene) << document.dump(2);
   return scene;
-}
-
-int run(const fs::path& scene, const fs::path& out, double duration, std::string& log) {
-  RunOptions options;
-  options.scene = scene.string();
-  options.out = out.string();
-  options.duration = duration;
-  options.progress = false;
-  std::ostringstream log_stream, progress;
-  const int status = runScene(options, log_stream, progress);
-  log = log_stream.str();
-  return status;
 }
 
 // Runs the scene in a child process whose files may not grow beyond `limit` bytes
@@ -60,7 +44,7 @@ int runWithFileSizeLimit(const fs::path& scene, const fs::path& out, double dura
     const rlimit files{limit, limit};
     setrlimit(RLIMIT_FSIZE, &files);
     std::string text;
-    const int status = run(scene, out, duration, text);
+    const int status = runQuietly(scene, out, duration, text);
     (void)!write(channel[1], text.data(), text.size());
     _exit(status);
   }
@@ -97,7 +81,7 @@ TEST(RunRobustness, AnOverflowingEnergyIsADivergenceAndNothingNonFiniteIsWritten
       {{"type", "GreenLagrangeStretching"}, {"youngs_modulus", 1e308}, {"rest_length", 0.05}});
   const fs::path scene = writeScene(dir, document);
   std::string log;
-  EXPECT_EQ(run(scene, dir / "out", 0.01, log), kRunDiverged) << log;
+  EXPECT_EQ(runQuietly(scene, dir / "out", 0.01, log), kRunDiverged) << log;
   EXPECT_NE(log.find(scene.string() + ": refusing to write a non-finite energy"), std::string::npos) << log;
   for (const auto& entry : fs::recursive_directory_iterator(dir / "out")) {
     if (!entry.is_regular_file()) continue;
@@ -115,7 +99,7 @@ TEST(RunRobustness, ADurationShorterThanHalfAStepIsRefused) {
   o.dt = 1e-3;
   const fs::path scene = writeScene(dir, test::threadScene(o));
   std::string log;
-  EXPECT_EQ(run(scene, dir / "out", 1e-4, log), kRunSceneError) << log;
+  EXPECT_EQ(runQuietly(scene, dir / "out", 1e-4, log), kRunSceneError) << log;
   EXPECT_NE(log.find(scene.string() + ": /dt (with --duration"), std::string::npos) << log;
   EXPECT_NE(log.find("shorter than dt / 2"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(dir / "out"));
