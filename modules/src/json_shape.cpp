@@ -69,8 +69,15 @@ class ShapeChecker final : public json::json_sax_t {
     if (!inserted) duplicate(first->second, at);
     return true;
   }
-  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
-    return false;  // the parser proper reports syntax errors with their place
+  bool parse_error(std::size_t position, const std::string& token, const nlohmann::detail::exception& e) override {
+    const std::size_t at = position > 0 ? position - 1 : 0;  // position: characters read
+    if (e.id == 406) {
+      // A number beyond the range of a double (json::out_of_range 406): the lexer stops at its
+      // last character; point at its first.
+      throw SceneError(place(at + 1 > token.size() ? at + 1 - token.size() : 0) + ": " + pointer(frames_.size()),
+                       "a finite number", token + ", which is beyond the range of a double (about 1.8e308)");
+    }
+    throw SceneError(place(at), std::string("invalid JSON: ") + e.what());
   }
 
  private:
@@ -99,7 +106,7 @@ class ShapeChecker final : public json::json_sax_t {
   }
   bool open(bool array) {
     if (static_cast<int>(frames_.size()) >= kMaxJsonDepth) tooDeep(offset());
-    frames_.push_back({array});
+    frames_.push_back(Frame{array, 0, {}, {}});
     return true;
   }
   bool close() {

@@ -19,65 +19,6 @@ using nlohmann::json;
 
 namespace {
 
-// Replays a text that failed to parse through nlohmann's SAX interface, following the JSON
-// pointer of the value being read, to say where the error is and which value it concerns.
-class ErrorLocator final : public json::json_sax_t {
- public:
-  bool null() override { return value(); }
-  bool boolean(bool) override { return value(); }
-  bool number_integer(json::number_integer_t) override { return value(); }
-  bool number_unsigned(json::number_unsigned_t) override { return value(); }
-  bool number_float(json::number_float_t, const json::string_t&) override { return value(); }
-  bool string(json::string_t&) override { return value(); }
-  bool binary(json::binary_t&) override { return value(); }
-  bool start_object(std::size_t) override { return open(false); }
-  bool key(json::string_t& key) override {
-    frames_.back().key = key;
-    return true;
-  }
-  bool end_object() override { return close(); }
-  bool start_array(std::size_t) override { return open(true); }
-  bool end_array() override { return close(); }
-  bool parse_error(std::size_t position, const std::string& token, const nlohmann::detail::exception&) override {
-    position_ = position;
-    token_ = token;
-    for (const Frame& f : frames_) {
-      pointer_ += '/';
-      pointer_ += f.array ? std::to_string(f.index) : escapePointer(f.key);
-    }
-    return false;
-  }
-
-  std::size_t position() const { return position_; }  // characters read when the error came
-  const std::string& token() const { return token_; }  // the offending token
-  const std::string& pointer() const { return pointer_; }  // JSON pointer of the value being read
-
- private:
-  struct Frame {
-    bool array;
-    std::size_t index;  // of the next element, in an array
-    std::string key;    // of the current member, in an object
-  };
-  bool open(bool array) {
-    frames_.push_back({array, 0, ""});
-    return true;
-  }
-  bool close() {
-    frames_.pop_back();
-    return value();
-  }
-  // A value is complete: in an array, the next one gets the next index.
-  bool value() {
-    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
-    return true;
-  }
-
-  std::vector<Frame> frames_;
-  std::size_t position_ = 0;
-  std::string token_;
-  std::string pointer_;
-};
-
 std::unique_ptr<Component> createComponent(const Params& untyped, const Factory& factory) {
   const std::string type = untyped.string("type");
   const std::string name = untyped.string("name", type);
@@ -189,24 +130,11 @@ json readJsonFile(const std::string& path) {
   std::stringstream buffer;
   buffer << in.rdbuf();
   const std::string text = buffer.str();
-  checkJsonShape(text, path);  // nesting depth and duplicate keys, before the document is built
+  checkJsonShape(text, path);  // depth, duplicate keys and syntax, each with its place
   try {
     return json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
-  } catch (const json::exception& e) {
-    // Syntax errors (json::parse_error) and numbers beyond the range of a double, such as 1e999
-    // (json::out_of_range 406), which nlohmann refuses while parsing: locate both by a replay.
-    ErrorLocator locator;
-    json::sax_parse(text, &locator, json::input_format_t::json, /*strict=*/true, /*ignore_comments=*/true);
-    int line = 0, column = 0;
-    lineAndColumn(text, locator.position() > 0 ? locator.position() - 1 : 0, line, column);
-    if (e.id == 406) {
-      // The lexer stops at the number's last character; point at its first.
-      column -= static_cast<int>(locator.token().size()) - 1;
-      throw SceneError(path + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + locator.pointer(),
-                       "a finite number", locator.token() + ", which is beyond the range of a double (about 1.8e308)");
-    }
-    throw SceneError(path + ":" + std::to_string(line) + ":" + std::to_string(column),
-                     std::string("invalid JSON: ") + e.what());
+  } catch (const json::exception& e) {  // the same parser as the shape check's: not expected
+    throw SceneError(path, std::string("invalid JSON: ") + e.what());
   }
 }
 

@@ -4,7 +4,8 @@
 //    100,000 nested brackets overflowed the thread's stack; scenes nest about 8 deep;
 //  - duplicate keys: JSON leaves them undefined and nlohmann keeps the last one silently, so a
 //    second "count" would override the first without a word. Both places are named.
-// Syntax errors are left to the parser, which reports them (scene_loader.cpp).
+//  - syntax errors, and numbers beyond the range of a double (1e999), which nlohmann refuses:
+//    placed by line, column and the JSON pointer of the value being read.
 #pragma once
 
 #include <string>
@@ -15,7 +16,8 @@ namespace filum {
 inline constexpr int kMaxJsonDepth = 64;
 
 /// Throws SceneError "<source>:<line>:<column>: <pointer>: expected ..., found ..." at the first
-/// value nested deeper than kMaxJsonDepth or the first key repeated in its object.
+/// value nested deeper than kMaxJsonDepth, the first key repeated in its object, or the first
+/// syntax error ("<source>:<line>:<column>: invalid JSON: ...").
 void checkJsonShape(const std::string& text, const std::string& source);
 
 /// 1-based line and column of a byte offset of `text`.
