@@ -3,10 +3,10 @@
 # and runs the test suite there; any sanitizer report fails the test that triggered it.
 #
 #   bash scripts/sanitize.sh                # every test (about 4x slower than the Release suite)
-#   bash scripts/sanitize.sh -L 'core|fuzz' # the labels CI runs (scripts/test.sh)
-#   bash scripts/sanitize.sh --build-only   # configure and build, no test (scripts/fuzz.sh)
-#
-# Other arguments are passed to ctest. The same build holds the libFuzzer targets (scripts/fuzz.sh).
+#   bash scripts/sanitize.sh --ci           # what CI runs (scripts/test.sh): builds only the core
+#                                           # tests and the fuzz targets, runs labels core and fuzz
+#   bash scripts/sanitize.sh --build-only   # configure and build everything, no test (scripts/fuzz.sh)
+#   bash scripts/sanitize.sh -L visual      # other arguments go to ctest The same build holds the libFuzzer targets (scripts/fuzz.sh).
 # ThreadSanitizer: filum starts no threads of its own today (rendering runs Xvfb as a separate
 # process), so there is nothing for it to check; the servo loop of haptics/ will need it.
 set -euo pipefail
@@ -24,9 +24,17 @@ fi
 # RelWithDebInfo-like: -O1 keeps the sanitized suite fast enough and the reports readable.
 cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
   -DFILUM_SANITIZE=address,undefined -DFILUM_BUILD_FUZZERS=ON -DFILUM_BUILD_BENCHMARKS=OFF >/dev/null
-cmake --build "$build" -j"$(nproc)"
+targets=()
+ctest_arguments=("$@")
+case "${1:-}" in
+  --build-only) ctest_arguments=() ;;
+  --ci)
+    targets=(--target test_core fuzz_scene fuzz_obj fuzz_off fuzz_ply fuzz_stl)
+    ctest_arguments=(-L 'core|fuzz') ;;
+esac
+cmake --build "$build" -j"$(nproc)" "${targets[@]}"
 [ "${1:-}" = "--build-only" ] && exit 0
 # Leaks are findings too; a report aborts so the test fails; UBSan prints the stack.
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-ctest --test-dir "$build" -j"$(nproc)" --output-on-failure "$@"
+ctest --test-dir "$build" -j"$(nproc)" --output-on-failure "${ctest_arguments[@]}"

@@ -16,6 +16,11 @@
 
 namespace filum::mechanics {
 
+namespace {
+const char* const kControlPointLimit =
+    "dynamic_spline.hpp: memory and step time grow with the count; 600 times the largest reference body, rope.json's 165";
+}  // namespace
+
 DynamicSpline::DynamicSpline(std::unique_ptr<geometry::SplineBasis> basis, Points initial, double mass,
                              double radius)
     : basis_(std::move(basis)),
@@ -63,6 +68,10 @@ void DynamicSpline::adopt(int degree, std::vector<double> knots, const SparseMat
 }
 
 SparseMatrix DynamicSpline::refine(const std::vector<double>& abscissas) {
+  if (abscissas.size() > static_cast<std::size_t>(kMaxControlPoints - pointCount()))
+    throw SceneError(origin(), "at most " + std::to_string(kMaxControlPoints) + " control points after insertion (" +
+                                   kControlPointLimit + ")",
+                     std::to_string(pointCount()) + " + " + std::to_string(abscissas.size()));
   const geometry::BSplineCurve curve = knotForm();
   // s ∈ [0, 1] maps affinely onto the knot domain [t_d, t_n] (bspline_curve.hpp).
   const double u0 = curve.knots[curve.degree], u1 = curve.knots[pointCount()];
@@ -167,9 +176,6 @@ std::unique_ptr<geometry::SplineBasis> makeBasis(const Params& p, const std::str
 
 namespace {
 
-const char* const kControlPointLimit =
-    "dynamic_spline.hpp: memory and step time grow with the count; 600 times the largest reference body, rope.json's 165";
-
 void checkCoordinates(const Params& p, const std::string& key, const Vec3& x) {
   if (x.cwiseAbs().maxCoeff() > kMaxCoordinate)
     p.fail(key, "coordinates within ±1e6 m (dynamic_spline.hpp: scenes are in metres; beyond, squared lengths and "
@@ -256,7 +262,14 @@ std::unique_ptr<DynamicSpline> DynamicSpline::fromParams(const Params& p) {
   }
   auto spline = build(p, std::move(basis), std::move(q), mass, radius);
   if (p.has("velocities")) spline->setInitialVelocities(velocityList(p, spline->pointCount()));
-  spline->setRefinements(CurveBody::refinementsFromParams(p, "refine"));
+  std::vector<CurveBody::Refinement> refinements = CurveBody::refinementsFromParams(p, "refine");
+  std::size_t inserted = 0;
+  for (const CurveBody::Refinement& r : refinements) inserted += r.abscissas.size();
+  if (inserted > static_cast<std::size_t>(kMaxControlPoints - spline->pointCount()))
+    p.fail("refine", "at most " + std::to_string(kMaxControlPoints) + " control points after the insertions (" +
+                         kControlPointLimit + ")",
+           std::to_string(spline->pointCount()) + " + " + std::to_string(inserted));
+  spline->setRefinements(std::move(refinements));
   return spline;
 }
 

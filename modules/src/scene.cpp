@@ -263,7 +263,7 @@ StepReport Scene::step() {
   report.time = state_.time;
   beginStep();
   try {
-    advance(settings_.dt, 0);
+    if (fault_.empty()) advance(settings_.dt, 0);
   } catch (const std::exception& e) {
     // A numerical routine that refused its input (a non-finite query point, a resampling
     // beyond its limit): a fault of the step like any other, rolled back by endStep.
@@ -274,6 +274,20 @@ StepReport Scene::step() {
 }
 
 void Scene::beginStep() {
+  fault_.clear();
+  try {
+    applyScheduledRefinements();
+  } catch (const std::exception& e) {
+    // CurveBody::refine throws before it changes anything: the state is still the last good one.
+    fault_ = settings_.source + ": a scheduled refinement failed: " + e.what();
+  }
+  // endStep needs the last good state: copied into preallocated storage (no allocation).
+  last_good_ = state_;
+  // Scheduled releases (cuts) take effect at the first step that starts at or after their time.
+  for (Constraint* c : constraints_) c->updateRelease(state_);
+}
+
+void Scene::applyScheduledRefinements() {
   // Control points scheduled for insertion at the step that starts nearest their time (half a
   // step of slack absorbs the round-off of t = steps · dt); a layout change may allocate.
   for (MechanicalState* body : bodies_)
@@ -283,11 +297,6 @@ void Scene::beginStep() {
         curve->markRefinementApplied();
         refine(*curve, abscissas);
       }
-  // endStep needs the last good state: copied into preallocated storage (no allocation).
-  last_good_ = state_;
-  fault_.clear();
-  // Scheduled releases (cuts) take effect at the first step that starts at or after their time.
-  for (Constraint* c : constraints_) c->updateRelease(state_);
 }
 
 void Scene::advance(double h, int depth) {
@@ -387,30 +396,27 @@ VecX Scene::constraintViolation(const SceneState& s) const {
 
 void Scene::refine(CurveBody& body, const std::vector<double>& abscissas) {
   if (!initialized_) init();
-  // The old layout, to carry the state over (a layout change may allocate).
-  const SceneState old = state_;
-  std::vector<int> old_offsets;
-  for (const MechanicalState* b : bodies_) old_offsets.push_back(b->offset());
   const SparseMatrix A = body.refine(abscissas);  // throws before changing anything
-  relayout(body, A, old, old_offsets);
+  relayout(body, A);
 }
 
 bool Scene::coarsen(CurveBody& body, double abscissa, double tolerance) {
   if (!initialized_) init();
-  const SceneState old = state_;
-  std::vector<int> old_offsets;
-  for (const MechanicalState* b : bodies_) old_offsets.push_back(b->offset());
   const SparseMatrix R = body.coarsen(abscissa, body.block(state_.q), tolerance);
   if (R.rows() == 0) return false;  // the curve would move further than the tolerance
-  relayout(body, R, old, old_offsets);
+  relayout(body, R);
   return true;
 }
 
-void Scene::relayout(const CurveBody& body, const SparseMatrix& A, const SceneState& old,
-                     const std::vector<int>& old_offsets) {
+void Scene::relayout(const CurveBody& body, const SparseMatrix& A) {
   if (A.rows() != body.pointCount())
     throw SceneError(body.origin(), "a layout map with one row per new point (" + std::to_string(body.pointCount()) + ")",
                      std::to_string(A.rows()) + " rows");
+  // The old layout, to carry the state over: state_ and the offsets are still those of before
+  // the body changed its points (a layout change may allocate).
+  const SceneState old = state_;
+  std::vector<int> old_offsets;
+  for (const MechanicalState* b : bodies_) old_offsets.push_back(b->offset());
   point_count_ = 0;
   for (MechanicalState* b : bodies_) {
     b->setOffset(point_count_);

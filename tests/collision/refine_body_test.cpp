@@ -149,6 +149,38 @@ TEST(RefineBody, AScheduledRefinementOutsideTheCurveIsRefusedWithItsPlace) {
   }
 }
 
+TEST(RefineBody, AScheduledRefinementThatFailsIsTheStepsReportedFaultAndChangesNothing) {
+  // The same knot five times would give it multiplicity 5 > degree + 1 = 4 (a cubic curve would
+  // break apart there): knot insertion refuses it at the step of the refinement's time; that
+  // step reports it (nothing is thrown out of Scene::step) and leaves the state as it was.
+  nlohmann::json document = readJsonFile(std::string(FILUM_SOURCE_DIR) + "/apps/scenes/sliding.json");
+  document["nodes"][0]["components"][0]["refine"] = {{{"time", 0.0}, {"abscissas", {0.5, 0.5, 0.5, 0.5, 0.5}}}};
+  auto scene = loadScene(document, "knot of multiplicity 5", app::makeFactory());
+  const SceneState before = scene->state();
+  const StepReport report = scene->step();
+  EXPECT_FALSE(report.ok);
+  EXPECT_NE(report.message.find("scheduled refinement failed"), std::string::npos) << report.message;
+  EXPECT_NE(report.message.find("multiplicity"), std::string::npos) << report.message;
+  EXPECT_EQ(scene->state().q, before.q);
+  EXPECT_EQ(scene->state().v, before.v);
+  EXPECT_EQ(scene->layoutRevision(), 0);
+}
+
+TEST(RefineBody, InsertionsBeyondTheControlPointLimitAreRefusedBeforeAnythingChanges) {
+  auto scene = loadStepped("sliding.json", 1);
+  CurveBody* curve = scene->bodies()[0]->curve();
+  const int points = curve->pointCount();
+  const std::vector<double> many(100000, 0.5);  // 1e5 more than the 1e5 limit allows
+  try {
+    scene->refine(*curve, many);
+    FAIL() << "100,000 insertions were accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("at most 100000 control points"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(curve->pointCount(), points);
+  EXPECT_EQ(scene->layoutRevision(), 0);
+}
+
 TEST(CoarsenBody, AJustInsertedPointComesOutExactlyAndTheMotionContinues) {
   // Removing a knot that was just inserted is exact (the curve is as smooth there as before the
   // insertion): the curve, its velocity field and its energy are those before both, to the

@@ -186,8 +186,12 @@ class Scene {
   // The step pipeline (DESIGN.md "One time step"), one function per stage; step() runs
   // beginStep, advance (detectCollisions, integrate, again in halves for missed contacts) and
   // endStep.
-  /// Keeps the last good state and applies the events due at the step's start (releases: cuts).
+  /// Applies the events due at the step's start (scheduled refinements, then releases: cuts)
+  /// and keeps the last good state. A refinement that fails is the step's fault (reported,
+  /// nothing advanced).
   void beginStep();
+  /// Control points scheduled for insertion (CurveBody::refinementDue) at this step.
+  void applyScheduledRefinements();
   /// Advances state_ by h (detection at its start, then the integrator); redone as two halves,
   /// recursively, while the collision pipeline finds a contact the step's contact set missed.
   void advance(double h, int depth);
@@ -207,9 +211,9 @@ class Scene {
   /// Binds force fields, constraints and the collision pipeline to the bodies' current layout
   /// again (refine).
   void bindComponents();
-  /// After `body` changed its points by q̃ = A q (A: new × old): new offsets, the state carried
-  /// over from `old` (bodies at old_offsets), the components bound again.
-  void relayout(const CurveBody& body, const SparseMatrix& A, const SceneState& old, const std::vector<int>& old_offsets);
+  /// After `body` changed its points by q̃ = A q (A: new × old), before anything else moved:
+  /// new offsets, the state carried over from the old layout, the components bound again.
+  void relayout(const CurveBody& body, const SparseMatrix& A);
   /// Extra DOF indices of the constraints after the 3N point coordinates.
   void setExtraIndices();
   /// Finds the collision pipeline and binds it (Scene::init).
