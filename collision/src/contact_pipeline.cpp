@@ -116,7 +116,8 @@ void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double 
   }
   stats_.chords = static_cast<int>(chords_.size());
   if (chords_.size() >= 2) {
-    broad_phase_.findPairs(chords_, pairs_);
+    // A contact set cut short by the budget is not used blindly: missedContact halves the step.
+    stats_.pairs_overflow = !broad_phase_.findPairs(chords_, pairs_);
     stats_.candidate_pairs = static_cast<int>(pairs_.size());
     for (const IndexPair& pair : pairs_) {
       const auto [ma, k] = chord_owner_[pair.first];
@@ -248,6 +249,8 @@ Vec3 ContactPipeline::contactForce(int i, const SceneState& s) const {
 }
 
 CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) {
+  // The start's contact set is incomplete, whatever the response: the step was too large.
+  if (stats_.pairs_overflow) return Miss::kTooFar;
   if (settings_.response != Response::kUnilateral) return Miss::kNone;
   // Depth and slide tests while the sub-step may still be halved (contact_halvings).
   const bool may_halve = time_step_ > 1.5 * scene_dt_ / static_cast<double>(1 << settings_.contact_halvings);
@@ -281,7 +284,7 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
     }
   }
   if (chords_.size() < 2) return Miss::kNone;
-  broad_phase_.findPairs(chords_, pairs_);
+  if (!broad_phase_.findPairs(chords_, pairs_)) return Miss::kTooFar;
   Miss miss = Miss::kNone;
   for (const IndexPair& pair : pairs_) {
     const auto [ma, k] = chord_owner_[pair.first];

@@ -27,16 +27,15 @@ int cellIndex(double x, double inverse_h) { return static_cast<int>(std::floor(x
 
 }  // namespace
 
-void UniformGridBroadPhase::findPairs(const std::vector<BoundingSphere>& spheres, std::vector<IndexPair>& pairs) {
+bool UniformGridBroadPhase::findPairs(const std::vector<BoundingSphere>& spheres, std::vector<IndexPair>& pairs,
+                                      std::size_t max_pairs) {
   pairs.clear();
   const int n = static_cast<int>(spheres.size());
-  if (n < 2) return;
+  if (n < 2) return true;
   // Room for the pairs of a dense tangle from the first call on, so that a knot tightening over
-  // many steps does not grow the lists step after step (the step workspace is sized once): with
-  // the cell twice the largest radius, a sphere overlaps at most a few dozen others of similar
-  // size; kPairsPerSphere of them on average is more than any thread scene shows.
-  constexpr std::size_t kPairsPerSphere = 16;
+  // many steps does not grow the lists step after step (the step workspace is sized once).
   const std::size_t room = kPairsPerSphere * static_cast<std::size_t>(n);
+  if (max_pairs == 0) max_pairs = 2 * room;
   if (found_.capacity() < room) found_.reserve(2 * room);  // twice: the sphere count may grow
   if (pairs.capacity() < room) pairs.reserve(2 * room);
   // The per-sphere tables get room for twice as many spheres: a stretching thread adds spheres.
@@ -87,13 +86,20 @@ void UniformGridBroadPhase::findPairs(const std::vector<BoundingSphere>& spheres
 
   // Half of the neighbourhood [−R, R]³ after (0, 0, 0) in lexicographic order.
   const int R = std::max(1, static_cast<int>(std::ceil(2.0 * largest * inverse_h - 1e-12)));
-  // |c_i − c_j|² <= (r_i + r_j)² for two entries.
+  found_.clear();
+  const bool complete = collectPairs(n, R, mask, max_pairs);
+  sortPairs(n, pairs);
+  return complete;
+}
+
+bool UniformGridBroadPhase::collectPairs(int n, int R, std::uint32_t mask, std::size_t max_pairs) {
+  // |c_i − c_j|² <= (r_i + r_j)² for two entries; false when the budget is spent.
   auto test = [&](const Entry& u, const Entry& w) {
     const double dx = u.center[0] - w.center[0], dy = u.center[1] - w.center[1], dz = u.center[2] - w.center[2];
     const double r = u.radius + w.radius;
     if (dx * dx + dy * dy + dz * dz <= r * r) found_.emplace_back(std::min(u.item, w.item), std::max(u.item, w.item));
+    return found_.size() < max_pairs;
   };
-  found_.clear();
   // Cells in the order of their smallest sphere index (threads are sampled along their length, so
   // this walks space coherently and keeps memory accesses local).
   for (int i = 0; i < n; ++i) {
@@ -110,7 +116,8 @@ void UniformGridBroadPhase::findPairs(const std::vector<BoundingSphere>& spheres
     if (processed) continue;
     // Pairs within the cell.
     for (std::size_t u = 0; u < members_.size(); ++u)
-      for (std::size_t w = u + 1; w < members_.size(); ++w) test(sorted_[members_[u]], sorted_[members_[w]]);
+      for (std::size_t w = u + 1; w < members_.size(); ++w)
+        if (!test(sorted_[members_[u]], sorted_[members_[w]])) return false;
     // Pairs with the cells after it.
     for (int dx = 0; dx <= R; ++dx)
       for (int dy = (dx == 0 ? 0 : -R); dy <= R; ++dy)
@@ -120,11 +127,15 @@ void UniformGridBroadPhase::findPairs(const std::vector<BoundingSphere>& spheres
           for (int f = bucket_start_[nb]; f < bucket_start_[nb + 1]; ++f) {
             const Entry& other = sorted_[f];
             if (other.cell[0] != x || other.cell[1] != y || other.cell[2] != z) continue;
-            for (int m : members_) test(sorted_[m], other);
+            for (int m : members_)
+              if (!test(sorted_[m], other)) return false;
           }
         }
   }
+  return true;
+}
 
+void UniformGridBroadPhase::sortPairs(int n, std::vector<IndexPair>& pairs) {
   // Sorted output without a comparison sort: counting sort by first index (stable), then each
   // run of equal first indices (a sphere's few partners) by insertion on the second.
   first_start_.assign(n + 1, 0);

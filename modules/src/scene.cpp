@@ -315,6 +315,10 @@ void Scene::advance(double h, int depth) {
     if (miss == CollisionPipeline::Miss::kPassThrough)
       noteFault(collision_->describe() + ": a thread passed through another even in " +
                 std::to_string(1 << depth) + " sub-steps of " + std::to_string(h) + " s");
+    if (miss == CollisionPipeline::Miss::kTooFar)
+      noteFault(collision_->describe() + ": the bodies swept so far that contact detection found more candidate "
+                "pairs than its budget, even in " + std::to_string(1 << depth) + " sub-steps of " +
+                std::to_string(h) + " s");
     return;
   }
   ++contact_halvings_;

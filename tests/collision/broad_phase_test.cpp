@@ -2,6 +2,7 @@
 // random scenes of every kind (uniform, clustered, mixed radii, automatic and imposed cell
 // sizes). The comparison is exact: both use the same predicate |c_i − c_j|² <= (r_i + r_j)², so
 // any difference would be a missed or duplicated pair, not round-off.
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -37,13 +38,15 @@ TEST(UniformGridBroadPhase, FindsExactlyTheBruteForcePairsOnRandomScenes) {
     for (bool clustered : {false, true})
       for (double r_max : {0.001, 0.01, 0.05}) {
         const auto spheres = randomSpheres(n, 0.2, 0.1 * r_max, r_max, rng, clustered);
-        automatic.findPairs(spheres, pairs);
+        // No budget: these random clusters are far denser than threads (up to ~n²/2 pairs).
+        const std::size_t unlimited = std::numeric_limits<std::size_t>::max();
+        ASSERT_TRUE(automatic.findPairs(spheres, pairs, unlimited));
         const auto expected = bruteForcePairs(spheres);
         ASSERT_EQ(pairs, expected) << "n = " << n << ", clustered = " << clustered << ", r_max = " << r_max;
         // Cells smaller and larger than the spheres (several cells per sphere, many per cell).
         for (double cell : {0.3 * r_max, 5.0 * r_max}) {
           UniformGridBroadPhase imposed(cell);
-          imposed.findPairs(spheres, pairs);
+          ASSERT_TRUE(imposed.findPairs(spheres, pairs, unlimited));
           ASSERT_EQ(pairs, expected) << "cell = " << cell;
         }
         ++scenes;
@@ -64,6 +67,27 @@ TEST(UniformGridBroadPhase, TouchingSpheresCountAndPairsAreSortedAndUnique) {
   grid.findPairs(spheres, pairs);
   ASSERT_EQ(pairs.size(), 1u);
   EXPECT_EQ(pairs[0], IndexPair(0, 1));
+}
+
+TEST(UniformGridBroadPhase, StopsAtItsBudgetWhenEverySphereOverlapsEveryOther) {
+  // 1,000 spheres of radius 1 within a cube of side 0.5: all n (n − 1)/2 = 499,500 pairs
+  // overlap, far beyond the default budget of 2 · 16 per sphere (32,000). The query stops there,
+  // says so, and what it returns is exactly that many true pairs, sorted and unique.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 0.5);
+  std::vector<BoundingSphere> spheres(1000);
+  for (BoundingSphere& s : spheres) s = {Vec3(u(rng), u(rng), u(rng)), 1.0};
+  UniformGridBroadPhase grid;
+  std::vector<IndexPair> pairs;
+  EXPECT_FALSE(grid.findPairs(spheres, pairs));
+  ASSERT_EQ(pairs.size(), 2 * UniformGridBroadPhase::kPairsPerSphere * spheres.size());
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    EXPECT_LT(pairs[k].first, pairs[k].second);
+    if (k > 0) EXPECT_LT(pairs[k - 1], pairs[k]);
+  }
+  // A budget above the true count: complete, and equal to the brute force.
+  EXPECT_TRUE(grid.findPairs(spheres, pairs, 500000));
+  EXPECT_EQ(pairs, bruteForcePairs(spheres));
 }
 
 }  // namespace

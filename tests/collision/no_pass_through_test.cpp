@@ -42,7 +42,7 @@ TEST_P(NoPassThrough, TwoThreadsDrivenAcrossEachOtherAtTwoMetresPerSecondNeverCr
   test::CollisionThread b = a;
   b.name = "b";
   b.control_points = {{"from", {0.0, -0.05, 0.004}}, {"to", {0.0, 0.05, 0.004}}, {"count", 10}};
-  b.constraints = nlohmann::json::array();
+  b.constraints.clear();
   for (double end : {0.0, 1.0}) {
     const double y = end == 0.0 ? -0.05 : 0.05;
     b.constraints.push_back({{"type", "FixedPointConstraint"},

@@ -24,7 +24,9 @@ struct ConstraintThread {
   double stretch_stiffness = 1.0;       // N/m
   double bend_stiffness = 1e-3;         // N/m
   double viscous_damping = 0.5;         // 1/s
-  nlohmann::json constraints = nlohmann::json::array();
+  // A vector, not a json array: "constraints = {c}" would copy c under clang (a one-element
+  // braced list is a copy for nlohmann::json there, an array under gcc).
+  std::vector<nlohmann::json> constraints;
 };
 
 inline nlohmann::json threadNode(const ConstraintThread& t) {

@@ -76,6 +76,7 @@ class ContactPipeline final : public CollisionPipeline {
     int spheres = 0;            // on every thread
     int chords = 0;             // entered in the broad phase
     int candidate_pairs = 0;    // broad-phase pairs of chords
+    bool pairs_overflow = false;  // the broad phase stopped at its budget (bodies swept too far)
     int obstacle_contacts = 0;
     int thread_contacts = 0;    // thread–thread (self included)
   };

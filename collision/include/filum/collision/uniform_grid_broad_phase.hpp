@@ -39,9 +39,19 @@ class UniformGridBroadPhase {
   /// cell_size (m) > 0, or 0: twice the largest radius of each query (at least 1e-12).
   explicit UniformGridBroadPhase(double cell_size = 0.0) : cell_size_(cell_size) {}
 
+  /// Pairs a query may find per sphere, at most, unless told otherwise: with the cell twice the
+  /// largest radius, a sphere of a thread overlaps a few dozen others of similar size at most;
+  /// this many on average is more than any thread scene shows, and room for them is reserved
+  /// from the first query on (the step workspace is sized once).
+  static constexpr std::size_t kPairsPerSphere = 16;
+
   /// Every pair (i, j), i < j, with |c_i − c_j| <= r_i + r_j, sorted; `pairs` is cleared first.
+  /// Stops at `max_pairs` pairs (default 2 kPairsPerSphere per sphere, the room reserved) and
+  /// returns false: the
+  /// spheres overlap far more than threads do (a body swept far in one step), the caller decides
+  /// (a smaller step); the work stays linear in the spheres and nothing is allocated.
   /// No allocation once the buffers have reached the size of the scene.
-  void findPairs(const std::vector<BoundingSphere>& spheres, std::vector<IndexPair>& pairs);
+  bool findPairs(const std::vector<BoundingSphere>& spheres, std::vector<IndexPair>& pairs, std::size_t max_pairs = 0);
 
   double cellSize() const { return cell_size_; }
   /// Cell side used by the last query (m).
@@ -64,6 +74,12 @@ class UniformGridBroadPhase {
   std::vector<int> members_;             // entries of the cell being processed
   std::vector<IndexPair> found_;         // pairs in cell order
   std::vector<int> first_start_;         // counting sort of the pairs by first index
+
+  /// The overlapping pairs of the sorted entries into found_, cell by cell, at most max_pairs;
+  /// false when it stopped there.
+  bool collectPairs(int n, int R, std::uint32_t mask, std::size_t max_pairs);
+  /// found_ sorted by (first, second) into `pairs`.
+  void sortPairs(int n, std::vector<IndexPair>& pairs);
 };
 
 /// The same pairs by testing all n (n − 1)/2 pairs (the reference of the tests).

@@ -74,6 +74,8 @@ class CollisionPipeline : public Component {
     kOverlapOrSlide,   // two centre lines overlapped deeper than the pipeline allows, or a pressed
                        // contact slid further than its rows follow
     kPassThrough,      // a centre line passed through another's (or its own)
+    kTooFar,           // the bodies swept so far that the candidate contacts exceeded the
+                       // detection's budget (linear in the chords): its contact set is incomplete
   };
   /// After a (sub-)step that began with the last beginStep: whether the motion from that start to
   /// `after` went through a contact its start did not hold — a step too large for the contact set
