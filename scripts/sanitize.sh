@@ -2,7 +2,7 @@
 # Builds filum with AddressSanitizer and UndefinedBehaviorSanitizer (clang) in build-sanitize/
 # and runs the test suite there; any sanitizer report fails the test that triggered it.
 #
-#   bash scripts/sanitize.sh                # every test (about 4x slower than the Release suite)
+#   bash scripts/sanitize.sh                # every test but the stress suite (about 1 hour)
 #   bash scripts/sanitize.sh --ci           # what CI runs (scripts/test.sh): builds only the core
 #                                           # tests and the fuzz targets, runs labels core and fuzz
 #   bash scripts/sanitize.sh --build-only   # configure and build everything, no test (scripts/fuzz.sh)
@@ -26,6 +26,7 @@ cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Deb
   -DFILUM_SANITIZE=address,undefined -DFILUM_BUILD_FUZZERS=ON -DFILUM_BUILD_BENCHMARKS=OFF >/dev/null
 targets=()
 ctest_arguments=("$@")
+((${#ctest_arguments[@]})) || ctest_arguments=(-LE stress)
 case "${1:-}" in
   --build-only) ctest_arguments=() ;;
   --ci)
@@ -35,6 +36,15 @@ esac
 cmake --build "$build" -j"$(nproc)" "${targets[@]}"
 [ "${1:-}" = "--build-only" ] && exit 0
 # Leaks are findings too; a report aborts so the test fails; UBSan prints the stack.
-export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
+asan="abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-ctest --test-dir "$build" -j"$(nproc)" --output-on-failure "${ctest_arguments[@]}"
+# The tests that render load Mesa's GL driver through VTK, which leaks 112 bytes in 2 blocks
+# from inside the driver, unloaded before the leak check can name it: they run with every check
+# but the leak check.
+rendering='OffscreenRenderer|FrameRecorder|RunVisual|ViewCommand'
+status=0
+ASAN_OPTIONS="detect_leaks=1:$asan" ctest --test-dir "$build" -j"$(nproc)" --output-on-failure -E "$rendering" \
+  "${ctest_arguments[@]}" || status=1
+ASAN_OPTIONS="detect_leaks=0:$asan" ctest --test-dir "$build" -j"$(nproc)" --output-on-failure -R "$rendering" \
+  "${ctest_arguments[@]}" || status=1
+exit $status
