@@ -47,9 +47,9 @@ class UniformGridBroadPhase {
 
   /// Every pair (i, j), i < j, with |c_i − c_j| <= r_i + r_j, sorted; `pairs` is cleared first.
   /// Stops at `max_pairs` pairs (default 2 kPairsPerSphere per sphere, the room reserved) and
-  /// returns false: the
-  /// spheres overlap far more than threads do (a body swept far in one step), the caller decides
-  /// (a smaller step); the work stays linear in the spheres and nothing is allocated.
+  /// returns false: the spheres overlap far more than threads do (a body swept far in one step),
+  /// and the caller decides (a smaller step); the work stays linear in the spheres and nothing
+  /// is allocated.
   /// No allocation once the buffers have reached the size of the scene.
   bool findPairs(const std::vector<BoundingSphere>& spheres, std::vector<IndexPair>& pairs, std::size_t max_pairs = 0);
 
