@@ -6,9 +6,11 @@
 #   bash scripts/sanitize.sh --ci           # what CI runs (scripts/test.sh): builds only the core
 #                                           # tests and the fuzz targets, runs labels core and fuzz
 #   bash scripts/sanitize.sh --build-only   # configure and build everything, no test (scripts/fuzz.sh)
+#   bash scripts/sanitize.sh --tsan         # ThreadSanitizer on the haptics tests (build-tsan/): the
+#                                           # servo thread, the triple buffer (--ci runs it too)
 #   bash scripts/sanitize.sh -L visual      # other arguments go to ctest The same build holds the libFuzzer targets (scripts/fuzz.sh).
-# ThreadSanitizer: filum starts no threads of its own today (rendering runs Xvfb as a separate
-# process), so there is nothing for it to check; the servo loop of haptics/ will need it.
+# ThreadSanitizer: the only threads filum starts are haptics/'s servo loops (rendering runs Xvfb
+# as a separate process): --tsan builds the haptics tests alone with it, in build-tsan/.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$root/build-sanitize"
@@ -19,6 +21,20 @@ if ! command -v clang++ >/dev/null; then
   echo "installing: clang (sanitizers and libFuzzer)"
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends clang
+fi
+
+# ThreadSanitizer cannot share a build with ASan: its own tree, only what the haptics tests need.
+tsan() {
+  cmake -S "$root" -B "$root/build-tsan" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
+    -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DFILUM_SANITIZE=thread -DFILUM_BUILD_BENCHMARKS=OFF >/dev/null
+  cmake --build "$root/build-tsan" -j"$(nproc)" --target test_haptics test_haptics_openhaptics
+  TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1" ctest --test-dir "$root/build-tsan" -j"$(nproc)" \
+    --output-on-failure -L haptics
+}
+if [ "${1:-}" = "--tsan" ]; then
+  tsan
+  echo "sanitize.sh: the haptics tests passed under ThreadSanitizer"
+  exit 0
 fi
 
 # RelWithDebInfo-like: -O1 keeps the sanitized suite fast enough and the reports readable.
@@ -50,5 +66,10 @@ if [ "${1:-}" != "--ci" ]; then
   ASAN_OPTIONS="detect_leaks=0:$asan" ctest --test-dir "$build" -j"$(nproc)" --output-on-failure -R "$rendering" \
     "${ctest_arguments[@]}" || status=1
 fi
-if ((status)); then echo "sanitize.sh: some tests failed under the sanitizers (above)"; else echo "sanitize.sh: every selected test passed under ASan and UBSan"; fi
+also=""
+if [ "${1:-}" = "--ci" ]; then
+  tsan || status=1
+  also=" (and the haptics tests under TSan)"
+fi
+if ((status)); then echo "sanitize.sh: some tests failed under the sanitizers (above)"; else echo "sanitize.sh: every selected test passed under ASan and UBSan$also"; fi
 exit $status

@@ -5,6 +5,7 @@
 #include "filum/all_components.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
+#include "filum/haptics/haptic_session.hpp"
 #include "filum/output_settings.hpp"
 #include "filum/run_command.hpp"
 #include "filum/visual/camera.hpp"
@@ -18,6 +19,8 @@ int checkScene(const std::string& path, std::ostream& out) {
     auto scene = loadScene(document, path, makeFactory());
     readOutputSettings(document, path);  // read by `filum run`
     visual::readCamera(document, path);  // read by --render and `filum view`
+    // The "haptics" block, read by `filum run` (a Phantom is opened, then closed, to check it).
+    haptics::HapticSession::fromScene(document, path, *scene, scene->settings().duration);
     visual::VisualScene visuals(*scene);  // binds what the visual models follow (--meshes, --render, view)
     visuals.update(scene->state());
     out << path << ": ok (" << scene->bodies().size() << " bodies, " << scene->dofPointCount() << " control points, "

@@ -6,12 +6,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <thread>
 #include <vector>
 
 #include "filum/all_components.hpp"
 #include "filum/core/params.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
+#include "filum/haptics/haptic_session.hpp"
 #include "filum/output_settings.hpp"
 #include "filum/run_output.hpp"
 #include "filum/run_visual.hpp"
@@ -41,6 +43,13 @@ std::string checkOverrides(const RunOptions& options, const Scene& scene, double
   if (steps.empty()) return "";
   return options.scene + ": /dt (with --duration " + describeJson(duration) + "): expected a run of 1 to " +
          std::to_string(kMaxSteps) + " steps of dt = " + describeJson(scene.settings().dt) + " s, found " + steps;
+}
+
+/// Forces off, haptics.csv written, the servo's summary logged.
+void finishHaptics(haptics::HapticSession& haptic, const std::string& directory, std::ostream& log) {
+  haptic.finish();
+  haptic.writeCsv(directory + "/haptics.csv");
+  log << haptic.summary() << " -> haptics.csv\n";
 }
 
 }  // namespace
@@ -76,6 +85,19 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   const std::string directory =
       options.out.empty() ? "out/" + std::filesystem::path(options.scene).stem().string() : options.out;
 
+  // A haptic device and its tool (the scene's "haptics" block): the servo loop runs beside the
+  // steps (haptics/haptic_session.hpp).
+  std::unique_ptr<haptics::HapticSession> haptic;
+  try {
+    haptic = haptics::HapticSession::fromScene(document, options.scene, *scene, duration);
+  } catch (const SceneError& e) {
+    log << "error: " << e.what() << '\n';
+    return kRunSceneError;
+  } catch (const std::exception& e) {
+    log << "error: " << options.scene << ": /haptics: " << e.what() << '\n';
+    return kRunSceneError;
+  }
+
   // Visual outputs (on request): bind the visual models, open the renderer.
   std::unique_ptr<RunVisual> visuals;
   if (options.meshes || options.render) {
@@ -104,6 +126,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   std::unique_ptr<RunOutput> output_files;
   // The run stops: what happened, the frames kept, the summary (exit 3).
   auto diverged = [&](const std::string& message) {
+    if (haptic) finishHaptics(*haptic, directory, log);
     log << "error: " << message << '\n'
         << "the " << (output_files ? output_files->frames() : 0) << " frames written so far in " << directory
         << " are intact\n";
@@ -120,11 +143,30 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
       visuals->render(*scene, -1.0);
     }
     auto last_progress = start;
+    if (haptic) haptic->start();
+    const auto haptic_start = Clock::now();
     for (long k = 1; k <= steps; ++k) {
+      if (haptic) {
+        // A device on the wall clock: the simulation keeps pace with it (never ahead of it).
+        if (haptic->threaded())
+          std::this_thread::sleep_until(haptic_start + std::chrono::duration_cast<Clock::duration>(
+                                                           std::chrono::duration<double>(scene->state().time)));
+        haptic->beforeStep(*scene);
+      }
       const auto before = Clock::now();
       const StepReport report = scene->step();
       const auto after = Clock::now();
       if (!report.ok) return diverged(report.message);
+      if (haptic) {
+        haptic->afterStep(*scene);
+        if (haptic->interrupted()) {
+          finishHaptics(*haptic, directory, log);
+          log << "interrupted (Ctrl-C) at t = " << scene->state().time << " s: forces off\n";
+          if (visuals) visuals->finish(*scene);
+          writeSummary(directory, TimingSummary::fromStepTimes(step_seconds, dt, seconds(Clock::now() - start)), log);
+          return kRunOk;
+        }
+      }
       step_seconds.push_back(seconds(after - before));
       render_wall += seconds(after - before);
       if (k % frame_every == 0 || k == steps) {
@@ -145,6 +187,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
                  << " s left\n";
       }
     }
+    if (haptic) finishHaptics(*haptic, directory, log);
     if (visuals) visuals->finish(*scene);
     log << "wrote " << out.frames() << " frames to " << directory
         << " (control_points.csv, curve.csv, energy.csv, curve.pvd, timing.json" << (visuals ? visuals->summary() : "")

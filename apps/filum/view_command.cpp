@@ -25,12 +25,12 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Gives every curve body of the loaded scene the mouse probe's force field (the scene file is
-/// not touched) and binds the scene again.
-void attachProbe(Scene& scene, const std::shared_ptr<visual::ProbeState>& probe) {
+/// Gives every curve body of the loaded scene the interaction tool's force field, the mouse's
+/// probe (the scene file is not touched), and binds the scene again.
+void attachProbe(Scene& scene, const std::shared_ptr<haptics::ToolState>& probe) {
   for (MechanicalState* body : scene.bodies()) {
     if (!body->curve()) continue;
-    auto field = std::make_unique<visual::ProbeForceField>(probe);
+    auto field = std::make_unique<haptics::ToolForceField>(probe);
     field->setName("mouse probe");
     field->setOrigin(body->origin() + " (mouse probe of filum view)");
     body->node()->addComponent(std::move(field));
@@ -75,7 +75,7 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
     return kRunIoError;
   }
   // The scene, with the mouse probe's force on every curve body.
-  auto probe = std::make_shared<visual::ProbeState>();
+  auto probe = std::make_shared<haptics::ToolState>();
   std::unique_ptr<Scene> scene;
   nlohmann::json document;
   try {
@@ -129,7 +129,8 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
           if (e.key == "g") grab_mode = !grab_mode;
           if (e.key == "r") {
             scene->setState(initial);
-            probe->touching = probe->grabbing = false;
+            probe->touching = false;
+            haptics::release(*probe);
           }
         }
         if (e.type == Type::kButtonPress && e.button == 1) {
@@ -137,11 +138,12 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
           probe_depth = pickDepth(*scene, camera, e.x, e.y);
           probe->position = visual::unproject(camera, e.x, e.y, probe_depth);
           probe->touching = true;
-          if (grab_mode || e.shift) visual::startGrab(*probe, *scene, 3.0 * probe->radius);
+          if (grab_mode || e.shift) haptics::startGrasp(*probe, *scene, 3.0 * probe->radius);
         }
         if (e.type == Type::kButtonRelease && e.button == 1) {
           left_down = false;
-          probe->touching = probe->grabbing = false;
+          probe->touching = false;
+          haptics::release(*probe);
         }
         if (e.type == Type::kButtonPress && e.button == 3) right_down = true;
         if (e.type == Type::kButtonRelease && e.button == 3) right_down = false;

@@ -28,7 +28,7 @@ struct ViewFrame {
   visual::ViewerWindow& window;
   const Scene& scene;
   const visual::CameraSettings& camera;
-  const visual::ProbeState& probe;
+  const haptics::ToolState& probe;
 };
 
 struct ViewOptions {

@@ -1,5 +1,6 @@
 #include "filum/geometry/scripted_path.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace filum::geometry {
@@ -34,10 +35,11 @@ ScriptedPath ScriptedPath::fromParams(const Params& p, const std::string& key) {
 }
 
 int ScriptedPath::segment(double t) const {
-  if (t < keyframes_.front().time) return -1;
-  for (std::size_t k = 0; k + 1 < keyframes_.size(); ++k)
-    if (t < keyframes_[k + 1].time) return static_cast<int>(k);
-  return static_cast<int>(keyframes_.size()) - 1;
+  // Binary search: a stylus script read from a recording holds up to 1e6 keyframes, looked up
+  // at every servo tick (haptics/stylus_script.hpp).
+  const auto after = std::upper_bound(keyframes_.begin(), keyframes_.end(), t,
+                                      [](double time, const Keyframe& k) { return time < k.time; });
+  return static_cast<int>(after - keyframes_.begin()) - 1;
 }
 
 Vec3 ScriptedPath::tangent(int k) const {

@@ -163,6 +163,7 @@ std::unique_ptr<Scene> loadScene(const json& document, const std::string& source
   settings.max_speed = top.positive("max_speed", settings.max_speed);
   top.has("output");  // read by the applications (filum run), not by the kernel
   top.has("camera");  // read by the visual side
+  top.has("haptics");  // read by the applications (haptics/haptic_session.hpp)
 
   addRoleComponent<Integrator>(top, "integrator", "Integrator", *scene, factory);
   addRoleComponent<ConstraintSolver>(top, "constraint_solver", "ConstraintSolver", *scene, factory);

@@ -30,10 +30,9 @@ TEST(ViewCommand, MouseGrabsAndPullsTheThread) {
   const fs::path out = fs::path(FILUM_BINARY_DIR) / "test_output" / "view";
   fs::create_directories(out);
   ViewOptions options;
-  // The soft-spring thread, whose middle can follow a probe dragged 3 cm away. On the headline
-  // suture (implicit, dt = 1 ms) the grab spring is capped at ω dt = 0.5 for explicit stability
-  // (interactive_probe.cpp, kGrabOmegaDt): ~0.03 N/m on its 1e-7 kg, too soft to fold the stiff
-  // thread towards the probe — a cap an implicit step does not need (noted in issue 12's note).
+  // The soft-spring thread, whose middle can follow a probe dragged 3 cm away. (The mouse sets no
+  // stiffness: the tool then takes the explicit step's cap, ω dt = 0.5, haptics/src/tool.cpp —
+  // ~0.03 N/m on the headline suture's 1e-7 kg, too soft to fold that stiff thread.)
   options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/paper_hanging_thread.json";
   options.frames = 24;
   options.fixed_step = 0.02;  // 20 ms of simulation per frame, whatever the machine's speed
@@ -54,8 +53,8 @@ TEST(ViewCommand, MouseGrabsAndPullsTheThread) {
       target_v = static_cast<int>(p.v) - 60;
     }
     if (f.index == 4) {
-      grabbed = f.probe.grabbing;
-      grab_abscissa = f.probe.grab_abscissa;
+      grabbed = f.probe.grasping;
+      grab_abscissa = f.probe.grasp_abscissa;
     }
     if (f.index > 4 && f.index <= 10)  // drag in 6 moves
       f.window.sendToSelf({WindowEvent::Type::kMotion, target_u - 20 * (10 - f.index), target_v + 10 * (10 - f.index), 0, true, ""});

@@ -1,0 +1,45 @@
+// StylusScript: where a scripted stylus is, and which buttons it holds, at each time — the
+// trajectory of a ScriptedDevice, or the target a SimulatedDevice's hand pulls toward.
+//
+//   "waypoints": [{"time": t, "position": [x, y, z], "buttons": b}, ...]   (device frame, m, s)
+//   "csv": "file.csv"      the same as rows "time,x,y,z,buttons" (a header line is allowed),
+//                          relative to the scene file
+//   "interpolation": "linear" | "smooth"   between waypoints (geometry::ScriptedPath)
+// Buttons hold from their waypoint until the next (bit 0: the first button, the grasper's
+// jaws by default); "buttons" may be omitted (0). At most kMaxWaypoints, times increasing.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "filum/core/params.hpp"
+#include "filum/geometry/scripted_path.hpp"
+
+namespace filum::haptics {
+
+/// A script of 1e6 waypoints is 17 minutes at 1 kHz: beyond, a recording, not a script.
+inline constexpr int kMaxWaypoints = 1000000;
+
+class StylusScript {
+ public:
+  StylusScript() = default;
+  /// Waypoints with times strictly increasing (>= 0) and the buttons held from each.
+  StylusScript(std::vector<geometry::ScriptedPath::Keyframe> keyframes, std::vector<unsigned> buttons,
+               geometry::ScriptedPath::Interpolation interpolation);
+  /// Reads "waypoints" or "csv" (exactly one) and "interpolation" from p; throws SceneError at
+  /// the faulty entry (file:line for a CSV).
+  static StylusScript fromParams(const Params& p);
+
+  Vec3 position(double t) const { return path_.position(t); }
+  Vec3 velocity(double t) const { return path_.velocity(t); }
+  unsigned buttons(double t) const;
+  /// Time of the last waypoint (s).
+  double endTime() const { return times_.empty() ? 0.0 : times_.back(); }
+
+ private:
+  geometry::ScriptedPath path_;
+  std::vector<double> times_;
+  std::vector<unsigned> buttons_;
+};
+
+}  // namespace filum::haptics

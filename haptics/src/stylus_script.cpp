@@ -1,0 +1,111 @@
+#include "filum/haptics/stylus_script.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "filum/core/input_file.hpp"
+#include "filum/core/scene_error.hpp"
+
+namespace filum::haptics {
+
+namespace {
+
+using Keyframe = geometry::ScriptedPath::Keyframe;
+
+/// A CSV script file: 64 bytes a row at most kMaxWaypoints rows.
+constexpr std::uintmax_t kMaxScriptBytes = 64u * kMaxWaypoints;
+
+struct Rows {
+  std::vector<Keyframe> keyframes;
+  std::vector<unsigned> buttons;
+};
+
+/// "time,x,y,z[,buttons]" rows; the first line may be a header.
+Rows readCsv(const std::string& path) {
+  if (const std::string problem = inputFileProblem(path, kMaxScriptBytes); !problem.empty())
+    throw SceneError(path, "a CSV file of at most " + byteSize(kMaxScriptBytes) + " (time,x,y,z,buttons rows)", problem);
+  std::ifstream in(path);
+  Rows rows;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream fields(line);
+    double t, x, y, z;
+    if (!(fields >> t >> x >> y >> z)) {
+      if (number == 1) continue;  // a header
+      throw SceneError(path + ":" + std::to_string(number), "a row time,x,y,z[,buttons] of numbers", "\"" + line + "\"");
+    }
+    long b = 0;
+    if (!(fields >> b)) b = 0;
+    std::string rest;
+    if (fields >> rest || b < 0 || b > 0xffff || !std::isfinite(t) || !std::isfinite(x) || !std::isfinite(y) ||
+        !std::isfinite(z))
+      throw SceneError(path + ":" + std::to_string(number), "finite time,x,y,z and buttons in [0, 65535]",
+                       "\"" + line + "\"");
+    if (t < 0.0 || (!rows.keyframes.empty() && !(t > rows.keyframes.back().time)))
+      throw SceneError(path + ":" + std::to_string(number), "a time >= 0 later than the previous row's", "\"" + line + "\"");
+    if (static_cast<int>(rows.keyframes.size()) >= kMaxWaypoints)
+      throw SceneError(path + ":" + std::to_string(number), "at most " + std::to_string(kMaxWaypoints) + " rows",
+                       "more");
+    rows.keyframes.push_back({t, Vec3(x, y, z)});
+    rows.buttons.push_back(static_cast<unsigned>(b));
+  }
+  if (rows.keyframes.empty()) throw SceneError(path, "at least one row time,x,y,z[,buttons]", "none");
+  return rows;
+}
+
+Rows readWaypoints(const Params& p) {
+  Rows rows;
+  const std::vector<Params> items = p.objects("waypoints");
+  if (items.empty()) p.fail("waypoints", "at least one waypoint {\"time\": t, \"position\": [x, y, z]}");
+  if (static_cast<int>(items.size()) > kMaxWaypoints)
+    p.fail("waypoints", "at most " + std::to_string(kMaxWaypoints) + " waypoints");
+  for (const Params& item : items) {
+    const double t = item.number("time");
+    if (t < 0.0 || (!rows.keyframes.empty() && !(t > rows.keyframes.back().time)))
+      item.fail("time", "a time >= 0 (s) later than the previous waypoint's");
+    rows.keyframes.push_back({t, item.vec3("position")});
+    rows.buttons.push_back(static_cast<unsigned>(item.integer("buttons", 0, 0xffff, 0, "a button mask")));
+    item.finish();
+  }
+  return rows;
+}
+
+}  // namespace
+
+StylusScript::StylusScript(std::vector<Keyframe> keyframes, std::vector<unsigned> buttons,
+                           geometry::ScriptedPath::Interpolation interpolation)
+    : buttons_(std::move(buttons)) {
+  times_.reserve(keyframes.size());
+  for (const Keyframe& k : keyframes) times_.push_back(k.time);
+  path_ = geometry::ScriptedPath(std::move(keyframes), interpolation);
+}
+
+StylusScript StylusScript::fromParams(const Params& p) {
+  if (p.has("waypoints") == p.has("csv")) p.fail("waypoints", "either \"waypoints\" or \"csv\" (one of them)");
+  Rows rows;
+  if (p.has("csv")) {
+    std::filesystem::path path = p.string("csv");
+    if (path.is_relative() && !p.file().empty()) path = std::filesystem::path(p.file()).parent_path() / path;
+    rows = readCsv(path.string());
+  } else {
+    rows = readWaypoints(p);
+  }
+  const std::string name = p.string("interpolation", "linear");
+  if (name != "linear" && name != "smooth") p.fail("interpolation", "\"linear\" or \"smooth\"");
+  return StylusScript(std::move(rows.keyframes), std::move(rows.buttons),
+                      name == "smooth" ? geometry::ScriptedPath::Interpolation::kSmooth
+                                       : geometry::ScriptedPath::Interpolation::kLinear);
+}
+
+unsigned StylusScript::buttons(double t) const {
+  const auto after = std::upper_bound(times_.begin(), times_.end(), t);
+  return after == times_.begin() ? buttons_.front() : buttons_[after - times_.begin() - 1];
+}
+
+}  // namespace filum::haptics

@@ -1,0 +1,211 @@
+#include "filum/haptics/tool.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "filum/core/curve_body.hpp"
+#include "filum/core/scene_error.hpp"
+#include "filum/geometry/closest_point.hpp"
+
+namespace filum::haptics {
+
+namespace {
+
+constexpr double kPushOmegaDt = 0.3;   // ω dt of the push penalty on one sample (explicit steps)
+constexpr double kGraspOmegaDt = 0.5;  // ω dt of the grasp spring (explicit steps)
+
+Vec3 rowPoint(const geometry::BasisRow& row, ConstPointsRef q) {
+  Vec3 x = Vec3::Zero();
+  for (int j = 0; j < row.count; ++j) x += row.value[j] * q.row(row.first + j).transpose();
+  return x;
+}
+
+}  // namespace
+
+bool startGrasp(ToolState& tool, const Scene& scene, double capture) {
+  release(tool);
+  double best = capture;
+  for (const MechanicalState* body : scene.bodies()) {
+    const CurveBody* curve = body->curve();
+    if (!curve) continue;
+    const geometry::ClosestPoint c = geometry::closestPoint(curve->basis(), body->block(scene.state().q), tool.position);
+    if (c.distance <= best) {
+      best = c.distance;
+      grasp(tool, *body, c.s);
+    }
+  }
+  return tool.grasping;
+}
+
+void grasp(ToolState& tool, const MechanicalState& body, double abscissa) {
+  tool.grasping = true;
+  tool.grasp_body = &body;
+  tool.grasp_abscissa = abscissa;
+}
+
+void release(ToolState& tool) {
+  tool.grasping = false;
+  tool.grasp_body = nullptr;
+}
+
+ToolForceField::ToolForceField(std::shared_ptr<const ToolState> tool, int samples)
+    : tool_(std::move(tool)), samples_(samples) {}
+
+void ToolForceField::init(const Scene& scene) {
+  const CurveBody* curve = body().curve();
+  if (!curve)
+    throw SceneError(origin(), "the interaction tool acts on curve bodies (e.g. DynamicSpline), not on " + body().describe());
+  dt_ = scene.settings().dt;
+  explicit_step_ = !scene.integrator().needsJacobians();
+  thread_radius_ = curve->radius();
+  const int n = curve->pointCount();
+  const int m = samples_ > 0 ? samples_ : std::max(8, 4 * n);
+  sample_rows_.resize(m);
+  for (int k = 0; k < m; ++k) curve->basis().evaluate(static_cast<double>(k) / (m - 1), sample_rows_[k]);
+  unit_load_.resize(n, 3);
+  response_.resize(n, 3);
+  mass_abscissa_ = grasp_row_abscissa_ = std::numeric_limits<double>::quiet_NaN();  // nothing cached (NaN equals nothing)
+  sample_mass_ = effectiveMass(0.5);
+}
+
+double ToolForceField::effectiveMass(double s) const {
+  // bᵀ M⁻¹ b with one banded solve (M is the same on x, y and z: use the first column), in the
+  // workspace sized by init, and kept for the last abscissa asked (the grasp's, every call).
+  if (s == mass_abscissa_) return mass_at_abscissa_;
+  geometry::BasisRow row;
+  body().curve()->basis().evaluate(s, row);
+  unit_load_.setZero();
+  for (int j = 0; j < row.count; ++j) unit_load_(row.first + j, 0) = row.value[j];
+  response_ = unit_load_;
+  body().solveMass(response_);
+  mass_abscissa_ = s;
+  mass_at_abscissa_ = 1.0 / unit_load_.col(0).dot(response_.col(0));
+  return mass_at_abscissa_;
+}
+
+double ToolForceField::gain(double requested, double cap) const {
+  if (std::isinf(requested)) return cap;
+  return explicit_step_ ? std::min(requested, cap) : requested;
+}
+
+double ToolForceField::pushStiffness() const {
+  return gain(tool_->push_stiffness, kPushOmegaDt * kPushOmegaDt * sample_mass_ / (dt_ * dt_));
+}
+
+double ToolForceField::graspStiffness() const {
+  const double m = effectiveMass(tool_->grasp_abscissa);
+  return gain(tool_->grasp_stiffness, kGraspOmegaDt * kGraspOmegaDt * m / (dt_ * dt_));
+}
+
+double ToolForceField::graspDamping() const {
+  if (tool_->grasp_damping >= 0.0) return tool_->grasp_damping;
+  return 2.0 * std::sqrt(graspStiffness() * effectiveMass(tool_->grasp_abscissa));
+}
+
+void ToolForceField::graspPoint(const SceneState& s, Vec3& P, Vec3& V) const {
+  if (!(tool_->grasp_abscissa == grasp_row_abscissa_)) {
+    body().curve()->basis().evaluate(tool_->grasp_abscissa, grasp_row_);
+    grasp_row_abscissa_ = tool_->grasp_abscissa;
+  }
+  P = rowPoint(grasp_row_, body().block(s.q));
+  V = rowPoint(grasp_row_, body().block(s.v));
+}
+
+void ToolForceField::addForce(const SceneState& s, VecX& B) const {
+  if (!pushing() && !grasping()) return;
+  PointsMap Q = body().block(B);
+  if (grasping()) {
+    Vec3 P, V;
+    graspPoint(s, P, V);
+    const Vec3 F = graspStiffness() * (toolPosition(*tool_, s.time) - P) + graspDamping() * (tool_->velocity - V);
+    for (int j = 0; j < grasp_row_.count; ++j) Q.row(grasp_row_.first + j) += grasp_row_.value[j] * F.transpose();
+    return;
+  }
+  const ConstPointsMap q = body().block(s.q);
+  const double k = pushStiffness(), R = tool_->radius + thread_radius_;
+  const Vec3 X = toolPosition(*tool_, s.time);
+  for (const geometry::BasisRow& row : sample_rows_) {
+    const Vec3 d = rowPoint(row, q) - X;
+    const double dist = d.norm();
+    if (dist >= R || dist == 0.0) continue;
+    const Vec3 F = k * (R - dist) / dist * d;
+    for (int j = 0; j < row.count; ++j) Q.row(row.first + j) += row.value[j] * F.transpose();
+  }
+}
+
+double ToolForceField::potentialEnergy(const SceneState& s) const {
+  if (!pushing() && !grasping()) return 0.0;
+  if (grasping()) {
+    Vec3 P, V;
+    graspPoint(s, P, V);
+    return 0.5 * graspStiffness() * (toolPosition(*tool_, s.time) - P).squaredNorm();
+  }
+  const ConstPointsMap q = body().block(s.q);
+  const double k = pushStiffness(), R = tool_->radius + thread_radius_;
+  const Vec3 X = toolPosition(*tool_, s.time);
+  double energy = 0.0;
+  for (const geometry::BasisRow& row : sample_rows_) {
+    const double dist = (rowPoint(row, q) - X).norm();
+    if (dist < R) energy += 0.5 * k * (R - dist) * (R - dist);
+  }
+  return energy;
+}
+
+void ToolForceField::addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const {
+  if (!pushing() && !grasping()) return;
+  const int offset = body().offset();
+  if (grasping()) {
+    Vec3 P, V;
+    graspPoint(s, P, V);  // (for grasp_row_)
+    const double k = graspStiffness(), c = graspDamping();
+    const geometry::BasisRow& row = grasp_row_;
+    for (int a = 0; a < row.count; ++a)
+      for (int b = 0; b < row.count; ++b)
+        out.addBlock(offset + row.first + a, offset + row.first + b,
+                     (-(k_factor * k + d_factor * c) * row.value[a] * row.value[b]) * Eigen::Matrix3d::Identity());
+    return;
+  }
+  const ConstPointsMap q = body().block(s.q);
+  const double k = pushStiffness(), R = tool_->radius + thread_radius_;
+  const Vec3 X = toolPosition(*tool_, s.time);
+  for (const geometry::BasisRow& row : sample_rows_) {
+    const Vec3 d = rowPoint(row, q) - X;
+    const double dist = d.norm();
+    if (dist >= R || dist == 0.0) continue;
+    const Vec3 n = d / dist;
+    const Eigen::Matrix3d nn = n * n.transpose();
+    const Eigen::Matrix3d G = k * (-nn + (R - dist) / dist * (Eigen::Matrix3d::Identity() - nn));
+    for (int a = 0; a < row.count; ++a)
+      for (int b = 0; b < row.count; ++b)
+        out.addBlock(offset + row.first + a, offset + row.first + b, (k_factor * row.value[a] * row.value[b]) * G);
+  }
+}
+
+void ToolForceField::addReaction(const SceneState& s, ToolReaction& out) const {
+  if (grasping()) {
+    // F_tool = −F = k (P − X) + c (Ṗ − Ẋ): ∂/∂X = −k I, ∂/∂Ẋ = −c I.
+    Vec3 P, V;
+    graspPoint(s, P, V);
+    const double k = graspStiffness(), c = graspDamping();
+    out.force += k * (P - toolPosition(*tool_, s.time)) + c * (V - tool_->velocity);
+    out.stiffness -= k * Eigen::Matrix3d::Identity();
+    out.damping -= c * Eigen::Matrix3d::Identity();
+    return;
+  }
+  if (!pushing()) return;
+  // F_tool = −Σ F_k, and ∂F_k/∂X = −∂F_k/∂x_k = −G_k: ∂F_tool/∂X = Σ G_k.
+  const ConstPointsMap q = body().block(s.q);
+  const double k = pushStiffness(), R = tool_->radius + thread_radius_;
+  const Vec3 X = toolPosition(*tool_, s.time);
+  for (const geometry::BasisRow& row : sample_rows_) {
+    const Vec3 d = rowPoint(row, q) - X;
+    const double dist = d.norm();
+    if (dist >= R || dist == 0.0) continue;
+    const Vec3 n = d / dist;
+    const Eigen::Matrix3d nn = n * n.transpose();
+    out.force -= k * (R - dist) * n;
+    out.stiffness += k * (-nn + (R - dist) / dist * (Eigen::Matrix3d::Identity() - nn));
+  }
+}
+
+}  // namespace filum::haptics

@@ -1,0 +1,79 @@
+// The servo loop: ticks on the servo grid in lockstep, the stylus mapped into the scene frame,
+// the local linear model evaluated there and its force mapped back, and the threaded mode
+// started and stopped with the force left at zero.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "filum/haptics/scripted_device.hpp"
+#include "filum/haptics/servo_loop.hpp"
+
+namespace filum::haptics {
+namespace {
+
+StylusScript line() {
+  // 1 cm along device x in 1 s, button 1 from 0.5 s.
+  return StylusScript({{0.0, Vec3::Zero()}, {0.5, Vec3(0.005, 0, 0)}, {1.0, Vec3(0.01, 0, 0)}}, {0u, 1u, 1u},
+                      geometry::ScriptedPath::Interpolation::kLinear);
+}
+
+TEST(ServoLoop, LockstepTicksFollowTheScriptInTheSceneFrame) {
+  ScriptedDevice device(line(), devicePreset("Touch"));
+  ServoSettings settings;
+  settings.frame.rotation << 1, 0, 0, 0, 0, -1, 0, 1, 0;  // "y_up"
+  settings.frame.scale = 0.5;
+  settings.frame.offset = Vec3(0.1, 0.2, 0.3);
+  ServoLoop servo(device, settings, 2000);
+  servo.runLockstepUntil(0.7);
+  EXPECT_EQ(servo.ticks(), 701);  // t = 0, 1 ms, ..., 700 ms
+  ServoSample s;
+  ASSERT_TRUE(servo.latestSample(s));
+  EXPECT_DOUBLE_EQ(s.time, 0.7);
+  EXPECT_EQ(s.buttons, 1u);
+  // Device x = 7 mm → scene offset + 0.5 · 7 mm along x; velocity 1 cm/s · 0.5.
+  EXPECT_TRUE(s.position.isApprox(Vec3(0.1035, 0.2, 0.3), 1e-12)) << s.position.transpose();
+  EXPECT_TRUE(s.velocity.isApprox(Vec3(0.005, 0.0, 0.0), 1e-12)) << s.velocity.transpose();
+  EXPECT_FALSE(servo.latestSample(s));  // nothing new since
+}
+
+TEST(ServoLoop, TheModelsForceIsMappedBackToTheDevice) {
+  ScriptedDevice device(line(), devicePreset("Touch"));
+  ServoSettings settings;
+  settings.frame.rotation << 1, 0, 0, 0, 0, -1, 0, 1, 0;  // device y = scene z
+  settings.frame.force_scale = 2.0;
+  ServoLoop servo(device, settings, 10);
+  LocalLinearModel model;
+  model.force = Vec3(0.0, 0.0, 0.25);  // 0.25 N up in the scene
+  servo.publish(model);
+  servo.runLockstepUntil(0.0);
+  // Scene z is device y; force_scale 2: 0.5 N along device y.
+  EXPECT_TRUE(device.lastForce().isApprox(Vec3(0.0, 0.5, 0.0), 1e-12)) << device.lastForce().transpose();
+  servo.stop();
+  EXPECT_EQ(device.lastForce(), Vec3::Zero());
+}
+
+TEST(ServoLoop, TheThreadTicksUntilStoppedAndLeavesZeroForce) {
+  ScriptedDevice device(line(), devicePreset("Touch"));
+  ServoSettings settings;
+  ServoLoop servo(device, settings, 100000);
+  LocalLinearModel model;
+  model.force = Vec3(0.1, 0.0, 0.0);
+  servo.publish(model);
+  servo.startThread();
+  // No timing is asserted (benchmarks measure it): only that ticks happen, within a generous wait.
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (servo.ticks() < 20 && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  servo.stop();
+  EXPECT_GE(servo.ticks(), 20);
+  EXPECT_EQ(device.lastForce(), Vec3::Zero());
+  const long ticks = servo.ticks();
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_EQ(servo.ticks(), ticks);  // stopped for good
+  ASSERT_FALSE(servo.log().empty());
+  for (std::size_t k = 1; k < servo.log().size(); ++k) EXPECT_GT(servo.log()[k].time, servo.log()[k - 1].time);
+}
+
+}  // namespace
+}  // namespace filum::haptics

@@ -1,0 +1,190 @@
+// The interaction tool (haptics/tool.hpp; the mouse probe of `filum view`, issue 7, and the
+// haptic device's tool, issue 15): its push and grasp forces pass the generic force-field test
+// (forces = −∂E/∂q, analytic K and D against finite differences), its reaction on the tool is
+// their opposite with the right Jacobians, a grasped point follows the tool, and a pushed
+// thread leaves the sphere.
+#include <gtest/gtest.h>
+
+#include "filum/geometry/spline_curve.hpp"
+#include "filum/mechanics/dynamic_spline.hpp"
+#include "filum/constraints/register_components.hpp"
+#include "filum/core/scene_loader.hpp"
+#include "filum/haptics/tool.hpp"
+#include "filum/mechanics/register_components.hpp"
+#include "support/force_field_check.hpp"
+
+namespace filum::haptics {
+namespace {
+
+using nlohmann::json;
+
+struct ProbeScene {
+  std::shared_ptr<ToolState> probe = std::make_shared<ToolState>();
+  std::unique_ptr<Scene> scene;
+  const ToolForceField* field = nullptr;
+};
+
+/// A straight 10 cm thread along x (no gravity), springs and damping, with the mouse probe.
+ProbeScene makeScene(const std::string& integrator = "RungeKutta4") {
+  ProbeScene p;
+  Factory factory;
+  mechanics::register_components(factory);
+  constraints::register_components(factory);
+  auto probe = p.probe;
+  factory.add("MouseProbe", "test", [probe](const Params&) { return std::make_unique<ToolForceField>(probe); });
+  const json points = {{"from", {0, 0, 0}}, {"to", {0.1, 0, 0}}, {"count", 20}};
+  const json components = json::array(
+      {{{"type", "DynamicSpline"}, {"control_points", points}, {"density", 910}, {"radius", 1e-4}},
+       {{"type", "SpringForceField"}, {"stretch_stiffness", 1.0}, {"bend_stiffness", 1e-3}, {"damping", 1e-5}},
+       {{"type", "ViscousDamping"}, {"coefficient", 2.0}},
+       {{"type", "MouseProbe"}}});
+  const json scene{{"name", "tool test"}, {"dt", 1e-4}, {"duration", 1.0}, {"gravity", {0, 0, 0}},
+                   {"integrator", {{"type", integrator}}},
+                   {"nodes", json::array({{{"name", "thread"}, {"components", components}}})}};
+  p.scene = loadScene(scene, "probe test", factory);
+  for (const ForceField* f : p.scene->forceFields())
+    if (const auto* probe_field = dynamic_cast<const ToolForceField*>(f)) p.field = probe_field;
+  return p;
+}
+
+Vec3 pointAt(const Scene& scene, double s) {
+  const auto& spline = static_cast<const mechanics::DynamicSpline&>(*scene.bodies().front());
+  return geometry::curvePoint(spline.basis(), spline.block(scene.state().q), s);
+}
+
+TEST(InteractionTool, PushAndGrabForcesPassTheGenericForceFieldTest) {
+  ProbeScene p = makeScene();
+  ASSERT_NE(p.field, nullptr);
+  SceneState s = p.scene->state();
+  for (Eigen::Index i = 0; i < s.q.size(); ++i) s.q[i] += 1e-3 * std::sin(1.7 * i);  // not straight
+  // Push: a 5 mm sphere overlapping the middle of the thread.
+  p.probe->radius = 5e-3;
+  p.probe->position = Vec3(0.05, 0.003, 0.001);
+  p.probe->touching = true;
+  test::ForceFieldCheck check;
+  check.h = 1e-8;
+  check.tolerance = 1e-5;
+  check.damping = false;  // the push has no damping: D = 0 exactly (checked below)
+  const Eigen::Vector3d push = test::expectForceFieldConsistent(*p.field, s, check);
+  EXPECT_GT(test::fieldForce(*p.field, s).norm(), 0.0);
+  EXPECT_EQ(test::fieldJacobian(*p.field, s, 0.0, 1.0).norm(), 0.0);
+  // Grab: spring–damper at the nearest point.
+  ASSERT_TRUE(startGrasp(*p.probe, *p.scene, 0.01));
+  EXPECT_NEAR(p.probe->grasp_abscissa, 0.5, 0.02);
+  p.probe->position += Vec3(0.0, 0.0, 0.01);
+  for (Eigen::Index i = 0; i < s.v.size(); ++i) s.v[i] = 0.01 * std::cos(0.3 * i);
+  check.damping = true;
+  check.gradient = false;  // the damper has no potential; the spring's is checked at v = 0 below
+  const Eigen::Vector3d grab = test::expectForceFieldConsistent(*p.field, s, check);
+  s.v.setZero();
+  check.gradient = true;
+  test::expectForceFieldConsistent(*p.field, s, check);
+  std::cout << "worst relative errors: push " << push.transpose() << ", grab " << grab.transpose() << '\n';
+}
+
+TEST(InteractionTool, StiffnessIsCappedForTheExplicitStep) {
+  ProbeScene p = makeScene();
+  // (ω dt)² m_eff / dt²: 0.3² for the push and 0.5² for the grab.
+  EXPECT_NEAR(p.field->pushStiffness(), 0.09 * p.field->effectiveMass(0.5) / 1e-8, 1e-9 * p.field->pushStiffness());
+  p.probe->grasp_abscissa = 0.25;
+  EXPECT_NEAR(p.field->graspStiffness(), 0.25 * p.field->effectiveMass(0.25) / 1e-8, 1e-9 * p.field->graspStiffness());
+  p.probe->grasp_stiffness = 1e-3;  // a softer user setting wins
+  EXPECT_DOUBLE_EQ(p.field->graspStiffness(), 1e-3);
+}
+
+TEST(InteractionTool, AGrabbedPointFollowsTheProbe) {
+  ProbeScene p = makeScene();
+  p.probe->radius = 2e-3;
+  p.probe->position = pointAt(*p.scene, 0.7) + Vec3(0.0, 0.0, 1e-3);
+  p.probe->touching = true;
+  ASSERT_TRUE(startGrasp(*p.probe, *p.scene, 5e-3));
+  // Drag the probe 2 cm up and 1 cm sideways over 0.1 s, then hold it for 0.2 s.
+  const Vec3 start = p.probe->position, goal = start + Vec3(0.0, 0.01, 0.02);
+  for (int k = 1; k <= 3000; ++k) {
+    p.probe->position = start + std::min(1.0, k / 1000.0) * (goal - start);
+    ASSERT_TRUE(p.scene->step().ok) << "step " << k;
+  }
+  EXPECT_LT((pointAt(*p.scene, p.probe->grasp_abscissa) - goal).norm(), 1e-3);
+  EXPECT_LT(pointAt(*p.scene, 0.0).z(), 0.01);  // the far end lags behind: a pull, not a translation
+}
+
+TEST(InteractionTool, APushedThreadLeavesTheSphere) {
+  for (const std::string integrator : {"RungeKutta4", "ImplicitEuler"}) {
+    ProbeScene p = makeScene(integrator);
+    p.probe->radius = 4e-3;
+    p.probe->position = Vec3(0.05, 0.0, 0.0);  // centred on the thread
+    p.probe->position.y() = 1e-3;              // slightly off to one side: it pushes towards −y
+    p.probe->touching = true;
+    for (int k = 0; k < 1000; ++k) ASSERT_TRUE(p.scene->step().ok) << integrator << " step " << k;
+    const double R = p.probe->radius + static_cast<const mechanics::DynamicSpline&>(*p.scene->bodies().front()).radius();
+    double deepest = 0.0;
+    for (int k = 0; k <= 100; ++k) deepest = std::max(deepest, R - (pointAt(*p.scene, k / 100.0) - p.probe->position).norm());
+    EXPECT_LT(deepest, 0.15 * R) << integrator << ": penetration left by the penalty";
+    EXPECT_LT(pointAt(*p.scene, 0.5).y(), -0.5 * R) << integrator;
+  }
+}
+
+}  // namespace
+}  // namespace filum::haptics
+
+namespace filum::haptics {
+namespace {
+
+/// Σ over the scene's tool fields of the force on the tool, at the tool state `tool`.
+Vec3 reactionAt(const ProbeScene& p, const SceneState& s) {
+  ToolReaction r;
+  p.field->addReaction(s, r);
+  return r.force;
+}
+
+TEST(InteractionTool, TheReactionOnTheToolIsTheOppositeForceWithItsJacobians) {
+  for (const bool grasping : {false, true}) {
+    ProbeScene p = makeScene("ImplicitEuler");
+    SceneState s = p.scene->state();
+    for (Eigen::Index i = 0; i < s.q.size(); ++i) s.q[i] += 1e-3 * std::sin(1.7 * i);
+    for (Eigen::Index i = 0; i < s.v.size(); ++i) s.v[i] = 0.01 * std::cos(0.3 * i);
+    p.probe->radius = 5e-3;
+    p.probe->position = Vec3(0.05, 0.003, 0.001);
+    p.probe->velocity = Vec3(0.02, -0.01, 0.03);
+    p.probe->touching = true;
+    p.probe->grasp_stiffness = 900.0;  // the Touch's default coupling (implicit step: not capped)
+    p.probe->grasp_damping = 0.1;
+    if (grasping) {
+      ASSERT_TRUE(startGrasp(*p.probe, *p.scene, 0.01));
+    }
+    // Action and reaction: the generalized forces on the body sum (Σ_i Q_i, the basis sums to
+    // one) to minus the force on the tool.
+    VecX B = VecX::Zero(s.q.size());
+    p.field->addForce(s, B);
+    const Vec3 on_body = p.field->body().block(B).colwise().sum().transpose();
+    ToolReaction r;
+    p.field->addReaction(s, r);
+    EXPECT_LT((r.force + on_body).norm(), 1e-12 * on_body.norm()) << (grasping ? "grasp" : "push");
+    ASSERT_GT(on_body.norm(), 0.0);
+    // Jacobians against central differences in the tool's position and velocity. The forces are
+    // smooth (quadratic in the overlap): the O(h²) truncation at h = 1e-7 m is ~1e-14 relative,
+    // below the cancellation error ε |F| / h ≈ 1e-9 of |K| — hence 1e-6 relative.
+    const double h = 1e-7;
+    Eigen::Matrix3d K, D;
+    for (int j = 0; j < 3; ++j) {
+      const Vec3 x = p.probe->position, v = p.probe->velocity;
+      p.probe->position[j] = x[j] + h;
+      const Vec3 plus = reactionAt(p, s);
+      p.probe->position[j] = x[j] - h;
+      const Vec3 minus = reactionAt(p, s);
+      p.probe->position = x;
+      K.col(j) = (plus - minus) / (2 * h);
+      p.probe->velocity[j] = v[j] + h;
+      const Vec3 faster = reactionAt(p, s);
+      p.probe->velocity[j] = v[j] - h;
+      const Vec3 slower = reactionAt(p, s);
+      p.probe->velocity = v;
+      D.col(j) = (faster - slower) / (2 * h);
+    }
+    EXPECT_LT((K - r.stiffness).norm(), 1e-6 * r.stiffness.norm()) << (grasping ? "grasp" : "push") << "\n" << K << "\n" << r.stiffness;
+    EXPECT_LT((D - r.damping).norm(), 1e-6 * std::max(1.0, r.damping.norm())) << (grasping ? "grasp" : "push");
+  }
+}
+
+}  // namespace
+}  // namespace filum::haptics
