@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -16,6 +17,8 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/haptics/haptic_session.hpp"
+#include "filum/haptics/interrupt.hpp"
+#include "filum/geometry/spline_curve.hpp"
 #include "filum/run_command.hpp"
 #include "support/run_scene.hpp"
 
@@ -91,6 +94,46 @@ TEST(HapticSession, TheDemoRunWritesEveryServoTickAndIsBitIdentical) {
   // One row per tick: ticks at 0, 1, ..., 1599 ms (the last step starts at 1.599 s).
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 1600);
   EXPECT_EQ(csv.find("nan"), std::string::npos);
+}
+
+TEST(HapticSession, AnAttachedThreadEndFollowsTheStylus) {
+  nlohmann::json document = readJsonFile(kScene);
+  document["haptics"]["tool"] = {{"type", "Attachment"}, {"object", "thread"}, {"abscissa", 1.0}};
+  // Device frame y_up, origin at scene (0, 0, −0.09): the thread's end (0, 0, −0.1) is device
+  // (0, −0.01, 0); the stylus carries it 2 cm sideways and 5 mm up in 0.5 s (the thread stays
+  // slack: 9.7 cm from the top end), then holds still.
+  document["haptics"]["device"]["waypoints"] = {{{"time", 0.0}, {"position", {0.0, -0.01, 0.0}}},
+                                                {{"time", 0.5}, {"position", {0.02, -0.005, 0.0}}}};
+  auto scene = loadScene(document, kScene, makeFactory());
+  auto session = haptics::HapticSession::fromScene(document, kScene, *scene, 0.6);
+  session->start();
+  for (int k = 1; k <= 600; ++k) {
+    session->beforeStep(*scene);
+    ASSERT_TRUE(scene->step().ok) << "step " << k;
+    session->afterStep(*scene);
+  }
+  session->finish();
+  const MechanicalState& thread = *scene->bodies().front();
+  const Vec3 end = geometry::curvePoint(thread.curve()->basis(), thread.block(scene->state().q), 1.0);
+  // At rest the coupling carries only the slack thread's pull on its end (its weight, 2.8e-5 N,
+  // and the bending of the slack, of the same order): k = 900 N/m stretches by ~1e-7 m. 0.1 s
+  // after the stop the swing has settled under the coupling's damping. 0.1 mm is 0.5 % of the
+  // 2 cm carried, far above both.
+  EXPECT_LT((end - Vec3(0.02, 0.0, -0.095)).norm(), 1e-4) << end.transpose();
+}
+
+TEST(HapticSession, CtrlCStopsTheRunWithTheForcesOff) {
+  const fs::path out = test::freshDirectory("haptic_interrupted");
+  haptics::installInterruptHandler();
+  std::raise(SIGINT);  // as if pressed before the first tick
+  std::string log;
+  const int status = test::runQuietly(kScene, out, 1.6, log);
+  haptics::clearInterrupt();
+  EXPECT_EQ(status, kRunOk) << log;
+  EXPECT_NE(log.find("interrupted (Ctrl-C)"), std::string::npos) << log;
+  // The run stopped after its first step, and haptics.csv says nothing was sent.
+  const std::string csv = readAll(out / "haptics.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1) << csv;  // the header only: no tick ran
 }
 
 TEST(HapticSession, ErrorsNameTheirPathInTheHapticsBlock) {
