@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "filum/mechanics/dynamic_spline.hpp"
-#include "filum/mechanics/spline_point_mapping.hpp"
+#include "filum/geometry/spline_point_mapping.hpp"
 
 namespace filum::app {
 
@@ -43,12 +43,12 @@ void RunOutput::writeFrame(const Scene& scene) {
   // all, and no file ever holds a non-finite value (finite control points near 1e308 can still
   // give infinite curve points or energies).
   std::vector<visual::PolyLine> lines;
-  const std::vector<double> abscissas = mechanics::uniformAbscissas(curve_samples_);
+  const std::vector<double> abscissas = geometry::uniformAbscissas(curve_samples_);
   for (const MechanicalState* body : scene.bodies()) {
     const auto* spline = body->curve();
     if (!spline) continue;
     visual::PolyLine line{body->node()->path(), Points(curve_samples_, 3), abscissas};
-    mechanics::SplinePointMapping(spline->basis(), abscissas).apply(body->block(s.q), line.points);
+    geometry::SplinePointMapping(spline->basis(), abscissas).apply(body->block(s.q), line.points);
     if (!line.points.allFinite())
       throw NonFiniteFrame("refusing to write the non-finite curve of " + body->describe() + " at t = " + t + " s");
     lines.push_back(std::move(line));

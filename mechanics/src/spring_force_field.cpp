@@ -18,7 +18,7 @@ void SpringForceField::init(const Scene&) {
   const auto* spline = dynamic_cast<const DynamicSpline*>(&body());
   if (!spline) throw SceneError(origin(), "a DynamicSpline body for " + describe(), body().describe());
   if (samples_ == 0) samples_ = 2 * spline->pointCount();
-  mapping_ = std::make_unique<SplinePointMapping>(spline->basis(), uniformAbscissas(samples_));
+  mapping_ = std::make_unique<geometry::SplinePointMapping>(spline->basis(), geometry::uniformAbscissas(samples_));
   x_.resize(samples_, 3);
   v_.resize(samples_, 3);
   f_.resize(samples_, 3);

@@ -8,6 +8,7 @@
 #include "filum/geometry/frenet_frame.hpp"
 #include "filum/geometry/rotation_minimizing_frames.hpp"
 #include "filum/geometry/spline_curve.hpp"
+#include "filum/geometry/spline_point_mapping.hpp"  // uniformAbscissas
 #include "geometry/spline_test_support.hpp"
 
 namespace filum::geometry {
@@ -21,12 +22,6 @@ void expectOrthonormal(const CurveFrame& f, double tolerance) {
   EXPECT_NEAR(f.tangent.dot(f.binormal), 0.0, tolerance);
   EXPECT_NEAR(f.normal.dot(f.binormal), 0.0, tolerance);
   EXPECT_LE((f.tangent.cross(f.normal) - f.binormal).norm(), tolerance);
-}
-
-std::vector<double> uniformAbscissas(int m) {
-  std::vector<double> s(m);
-  for (int k = 0; k < m; ++k) s[k] = static_cast<double>(k) / (m - 1);
-  return s;
 }
 
 TEST(RotationMinimizingFrames, AreOrthonormalAlongRandomCurves) {

@@ -3,7 +3,7 @@
 namespace filum::visual {
 
 SplineAxisMapping::SplineAxisMapping(const geometry::SplineBasis& basis, std::vector<double> abscissas)
-    : mechanics::SplinePointMapping(basis, std::move(abscissas)) {
+    : geometry::SplinePointMapping(basis, std::move(abscissas)) {
   std::vector<Eigen::Triplet<double>> derivatives, seconds;
   geometry::BasisRow row;
   for (std::size_t k = 0; k < this->abscissas().size(); ++k) {

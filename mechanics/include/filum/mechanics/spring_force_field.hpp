@@ -17,7 +17,7 @@
 
 #include "filum/core/force_field.hpp"
 #include "filum/core/params.hpp"
-#include "filum/mechanics/spline_point_mapping.hpp"
+#include "filum/geometry/spline_point_mapping.hpp"
 
 namespace filum::mechanics {
 
@@ -46,7 +46,7 @@ class SpringForceField final : public ForceField {
 
   double stretch_stiffness_, bend_stiffness_, damping_;
   int samples_;
-  std::unique_ptr<SplinePointMapping> mapping_;
+  std::unique_ptr<geometry::SplinePointMapping> mapping_;
   std::vector<Spring> springs_;
   mutable Points x_, v_, f_;  // workspace: sample positions, velocities, forces
 };

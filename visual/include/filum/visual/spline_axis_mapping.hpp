@@ -9,13 +9,13 @@
 
 #include <vector>
 
-#include "filum/mechanics/spline_point_mapping.hpp"
+#include "filum/geometry/spline_point_mapping.hpp"
 
 namespace filum::visual {
 
-/// mechanics::SplinePointMapping (positions, velocities, forces and the Jacobian W ⊗ I₃) plus
+/// geometry::SplinePointMapping (positions, velocities, forces and the Jacobian W ⊗ I₃) plus
 /// the tangents and second derivatives at the same abscissas.
-class SplineAxisMapping final : public mechanics::SplinePointMapping {
+class SplineAxisMapping final : public geometry::SplinePointMapping {
  public:
   /// abscissas in [0, 1] (any order; the skin passes them increasing).
   SplineAxisMapping(const geometry::SplineBasis& basis, std::vector<double> abscissas);

@@ -3,10 +3,10 @@
 #include <gtest/gtest.h>
 
 #include "filum/geometry/uniform_cubic_bspline.hpp"
-#include "filum/mechanics/spline_point_mapping.hpp"
+#include "filum/geometry/spline_point_mapping.hpp"
 #include "support/finite_difference.hpp"
 
-namespace filum::mechanics {
+namespace filum::geometry {
 namespace {
 
 TEST(SplinePointMapping, PassesTheGenericMappingTest) {
@@ -49,4 +49,4 @@ TEST(SplinePointMapping, MapsPointsOntoTheCurve) {
 }
 
 }  // namespace
-}  // namespace filum::mechanics
+}  // namespace filum::geometry

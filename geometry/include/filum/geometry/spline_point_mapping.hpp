@@ -9,7 +9,7 @@
 #include "filum/core/mapping.hpp"
 #include "filum/geometry/spline_basis.hpp"
 
-namespace filum::mechanics {
+namespace filum::geometry {
 
 class SplinePointMapping : public Mapping {
  public:
@@ -39,4 +39,4 @@ class SplinePointMapping : public Mapping {
 /// `count` abscissas equally spaced on [0, 1] (count >= 2).
 std::vector<double> uniformAbscissas(int count);
 
-}  // namespace filum::mechanics
+}  // namespace filum::geometry

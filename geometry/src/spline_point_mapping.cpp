@@ -1,6 +1,6 @@
-#include "filum/mechanics/spline_point_mapping.hpp"
+#include "filum/geometry/spline_point_mapping.hpp"
 
-namespace filum::mechanics {
+namespace filum::geometry {
 
 SplinePointMapping::SplinePointMapping(const geometry::SplineBasis& basis, std::vector<double> abscissas)
     : abscissas_(std::move(abscissas)) {
@@ -33,4 +33,4 @@ std::vector<double> uniformAbscissas(int count) {
   return s;
 }
 
-}  // namespace filum::mechanics
+}  // namespace filum::geometry
