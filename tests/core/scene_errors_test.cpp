@@ -18,7 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "filum/all_components.hpp"
+#include "support/library_components.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 
@@ -140,7 +140,7 @@ const std::vector<BadScene> kCases = {
 // The message of the SceneError that loading `path` throws ("" and a test failure otherwise).
 std::string loadError(const std::string& path) {
   try {
-    loadScene(path, app::makeFactory());
+    loadScene(path, test::libraryComponents());
   } catch (const SceneError& e) {
     return e.what();
   } catch (const std::exception& e) {
@@ -217,7 +217,7 @@ TEST(SceneErrorsData, EveryBadSceneIsTestedAndSaysWhatIsWrong) {
 
 // The scene the bad scenes vary loads: each bad scene fails because of its one defect.
 TEST(SceneErrorsData, TheUnalteredSceneLoads) {
-  const auto scene = loadScene(std::string(FILUM_TEST_DATA_DIR) + "/minimal_thread.json", app::makeFactory());
+  const auto scene = loadScene(std::string(FILUM_TEST_DATA_DIR) + "/minimal_thread.json", test::libraryComponents());
   EXPECT_EQ(scene->bodies().size(), 1u);
   EXPECT_EQ(scene->constraints().size(), 2u);
 }
@@ -244,7 +244,7 @@ TEST(SceneErrorsData, NonFiniteNumbersInAParsedDocumentAreRefused) {
     nlohmann::json bad = good;
     bad["nodes"][0]["components"][0]["mass"] = c.value;
     try {
-      loadScene(bad, "in-memory", app::makeFactory());
+      loadScene(bad, "in-memory", test::libraryComponents());
       ADD_FAILURE() << "a mass of " << c.value << " was accepted";
     } catch (const SceneError& e) {
       const std::string message = e.what();
@@ -259,7 +259,7 @@ TEST(SceneErrorsData, NonFiniteNumbersInAParsedDocumentAreRefused) {
     bad["nodes"][0]["components"][0]["control_points"] = {
         {0.0, 0.0, 0.0}, {0.03, 0.0, 0.0}, {c.value, 0.0, 0.0}, {0.09, 0.0, 0.0}, {0.12, 0.0, 0.0}};
     try {
-      loadScene(bad, "in-memory", app::makeFactory());
+      loadScene(bad, "in-memory", test::libraryComponents());
       ADD_FAILURE() << "a control point at " << c.value << " was accepted";
     } catch (const SceneError& e) {
       EXPECT_EQ(std::string(e.what()),
@@ -270,7 +270,7 @@ TEST(SceneErrorsData, NonFiniteNumbersInAParsedDocumentAreRefused) {
     bad = good;
     bad["gravity"] = {0.0, 0.0, c.value};
     try {
-      loadScene(bad, "in-memory", app::makeFactory());
+      loadScene(bad, "in-memory", test::libraryComponents());
       ADD_FAILURE() << "a gravity of " << c.value << " was accepted";
     } catch (const SceneError& e) {
       EXPECT_EQ(std::string(e.what()),
@@ -305,7 +305,7 @@ TEST(SceneErrorsData, AFifoIsRefusedAsSceneAndAsMeshFile) {
 
   nlohmann::json scene = readJsonFile(std::string(FILUM_TEST_DATA_DIR) + "/minimal_thread.json");
   for (const char* type : {"MeshModel", "TriangleMeshObstacle"}) {
-    if (!app::makeFactory().knows(type)) continue;  // TriangleMeshObstacle needs FILUM_WITH_CGAL
+    if (!test::libraryComponents().knows(type)) continue;  // TriangleMeshObstacle needs FILUM_WITH_CGAL
     nlohmann::json bad = scene;
     bad["nodes"][1]["components"].push_back({{"type", type}, {"file", "pipe.off"}});
     const std::string path = (dir / (std::string(type) + ".json")).string();
@@ -323,7 +323,7 @@ TEST(SceneErrorsData, TooManyComponentsAreRefusedBeforeTheyAreBuilt) {
   nlohmann::json bad = readJsonFile(std::string(FILUM_TEST_DATA_DIR) + "/minimal_thread.json");
   for (int k = 0; k < 10000; ++k) bad["nodes"][0]["components"].push_back({{"type", "ViscousDamping"}});
   try {
-    loadScene(bad, "in-memory", app::makeFactory());
+    loadScene(bad, "in-memory", test::libraryComponents());
     ADD_FAILURE() << "10,003 components were accepted";
   } catch (const SceneError& e) {
     EXPECT_EQ(std::string(e.what()).rfind("in-memory: /nodes/0/components: expected at most 10000 components in a "
@@ -340,7 +340,7 @@ TEST(SceneErrorsData, ASecondIntegratorIsNamedByItsPlace) {
   nlohmann::json bad = readJsonFile(std::string(FILUM_TEST_DATA_DIR) + "/minimal_thread.json");
   bad["nodes"][0]["components"].push_back({{"type", "RungeKutta4"}});
   try {
-    loadScene(bad, "in-memory", app::makeFactory());
+    loadScene(bad, "in-memory", test::libraryComponents());
     ADD_FAILURE() << "a second integrator was accepted";
   } catch (const SceneError& e) {
     EXPECT_EQ(std::string(e.what()).rfind("in-memory: /nodes/0/components/3: expected exactly one integrator", 0), 0u)
@@ -353,7 +353,7 @@ TEST(SceneErrorsData, ConstraintOnTheRootNamesTheRoot) {
   nlohmann::json bad = readJsonFile(std::string(FILUM_TEST_DATA_DIR) + "/minimal_thread.json");
   bad["components"] = nlohmann::json::array({{{"type", "FixedPointConstraint"}, {"abscissa", 0.0}}});
   try {
-    loadScene(bad, "in-memory", app::makeFactory());
+    loadScene(bad, "in-memory", test::libraryComponents());
     ADD_FAILURE() << "a constraint at the root was accepted";
   } catch (const SceneError& e) {
     EXPECT_EQ(std::string(e.what()),

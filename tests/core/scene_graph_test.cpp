@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "filum/all_components.hpp"
+#include "support/library_components.hpp"
 #include "filum/core/factory.hpp"
 #include "filum/core/mechanical_state.hpp"
 #include "filum/core/node.hpp"
@@ -162,7 +162,7 @@ TEST(Factory, DefaultsPerRole) {
 
 // The application's factory has every library's components and a default for each role.
 TEST(Factory, ApplicationFactoryRegistersEveryLibrary) {
-  const Factory factory = app::makeFactory();
+  const Factory factory = test::libraryComponents();
   for (const char* type : {"DynamicSpline", "SpringForceField", "ViscousDamping", "SymplecticEuler", "RungeKutta4",
                            "FixedPointConstraint", "LagrangeMultiplierSolver"})
     EXPECT_TRUE(factory.knows(type)) << type;
@@ -173,7 +173,7 @@ TEST(Factory, ApplicationFactoryRegistersEveryLibrary) {
 // The headline scene loads: settings read, components built and bound, and it steps.
 TEST(SceneLoader, HangingThreadLoadsAndSteps) {
   const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/hanging_thread.json";
-  const auto scene = loadScene(path, app::makeFactory());
+  const auto scene = loadScene(path, test::libraryComponents());
   EXPECT_EQ(scene->settings().name, "hanging thread");
   EXPECT_EQ(scene->settings().source, path);
   EXPECT_DOUBLE_EQ(scene->settings().dt, 1e-3);

@@ -5,7 +5,7 @@
 
 #include <stdexcept>
 
-#include "filum/all_components.hpp"
+#include "support/library_components.hpp"
 #include "filum/core/force_field.hpp"
 #include "filum/core/scene.hpp"
 #include "filum/core/scene_loader.hpp"
@@ -23,7 +23,7 @@ class ThrowingField final : public ForceField {
 };
 
 TEST(StepFailure, AnExceptionInAStepIsReportedAndRolledBack) {
-  Factory factory = app::makeFactory();
+  Factory factory = test::libraryComponents();
   factory.add("ThrowingField", "throws during a step (test)",
               [](const Params&) { return std::make_unique<ThrowingField>(); });
   nlohmann::json document = readJsonFile(std::string(FILUM_TEST_DATA_DIR) + "/minimal_thread.json");
