@@ -5,7 +5,7 @@
 
 #include "filum/geometry/gauss_legendre.hpp"
 #include "filum/geometry/spline_curve.hpp"
-#include "filum/mechanics/dynamic_spline.hpp"
+#include "filum/core/curve_body.hpp"
 
 namespace filum::validation {
 
@@ -76,7 +76,7 @@ double Cantilever::tipDeflection(double t) const {
 }
 
 double Cantilever::modelTipDeflection(const Scene& scene) {
-  const auto& spline = dynamic_cast<const mechanics::DynamicSpline&>(*scene.bodies().front());
+  const CurveBody& spline = *scene.bodies().front()->curve();  // a spline: built above
   return -geometry::curvePoint(spline.basis(), spline.block(scene.state().q), 1.0).z();
 }
 

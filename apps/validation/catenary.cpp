@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "filum/geometry/spline_curve.hpp"
-#include "filum/mechanics/dynamic_spline.hpp"
+#include "filum/core/curve_body.hpp"
 
 namespace filum::validation {
 
@@ -125,7 +125,7 @@ nlohmann::json Catenary::scene(const RunSettings& settings) const {
 }
 
 double Catenary::error(const Scene& scene) const {
-  const auto& spline = dynamic_cast<const mechanics::DynamicSpline&>(*scene.bodies().front());
+  const CurveBody& spline = *scene.bodies().front()->curve();  // a spline: built above
   const Points curve = geometry::sampleCurve(spline.basis(), spline.block(scene.state().q), 401);
   double worst = 0.0;
   for (int k = 0; k < curve.rows(); ++k) worst = std::max(worst, distance(curve.row(k).transpose()));

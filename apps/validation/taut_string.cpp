@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 
 #include "filum/geometry/gauss_legendre.hpp"
+#include "filum/core/curve_body.hpp"
 #include "filum/geometry/spline_curve.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
 #include "filum/mechanics/mass_matrix.hpp"
@@ -46,7 +47,7 @@ void TautString::prepare(Scene& scene) const {
   // Constrained L2 projection of A sin(kπ s) (s = x/S on the uniform straight thread):
   //   [G Lᵀ; L 0] [y; λ] = [r; 0],  G_ij = ∫ b_i b_j ds,  r_i = ∫ b_i A sin(kπ s) ds,
   // L the basis rows at s = 0 and s = 1 (the fixed ends).
-  const auto& spline = dynamic_cast<const mechanics::DynamicSpline&>(*scene.bodies().front());
+  const CurveBody& spline = *scene.bodies().front()->curve();  // a spline: built above
   const geometry::SplineBasis& basis = spline.basis();
   const int n = spline.pointCount();
   MatX kkt = MatX::Zero(n + 2, n + 2);
@@ -88,7 +89,7 @@ std::vector<double> TautString::sampleTimes() const {
 }
 
 double TautString::error(const Scene& scene) const {
-  const auto& spline = dynamic_cast<const mechanics::DynamicSpline&>(*scene.bodies().front());
+  const CurveBody& spline = *scene.bodies().front()->curve();  // a spline: built above
   const Points curve = geometry::sampleCurve(spline.basis(), spline.block(scene.state().q), 101);
   const double k = options_.mode, A = options_.amplitude;
   const double envelope = A * std::cos(2.0 * std::numbers::pi * frequency(options_.mode) * scene.state().time);
