@@ -18,9 +18,10 @@ namespace filum::haptics {
 namespace {
 
 /// The servo log holds the run's ticks and 10 % more (a threaded servo runs on while the
-/// simulation catches up), and one second at least.
+/// simulation catches up), one second at least, and kMaxLogSamples at most.
 std::size_t logCapacity(double duration, double rate) {
-  return static_cast<std::size_t>(std::ceil((1.1 * duration + 1.0) * rate));
+  const double ticks = std::ceil((1.1 * duration + 1.0) * rate);
+  return ticks >= static_cast<double>(kMaxLogSamples) ? kMaxLogSamples : static_cast<std::size_t>(ticks);
 }
 
 }  // namespace

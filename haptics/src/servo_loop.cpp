@@ -7,12 +7,6 @@
 
 namespace filum::haptics {
 
-namespace {
-
-constexpr std::size_t kMaxLogSamples = 10000000;  // 1e7 samples of 128 bytes: 1.2 GB, 2.8 h at 1 kHz
-
-}  // namespace
-
 ServoLoop::ServoLoop(HapticDevice& device, const ServoSettings& settings, std::size_t log_capacity)
     : device_(device),
       settings_(settings),
@@ -22,7 +16,8 @@ ServoLoop::ServoLoop(HapticDevice& device, const ServoSettings& settings, std::s
   if (!(settings.rate >= kMinServoRate && settings.rate <= kMaxServoRate))
     throw std::invalid_argument("a servo rate in [100, 10000] Hz, found " + std::to_string(settings.rate));
   if (log_capacity > kMaxLogSamples)
-    throw std::invalid_argument("a servo log of at most 1e7 samples (1.2 GB), found " + std::to_string(log_capacity));
+    throw std::invalid_argument("a servo log of at most " + std::to_string(kMaxLogSamples) + " samples, found " +
+                                std::to_string(log_capacity));
   log_.reserve(log_capacity);  // the only allocation: ticks append without allocating
 }
 

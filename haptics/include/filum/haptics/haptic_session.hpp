@@ -63,7 +63,7 @@ class HapticSession {
   bool threaded() const { return threaded_; }
 
   /// haptics.csv: time, period, stylus x y z (scene, m), buttons, commanded and sent force
-  /// (device frame, N), watchdog gain; one row per servo tick.
+  /// (device frame, N), watchdog gain; one row per servo tick (the first kMaxLogSamples).
   void writeCsv(const std::string& path) const;
   /// One line for the run's log: ticks, rate, largest force, clamps, watchdog, dropped samples.
   std::string summary() const;

@@ -48,10 +48,13 @@ struct ServoSettings {
 /// Phantom's scheduler runs at most 1 kHz; a simulated device may go faster).
 inline constexpr double kMinServoRate = 100.0;
 inline constexpr double kMaxServoRate = 10000.0;
+/// The servo log keeps at most 2e6 ticks (33 minutes at 1 kHz; about 270 MB, reserved before the
+/// loop starts so that no tick allocates); later ticks are counted (droppedSamples), not kept.
+inline constexpr std::size_t kMaxLogSamples = 2000000;
 
 class ServoLoop {
  public:
-  /// log_capacity: samples kept for the log (servo ticks of the run; 1e7 at most, 1.2 GB).
+  /// log_capacity: samples kept for the log (the servo ticks of the run), at most kMaxLogSamples.
   ServoLoop(HapticDevice& device, const ServoSettings& settings, std::size_t log_capacity);
   ~ServoLoop();
   ServoLoop(const ServoLoop&) = delete;
