@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 #include <ostream>
+#include <sstream>
 
 #include <Eigen/Geometry>
 
@@ -12,6 +13,7 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/geometry/spline_curve.hpp"
+#include "filum/haptics/haptic_session.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
 #include "filum/run_command.hpp"
 #include "filum/visual/heads_up_display.hpp"
@@ -74,14 +76,26 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
     log << "error: filum view: " << visual::renderingUnavailableMessage() << '\n';
     return kRunIoError;
   }
-  // The scene, with the mouse probe's force on every curve body.
-  auto probe = std::make_shared<haptics::ToolState>();
+  // The scene, with the mouse probe's force on every curve body: the tool of the scene's
+  // "haptics" block (its coupling gains, radius and capture; its device stays idle) or, without
+  // one, a probe whose gains are the explicit step's caps (haptics/tool.hpp).
+  std::shared_ptr<haptics::ToolState> probe;
+  std::unique_ptr<haptics::HapticSession> haptic;
   std::unique_ptr<Scene> scene;
   nlohmann::json document;
+  double capture_factor = 3.0;  // capture distance / probe radius
   try {
     document = readJsonFile(options.scene);
     scene = loadScene(document, options.scene, makeFactory());
-    attachProbe(*scene, probe);
+    haptic = haptics::HapticSession::fromScene(document, options.scene, *scene, 1.0);
+    if (haptic) {
+      probe = haptic->sharedTool();
+      probe->touching = false;  // the mouse decides (left button)
+      capture_factor = haptic->capture() / probe->radius;
+    } else {
+      probe = std::make_shared<haptics::ToolState>();
+      attachProbe(*scene, probe);
+    }
   } catch (const SceneError& e) {
     log << "error: " << e.what() << '\n';
     return kRunSceneError;
@@ -99,7 +113,8 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
       visuals.bounds(lower, upper);
       camera = visual::frameBox(lower, upper);
     }
-    probe->radius = options.probe_radius.value_or(0.02 * (camera.look_at - camera.position).norm());
+    if (!haptic || options.probe_radius)
+      probe->radius = options.probe_radius.value_or(0.02 * (camera.look_at - camera.position).norm());
     visual::ProbeVisual probe_visual(probe);
     std::vector<visual::VisualModel*> models = visuals.models();
     models.push_back(&probe_visual);
@@ -138,7 +153,7 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
           probe_depth = pickDepth(*scene, camera, e.x, e.y);
           probe->position = visual::unproject(camera, e.x, e.y, probe_depth);
           probe->touching = true;
-          if (grab_mode || e.shift) haptics::startGrasp(*probe, *scene, 3.0 * probe->radius);
+          if (grab_mode || e.shift) haptics::startGrasp(*probe, *scene, capture_factor * probe->radius);
         }
         if (e.type == Type::kButtonRelease && e.button == 1) {
           left_down = false;
@@ -187,6 +202,12 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
       std::string hud = visual::headsUpText(scene->state().time, wall_per_ms, scene->energy(scene->state()).total());
       if (paused) hud += " | paused";
       if (grab_mode) hud += " | grab mode";
+      if (haptic) {  // what a device's hand would feel: the tool's reaction
+        std::ostringstream force;
+        force.precision(3);
+        force << " | hand force " << haptic->reaction(*scene).force.norm() << " N";
+        hud += force.str();
+      }
       visual::drawHeadsUp(frame, hud);
       visual::drawFooter(frame, "left: push | shift+left or g: grab | right: orbit | wheel: zoom | space: pause | r | q");
       window.show(frame);

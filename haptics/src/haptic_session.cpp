@@ -137,9 +137,14 @@ void HapticSession::beforeStep(const Scene& scene) {
   was_pressed_ = pressed;
 }
 
-void HapticSession::afterStep(const Scene& scene) {
+ToolReaction HapticSession::reaction(const Scene& scene) const {
   ToolReaction reaction;
   for (const ToolForceField* field : fields_) field->addReaction(scene.state(), reaction);
+  return reaction;
+}
+
+void HapticSession::afterStep(const Scene& scene) {
+  const ToolReaction reaction = this->reaction(scene);
   LocalLinearModel model;
   model.force = reaction.force;
   model.stiffness = reaction.stiffness;

@@ -21,7 +21,9 @@ namespace {
 namespace fs = std::filesystem;
 using visual::WindowEvent;
 
-TEST(ViewCommand, MouseGrabsAndPullsTheThread) {
+/// Shift + left press on the middle of the scene's first thread, a drag of 120 pixels right and
+/// 60 up, then 0.26 s held still: the grabbed point must be at the probe.
+void expectMouseGrabsAndPulls(const std::string& scene_file, const std::string& screenshot) {
   if (!visual::renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)";
   std::string reason;
   const auto display = test::displayOrSkipReason(reason);
@@ -30,13 +32,10 @@ TEST(ViewCommand, MouseGrabsAndPullsTheThread) {
   const fs::path out = fs::path(FILUM_BINARY_DIR) / "test_output" / "view";
   fs::create_directories(out);
   ViewOptions options;
-  // The soft-spring thread, whose middle can follow a probe dragged 3 cm away. (The mouse sets no
-  // stiffness: the tool then takes the explicit step's cap, ω dt = 0.5, haptics/src/tool.cpp —
-  // ~0.03 N/m on the headline suture's 1e-7 kg, too soft to fold that stiff thread.)
-  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/paper_hanging_thread.json";
+  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/" + scene_file;
   options.frames = 24;
   options.fixed_step = 0.02;  // 20 ms of simulation per frame, whatever the machine's speed
-  options.screenshot = (out / "view_last_frame.png").string();
+  options.screenshot = (out / screenshot).string();
   bool grabbed = false, mapped = false;
   double grab_abscissa = 0.0;
   Vec3 target = Vec3::Zero(), reached = Vec3::Zero();
@@ -66,12 +65,26 @@ TEST(ViewCommand, MouseGrabsAndPullsTheThread) {
   };
   std::ostringstream log;
   ASSERT_EQ(viewScene(options, log), kRunOk) << log.str();
-  EXPECT_TRUE(mapped);
-  EXPECT_TRUE(grabbed) << "the Shift + left press on the thread did not grab it";
-  EXPECT_NEAR(grab_abscissa, 0.5, 0.05);
+  EXPECT_TRUE(mapped) << scene_file;
+  EXPECT_TRUE(grabbed) << scene_file << ": the Shift + left press on the thread did not grab it";
+  EXPECT_NEAR(grab_abscissa, 0.5, 0.05) << scene_file;
   // After 0.26 s of holding the probe still, the grabbed point is at the probe (within 2 mm).
-  EXPECT_LT((reached - target).norm(), 2e-3) << "probe " << target.transpose() << ", point " << reached.transpose();
+  EXPECT_LT((reached - target).norm(), 2e-3) << scene_file << ": probe " << target.transpose() << ", point "
+                                              << reached.transpose();
   EXPECT_EQ(visual::readPng(options.screenshot).width, 960);
+}
+
+TEST(ViewCommand, MouseGrabsAndPullsTheThread) {
+  // The soft-spring thread, whose middle can follow a probe dragged 3 cm away. (Without a
+  // "haptics" block the mouse sets no stiffness: the tool takes the explicit step's cap, ω dt =
+  // 0.5, haptics/src/tool.cpp — ~0.03 N/m on the headline suture's 1e-7 kg, too soft for it.)
+  expectMouseGrabsAndPulls("paper_hanging_thread.json", "view_last_frame.png");
+}
+
+TEST(ViewCommand, TheMouseTakesTheHapticToolOfTheScene) {
+  // A real suture (implicit, 1 ms) with a "haptics" block: the mouse drives the block's tool,
+  // with its coupling (900 N/m), stiff enough to carry the 2 GPa thread's middle along.
+  expectMouseGrabsAndPulls("haptic_grasp.json", "view_haptic_last_frame.png");
 }
 
 TEST(ViewCommand, QuitKeyClosesTheWindow) {

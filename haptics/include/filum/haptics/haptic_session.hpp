@@ -68,8 +68,17 @@ class HapticSession {
   /// One line for the run's log: ticks, rate, largest force, clamps, watchdog, dropped samples.
   std::string summary() const;
 
+  /// The tool's reaction on the hand and its Jacobians at the scene's state (what afterStep
+  /// publishes, before the stiffness limit).
+  ToolReaction reaction(const Scene& scene) const;
+
   ServoLoop& servo() { return *servo_; }
   const ToolState& tool() const { return *tool_; }
+  /// The tool, for another driver than the device (the mouse of `filum view`, which then leaves
+  /// the device and its servo loop idle).
+  const std::shared_ptr<ToolState>& sharedTool() { return tool_; }
+  /// How far from the thread a Grasper's jaws catch it (m).
+  double capture() const { return capture_; }
   const CouplingGains& coupling() const { return coupling_; }
 
  private:
