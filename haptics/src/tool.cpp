@@ -111,6 +111,24 @@ void ToolForceField::graspPoint(const SceneState& s, Vec3& P, Vec3& V) const {
   V = rowPoint(grasp_row_, body().block(s.v));
 }
 
+Eigen::Matrix3d ToolForceField::Overlap::jacobian() const {
+  const Eigen::Matrix3d nn = normal * normal.transpose();
+  return stiffness * (-nn + depth() / distance * (Eigen::Matrix3d::Identity() - nn));
+}
+
+template <typename Visit>
+void ToolForceField::forEachOverlap(const SceneState& s, Visit visit) const {
+  const ConstPointsMap q = body().block(s.q);
+  const double k = pushStiffness(), R = tool_->radius + thread_radius_;
+  const Vec3 X = toolPosition(*tool_, s.time);
+  for (const geometry::BasisRow& row : sample_rows_) {
+    const Vec3 d = rowPoint(row, q) - X;
+    const double distance = d.norm();
+    if (distance >= R || distance == 0.0) continue;
+    visit(Overlap{row, distance, R, k, d / distance});
+  }
+}
+
 void ToolForceField::addForce(const SceneState& s, VecX& B) const {
   if (!pushing() && !grasping()) return;
   PointsMap Q = body().block(B);
@@ -121,16 +139,10 @@ void ToolForceField::addForce(const SceneState& s, VecX& B) const {
     for (int j = 0; j < grasp_row_.count; ++j) Q.row(grasp_row_.first + j) += grasp_row_.value[j] * F.transpose();
     return;
   }
-  const ConstPointsMap q = body().block(s.q);
-  const double k = pushStiffness(), R = tool_->radius + thread_radius_;
-  const Vec3 X = toolPosition(*tool_, s.time);
-  for (const geometry::BasisRow& row : sample_rows_) {
-    const Vec3 d = rowPoint(row, q) - X;
-    const double dist = d.norm();
-    if (dist >= R || dist == 0.0) continue;
-    const Vec3 F = k * (R - dist) / dist * d;
-    for (int j = 0; j < row.count; ++j) Q.row(row.first + j) += row.value[j] * F.transpose();
-  }
+  forEachOverlap(s, [&](const Overlap& o) {
+    const Vec3 F = o.force();
+    for (int j = 0; j < o.row.count; ++j) Q.row(o.row.first + j) += o.row.value[j] * F.transpose();
+  });
 }
 
 double ToolForceField::potentialEnergy(const SceneState& s) const {
@@ -140,14 +152,8 @@ double ToolForceField::potentialEnergy(const SceneState& s) const {
     graspPoint(s, P, V);
     return 0.5 * graspStiffness() * (toolPosition(*tool_, s.time) - P).squaredNorm();
   }
-  const ConstPointsMap q = body().block(s.q);
-  const double k = pushStiffness(), R = tool_->radius + thread_radius_;
-  const Vec3 X = toolPosition(*tool_, s.time);
-  double energy = 0.0;
-  for (const geometry::BasisRow& row : sample_rows_) {
-    const double dist = (rowPoint(row, q) - X).norm();
-    if (dist < R) energy += 0.5 * k * (R - dist) * (R - dist);
-  }
+  double energy = 0.0;  // ½ k (R − d)² per sample inside
+  forEachOverlap(s, [&](const Overlap& o) { energy += 0.5 * o.stiffness * o.depth() * o.depth(); });
   return energy;
 }
 
@@ -165,20 +171,12 @@ void ToolForceField::addJacobian(const SceneState& s, double k_factor, double d_
                      (-(k_factor * k + d_factor * c) * row.value[a] * row.value[b]) * Eigen::Matrix3d::Identity());
     return;
   }
-  const ConstPointsMap q = body().block(s.q);
-  const double k = pushStiffness(), R = tool_->radius + thread_radius_;
-  const Vec3 X = toolPosition(*tool_, s.time);
-  for (const geometry::BasisRow& row : sample_rows_) {
-    const Vec3 d = rowPoint(row, q) - X;
-    const double dist = d.norm();
-    if (dist >= R || dist == 0.0) continue;
-    const Vec3 n = d / dist;
-    const Eigen::Matrix3d nn = n * n.transpose();
-    const Eigen::Matrix3d G = k * (-nn + (R - dist) / dist * (Eigen::Matrix3d::Identity() - nn));
-    for (int a = 0; a < row.count; ++a)
-      for (int b = 0; b < row.count; ++b)
-        out.addBlock(offset + row.first + a, offset + row.first + b, (k_factor * row.value[a] * row.value[b]) * G);
-  }
+  forEachOverlap(s, [&](const Overlap& o) {
+    const Eigen::Matrix3d G = o.jacobian();
+    for (int a = 0; a < o.row.count; ++a)
+      for (int b = 0; b < o.row.count; ++b)
+        out.addBlock(offset + o.row.first + a, offset + o.row.first + b, (k_factor * o.row.value[a] * o.row.value[b]) * G);
+  });
 }
 
 void ToolForceField::addReaction(const SceneState& s, ToolReaction& out) const {
@@ -194,18 +192,10 @@ void ToolForceField::addReaction(const SceneState& s, ToolReaction& out) const {
   }
   if (!pushing()) return;
   // F_tool = −Σ F_k, and ∂F_k/∂X = −∂F_k/∂x_k = −G_k: ∂F_tool/∂X = Σ G_k.
-  const ConstPointsMap q = body().block(s.q);
-  const double k = pushStiffness(), R = tool_->radius + thread_radius_;
-  const Vec3 X = toolPosition(*tool_, s.time);
-  for (const geometry::BasisRow& row : sample_rows_) {
-    const Vec3 d = rowPoint(row, q) - X;
-    const double dist = d.norm();
-    if (dist >= R || dist == 0.0) continue;
-    const Vec3 n = d / dist;
-    const Eigen::Matrix3d nn = n * n.transpose();
-    out.force -= k * (R - dist) * n;
-    out.stiffness += k * (-nn + (R - dist) / dist * (Eigen::Matrix3d::Identity() - nn));
-  }
+  forEachOverlap(s, [&](const Overlap& o) {
+    out.force -= o.force();
+    out.stiffness += o.jacobian();
+  });
 }
 
 }  // namespace filum::haptics

@@ -29,12 +29,7 @@ namespace fs = std::filesystem;
 
 const std::string kScene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/haptic_grasp.json";
 
-std::string readAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
+using test::readAll;
 
 TEST(HapticSession, TheJawsHoldTheThreadAndTheTautThreadPullsBack) {
   const nlohmann::json document = readJsonFile(kScene);

@@ -17,12 +17,7 @@ namespace fs = std::filesystem;
 using test::freshDirectory;
 using test::runQuietly;
 
-std::string readAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
+using test::readAll;
 
 TEST(RunCommand, TwoRunsOfTheSameSceneAreBitIdentical) {
   const std::string scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/hanging_thread.json";

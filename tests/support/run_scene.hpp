@@ -2,12 +2,21 @@
 #pragma once
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 
 #include "filum/run_command.hpp"
 
 namespace filum::test {
+
+/// The bytes of a file ("" when it cannot be read).
+inline std::string readAll(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
 
 /// build/test_output/<name>, emptied.
 inline std::filesystem::path freshDirectory(const std::string& name) {

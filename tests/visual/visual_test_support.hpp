@@ -12,22 +12,14 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "filum/constraints/register_components.hpp"
 #include "filum/core/scene_loader.hpp"
-#include "filum/mechanics/register_components.hpp"
 #include "filum/visual/display_server.hpp"
-#include "filum/visual/register_components.hpp"
 #include "filum/visual/triangle_mesh.hpp"
+#include "support/library_components.hpp"
 
 namespace filum::test {
 
-inline Factory visualFactory() {
-  Factory factory;
-  mechanics::register_components(factory);
-  constraints::register_components(factory);
-  visual::register_components(factory);
-  return factory;
-}
+inline Factory visualFactory() { return libraryComponents(); }
 
 /// A scene with one spline through `points` (no gravity unless given), plus `more` components
 /// in the thread's node; "camera" added if not null.

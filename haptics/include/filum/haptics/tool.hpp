@@ -98,6 +98,20 @@ class ToolForceField final : public ForceField {
   double gain(double requested, double cap) const;
   /// P(s*) and Ṗ(s*) at state s, and the row b(s*).
   void graspPoint(const SceneState& s, Vec3& P, Vec3& V) const;
+  /// One sample of the push inside the sphere: its row b(s_k), its distance d to the centre
+  /// (0 < d < R), the unit normal n out of the sphere; k the push stiffness.
+  struct Overlap {
+    const geometry::BasisRow& row;
+    double distance, radius, stiffness;
+    Vec3 normal;
+    double depth() const { return radius - distance; }
+    /// F_k = k (R − d) n and ∂F_k/∂x_k = k [ −n nᵀ + (R − d)/d (I − n nᵀ) ].
+    Vec3 force() const { return stiffness * depth() * normal; }
+    Eigen::Matrix3d jacobian() const;
+  };
+  /// Calls visit(Overlap) for every push sample inside the sphere at state s.
+  template <typename Visit>
+  void forEachOverlap(const SceneState& s, Visit visit) const;
   std::shared_ptr<const ToolState> tool_;
   int samples_;
   double dt_ = 1e-4, thread_radius_ = 0.0, sample_mass_ = 0.0;
