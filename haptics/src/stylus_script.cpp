@@ -40,9 +40,18 @@ Rows readCsv(const std::string& path) {
       if (number == 1) continue;  // a header
       throw SceneError(path + ":" + std::to_string(number), "a row time,x,y,z[,buttons] of numbers", "\"" + line + "\"");
     }
+    // An optional fifth column, the buttons: a whole number, and nothing after it.
+    std::string buttons, rest;
     long b = 0;
-    if (!(fields >> b)) b = 0;
-    std::string rest;
+    if (fields >> buttons) {
+      std::size_t used = 0;
+      try {
+        b = std::stol(buttons, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != buttons.size()) b = -1;
+    }
     if (fields >> rest || b < 0 || b > 0xffff || !std::isfinite(t) || !std::isfinite(x) || !std::isfinite(y) ||
         !std::isfinite(z))
       throw SceneError(path + ":" + std::to_string(number), "finite time,x,y,z and buttons in [0, 65535]",

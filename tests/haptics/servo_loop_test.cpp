@@ -4,8 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <thread>
 
+#include "filum/core/scene_error.hpp"
 #include "filum/haptics/scripted_device.hpp"
 #include "filum/haptics/servo_loop.hpp"
 
@@ -73,6 +76,31 @@ TEST(ServoLoop, TheThreadTicksUntilStoppedAndLeavesZeroForce) {
   EXPECT_EQ(servo.ticks(), ticks);  // stopped for good
   ASSERT_FALSE(servo.log().empty());
   for (std::size_t k = 1; k < servo.log().size(); ++k) EXPECT_GT(servo.log()[k].time, servo.log()[k - 1].time);
+}
+
+}  // namespace
+}  // namespace filum::haptics
+
+namespace filum::haptics {
+namespace {
+
+TEST(StylusScript, ReadsACsvAndRefusesABadRowAtItsLine) {
+  const std::string dir = std::string(FILUM_BINARY_DIR) + "/test_output";
+  std::filesystem::create_directories(dir);
+  const std::string good = dir + "/stylus.csv", bad = dir + "/stylus_bad.csv";
+  std::ofstream(good) << "time,x,y,z,buttons\n0,0,0,0\n0.5,0.01,0,0,1\n1.0,0.02,0,0,0\n";
+  std::ofstream(bad) << "time,x,y,z,buttons\n0,0,0,0,0\n0.5,0.01,0,0,one\n";
+  const nlohmann::json p_good = {{"csv", good}}, p_bad = {{"csv", bad}};
+  const StylusScript script = StylusScript::fromParams(Params(p_good, "scene.json", "/haptics/device"));
+  EXPECT_TRUE(script.position(0.75).isApprox(Vec3(0.015, 0, 0), 1e-12));
+  EXPECT_EQ(script.buttons(0.6), 1u);
+  EXPECT_EQ(script.buttons(1.2), 0u);
+  try {
+    StylusScript::fromParams(Params(p_bad, "scene.json", "/haptics/device"));
+    FAIL() << "a button column 'one' was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find(bad + ":3"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
