@@ -1,5 +1,6 @@
 // libFuzzer target: a scene file through everything `filum check` reads (the JSON with its
-// shape checks, every component, the output block, the camera, the visual models), the path a
+// shape checks, every component, the output block, the camera, the visual models, the haptics
+// block), the path a
 // user's scene takes before a run. Each input is written as scene.json into a scratch folder
 // whose data/ is the reference scenes' data/, so inputs that name the reference meshes and
 // curves (apps/scenes/data) read them as a scene would.
@@ -8,6 +9,7 @@
 // hang (libFuzzer's -timeout) or an allocation beyond -rss_limit_mb is a finding.
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -19,14 +21,28 @@
 
 namespace {
 
+/// The scratch folder of this process (the scene file and a link to the reference data), removed
+/// when the fuzzer exits.
+std::filesystem::path& scratchFolder() {
+  static std::filesystem::path folder;
+  return folder;
+}
+
+void removeScratchFolder() {
+  std::error_code ignored;
+  std::filesystem::remove_all(scratchFolder(), ignored);
+}
+
 std::filesystem::path scratchScene() {
   namespace fs = std::filesystem;
   static const fs::path path = [] {
-    const fs::path folder = fs::temp_directory_path() / ("filum_fuzz_scene_" + std::to_string(::getpid()));
-    fs::create_directories(folder);
+    scratchFolder() = fs::temp_directory_path() / ("filum_fuzz_scene_" + std::to_string(::getpid()));
+    fs::create_directories(scratchFolder());
+    std::atexit(removeScratchFolder);
     std::error_code ignored;
-    fs::create_directory_symlink(fs::path(FILUM_SOURCE_DIR) / "apps" / "scenes" / "data", folder / "data", ignored);
-    return folder / "scene.json";
+    fs::create_directory_symlink(fs::path(FILUM_SOURCE_DIR) / "apps" / "scenes" / "data", scratchFolder() / "data",
+                                 ignored);
+    return scratchFolder() / "scene.json";
   }();
   return path;
 }
