@@ -1,9 +1,8 @@
 // libFuzzer target: a scene file through everything `filum check` reads (the JSON with its
 // shape checks, every component, the output block, the camera, the visual models, the haptics
-// block), the path a
-// user's scene takes before a run. Each input is written as scene.json into a scratch folder
-// whose data/ is the reference scenes' data/, so inputs that name the reference meshes and
-// curves (apps/scenes/data) read them as a scene would.
+// block), the path a user's scene takes before a run. Each input is written as scene.json into a
+// scratch folder whose data/ is the reference scenes' data/, so inputs that name the reference
+// meshes and curves (apps/scenes/data) read them as a scene would.
 //
 // Contract checked: any input ends in "ok" or an error message; a crash, a sanitizer report, a
 // hang (libFuzzer's -timeout) or an allocation beyond -rss_limit_mb is a finding.
