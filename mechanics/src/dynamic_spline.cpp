@@ -176,6 +176,9 @@ std::unique_ptr<geometry::SplineBasis> makeBasis(const Params& p, const std::str
 
 namespace {
 
+// The messages below write the limits out, as people read them.
+static_assert(kMaxCoordinate == 1e6 && kMaxSpeed == 1e6, "the messages say ±1e6 m and ±1e6 m/s: change them too");
+
 void checkCoordinates(const Params& p, const std::string& key, const Vec3& x) {
   if (x.cwiseAbs().maxCoeff() > kMaxCoordinate)
     p.fail(key, "coordinates within ±1e6 m (dynamic_spline.hpp: scenes are in metres; beyond, squared lengths and "
