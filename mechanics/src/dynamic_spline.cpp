@@ -67,11 +67,25 @@ void DynamicSpline::adopt(int degree, std::vector<double> knots, const SparseMat
   noteLayoutChange();
 }
 
+namespace {
+
+/// The limit of control points after `inserted` insertions into `count`: what a message expects
+/// (empty when within it) and what it found.
+struct InsertionLimit {
+  std::string expected, found;
+};
+InsertionLimit insertionLimit(int count, std::size_t inserted) {
+  if (inserted <= static_cast<std::size_t>(kMaxControlPoints - count)) return {};
+  return {"at most " + std::to_string(kMaxControlPoints) + " control points after the insertions (" +
+              kControlPointLimit + ")",
+          std::to_string(count) + " + " + std::to_string(inserted)};
+}
+
+}  // namespace
+
 SparseMatrix DynamicSpline::refine(const std::vector<double>& abscissas) {
-  if (abscissas.size() > static_cast<std::size_t>(kMaxControlPoints - pointCount()))
-    throw SceneError(origin(), "at most " + std::to_string(kMaxControlPoints) + " control points after insertion (" +
-                                   kControlPointLimit + ")",
-                     std::to_string(pointCount()) + " + " + std::to_string(abscissas.size()));
+  if (const InsertionLimit limit = insertionLimit(pointCount(), abscissas.size()); !limit.expected.empty())
+    throw SceneError(origin(), limit.expected, limit.found);
   const geometry::BSplineCurve curve = knotForm();
   // s ∈ [0, 1] maps affinely onto the knot domain [t_d, t_n] (bspline_curve.hpp).
   const double u0 = curve.knots[curve.degree], u1 = curve.knots[pointCount()];
@@ -268,10 +282,8 @@ std::unique_ptr<DynamicSpline> DynamicSpline::fromParams(const Params& p) {
   std::vector<CurveBody::Refinement> refinements = CurveBody::refinementsFromParams(p, "refine");
   std::size_t inserted = 0;
   for (const CurveBody::Refinement& r : refinements) inserted += r.abscissas.size();
-  if (inserted > static_cast<std::size_t>(kMaxControlPoints - spline->pointCount()))
-    p.fail("refine", "at most " + std::to_string(kMaxControlPoints) + " control points after the insertions (" +
-                         kControlPointLimit + ")",
-           std::to_string(spline->pointCount()) + " + " + std::to_string(inserted));
+  if (const InsertionLimit limit = insertionLimit(spline->pointCount(), inserted); !limit.expected.empty())
+    p.fail("refine", limit.expected, limit.found);
   spline->setRefinements(std::move(refinements));
   return spline;
 }
