@@ -18,6 +18,8 @@ packages=(
   libgtest-dev libgmock-dev      # tests
   libbenchmark-dev               # apps/bench
   python3 python3-matplotlib     # pictures of runs (apps/tools/plot_run.py)
+  pybind11-dev python3-dev python3-numpy  # the Python module `filum` (python/): bindings, NumPy arrays
+  python3-pytest                 # its tests (python/tests, ctest label python)
 )
 missing=()
 for p in "${packages[@]}"; do
