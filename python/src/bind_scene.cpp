@@ -8,6 +8,7 @@
 #include "bindings.hpp"
 #include "filum/collision/contact_pipeline.hpp"
 #include "filum/collision/sphere_collision_model.hpp"
+#include "filum/constraints/target_constraint.hpp"
 #include "filum/core/curve_body.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "json_from_python.hpp"
@@ -64,6 +65,27 @@ py::array_t<std::uint8_t> renderFrame(PythonScene& owner) {
       for (int c = 0; c < 3; ++c) out(y, x, c) = bgr[2 - c];
     }
   return rgb;
+}
+
+/// The point constraint named `name` (its "name" in the scene); KeyError listing the named ones.
+constraints::TargetConstraint& targetConstraint(const PythonScene& owner, const std::string& name) {
+  std::string known;
+  for (Constraint* c : owner.scene().constraints()) {
+    auto* t = dynamic_cast<constraints::TargetConstraint*>(c);
+    if (!t) continue;
+    if (c->name() == name) return *t;
+    known += (known.empty() ? "'" : ", '") + c->name() + "'";
+  }
+  throw py::key_error("no point constraint named '" + name + "'; the point constraints are " +
+                      (known.empty() ? "none" : known));
+}
+
+/// Moves the target of constraint `name` from now on: X(t) = position + velocity (t − now).
+void steer(PythonScene& owner, const std::string& name, const Vec3& position, const Vec3& velocity) {
+  if (!position.allFinite() || !velocity.allFinite())
+    throw py::value_error("steer('" + name + "'): expected finite position and velocity");
+  if (!targetConstraint(owner, name).target().steer(position, velocity, owner.scene().state().time))
+    throw py::value_error("steer('" + name + "'): its target is a point of another body, it moves with that body");
 }
 
 py::dict timing(const PythonScene& owner) {
@@ -130,6 +152,16 @@ void bindScene(py::module_& m) {
             return out;
           },
           "kinetic and potential (gravity + elastic) energy (J)")
+      .def("steer", &steer, py::arg("constraint"), py::arg("position"), py::arg("velocity") = Vec3(Vec3::Zero()),
+           "moves the target of a point constraint (a grip, a needle hole: its \"name\") between steps:\n"
+           "from now on X(t) = position + velocity (t - now), m and m/s, until steered again. The\n"
+           "constraint pulls its point there (Baumgarte stabilization); not part of state()")
+      .def(
+          "target",
+          [](const PythonScene& s, const std::string& name) {
+            return Vec3(targetConstraint(s, name).target().position(s.scene().state()));
+          },
+          py::arg("constraint"), "where the point constraint holds its point now (m)")
       .def("contacts", [](const PythonScene& s) { return contacts(s); },
            "contacts of the last step as arrays (copies): body, abscissa, point (k×3, m), force on the\n"
            "body (k×3, N), obstacle (−1: between threads), other_body (−1: obstacle)")
