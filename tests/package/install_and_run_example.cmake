@@ -3,7 +3,8 @@
 # into the tree), builds it and runs it (its exit status checks the physics); then asks the package
 # for a component the build lacks and checks that find_package fails naming it.
 #   cmake -DBUILD_DIR=<filum build> -DSOURCE_DIR=<filum source> -DWORK_DIR=<scratch>
-#         [-DMISSING_COMPONENT=<component built out>] -P install_and_run_example.cmake
+#         [-DBUILT_COMPONENT=<component built>] [-DMISSING_COMPONENT=<component built out>]
+#         -P install_and_run_example.cmake
 foreach(variable BUILD_DIR SOURCE_DIR WORK_DIR)
   if(NOT ${variable})
     message(FATAL_ERROR "install_and_run_example.cmake: -D${variable}=... is required")
@@ -34,6 +35,12 @@ message(STATUS "${last_output}")
 # The installed tool runs a scene.
 run("installed filum check" ${prefix}/bin/filum check ${SOURCE_DIR}/apps/scenes/hanging_thread.json)
 
+# A component this build has is found.
+if(BUILT_COMPONENT)
+  run("find_package(filum COMPONENTS ${BUILT_COMPONENT})" ${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/package/missing_component
+      -B ${WORK_DIR}/built -DCMAKE_PREFIX_PATH=${prefix} -DFILUM_COMPONENT=${BUILT_COMPONENT})
+endif()
+
 # A component this build lacks: find_package must fail, naming it and the option that brings it.
 if(MISSING_COMPONENT)
   execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/package/missing_component -B ${WORK_DIR}/missing
@@ -43,7 +50,7 @@ if(MISSING_COMPONENT)
     message(FATAL_ERROR "find_package(filum COMPONENTS ${MISSING_COMPONENT}) succeeded on a build without it")
   endif()
   string(REGEX REPLACE "[ \t\r\n]+" " " err "${err}")  # CMake wraps the message
-  if(NOT err MATCHES "built without the component ${MISSING_COMPONENT}")
+  if(NOT err MATCHES "built without the component ${MISSING_COMPONENT} .*-DFILUM_WITH_[A-Z]+=ON")
     message(FATAL_ERROR "find_package(filum COMPONENTS ${MISSING_COMPONENT}) failed without saying why:\n${err}")
   endif()
   message(STATUS "find_package(filum COMPONENTS ${MISSING_COMPONENT}) refused: ok")
