@@ -26,9 +26,26 @@ endforeach()
 
 # The libraries are static: their private dependencies become link dependencies of the user's
 # program. Those given as absolute files (CHOLMOD, OpenCV's modules found one by one, GMP and
-# MPFR of CGAL) are exported as they are; imported targets must be found again by the config:
-# X11::X11 (visual, with OpenCV) and OpenCV's own targets when OpenCVConfig.cmake was used.
-set(FILUM_CONFIG_NEEDS_X11 ${FILUM_WITH_OPENCV})
+# MPFR of CGAL) are exported as they are; imported targets must be found again by the config.
+# Every <Package>::<name> target an exported library links (publicly or privately) names the
+# package to find: X11 today (visual, with OpenCV), Threads or a device SDK's package for a new
+# library, with no line to add here. Eigen3 and nlohmann_json are found with their versions by
+# the config itself; OpenCV's own targets (opencv_core, ...) when OpenCVConfig.cmake was used.
+set(FILUM_CONFIG_DEPENDENCIES "")
+get_property(filum_exported_targets GLOBAL PROPERTY FILUM_EXPORTED_TARGETS)
+foreach(target ${filum_exported_targets})
+  get_target_property(links ${target} LINK_LIBRARIES)
+  get_target_property(interface_links ${target} INTERFACE_LINK_LIBRARIES)
+  foreach(link IN LISTS links interface_links)
+    if(link MATCHES "^([A-Za-z0-9_]+)::")
+      set(package ${CMAKE_MATCH_1})
+      if(NOT package MATCHES "^(filum|Eigen3|nlohmann_json)$")
+        list(APPEND FILUM_CONFIG_DEPENDENCIES ${package})
+      endif()
+    endif()
+  endforeach()
+endforeach()
+list(REMOVE_DUPLICATES FILUM_CONFIG_DEPENDENCIES)
 get_property(FILUM_CONFIG_OPENCV_PACKAGE GLOBAL PROPERTY FILUM_OPENCV_PACKAGE_MODULES)
 
 install(EXPORT filumTargets NAMESPACE filum:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/filum)

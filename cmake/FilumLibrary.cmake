@@ -21,6 +21,7 @@ endfunction()
 # filumTargets, under the name filum::<export-name> for users of the installed package.
 function(filum_install_library target export_name)
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${export_name})
+  set_property(GLOBAL APPEND PROPERTY FILUM_EXPORTED_TARGETS ${target})
   install(TARGETS ${target} EXPORT filumTargets
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
