@@ -152,7 +152,13 @@ void bindScene(py::module_& m) {
             return out;
           },
           "kinetic and potential (gravity + elastic) energy (J)")
-      .def("steer", &steer, py::arg("constraint"), py::arg("position"), py::arg("velocity") = Vec3(Vec3::Zero()),
+      // velocity: None for at rest (an Eigen default would import numpy when the module loads).
+      .def(
+          "steer",
+          [](PythonScene& s, const std::string& name, const Vec3& position, std::optional<Vec3> velocity) {
+            steer(s, name, position, velocity.value_or(Vec3::Zero()));
+          },
+          py::arg("constraint"), py::arg("position"), py::arg("velocity") = py::none(),
            "moves the target of a point constraint (a grip, a needle hole: its \"name\") between steps:\n"
            "from now on X(t) = position + velocity (t - now), m and m/s, until steered again. The\n"
            "constraint pulls its point there (Baumgarte stabilization); not part of state()")
