@@ -88,6 +88,30 @@ void steer(PythonScene& owner, const std::string& name, const Vec3& position, co
     throw py::value_error("steer('" + name + "'): its target is a point of another body, it moves with that body");
 }
 
+/// Warns (RuntimeWarning) when the steps it watched changed the scene's point layout (a scheduled
+/// refinement): NumPy views of positions and velocities taken before point at freed memory.
+/// Declared before the GIL is released, so that it warns with the GIL held again.
+class LayoutWatch {
+ public:
+  explicit LayoutWatch(const PythonScene& owner) : owner_(owner), revision_(owner.scene().layoutRevision()) {}
+  ~LayoutWatch() {
+    if (owner_.scene().layoutRevision() == revision_) return;
+    // A warning turned into an error by the warnings filter cannot propagate from a destructor:
+    // it is printed as unraisable instead.
+    if (PyErr_WarnEx(PyExc_RuntimeWarning,
+                     "the scene's point layout changed during these steps (a scheduled refinement): views of "
+                     "positions and velocities taken before are stale, take them again",
+                     1) != 0)
+      PyErr_WriteUnraisable(nullptr);
+  }
+  LayoutWatch(const LayoutWatch&) = delete;
+  LayoutWatch& operator=(const LayoutWatch&) = delete;
+
+ private:
+  const PythonScene& owner_;
+  long revision_;
+};
+
 py::dict timing(const PythonScene& owner) {
   const StepTiming& t = owner.timing();
   const double simulated = t.steps * owner.scene().settings().dt;
@@ -121,11 +145,19 @@ void bindScene(py::module_& m) {
       .def_property_readonly("step_count", [](const PythonScene& s) { return s.scene().stepCount(); })
       .def_property_readonly("layout_revision", [](const PythonScene& s) { return s.scene().layoutRevision(); },
                              "counts changes of the point layout (refinements): views taken before are stale")
-      .def("step", &PythonScene::step, py::call_guard<py::gil_scoped_release>(), "one time step of dt")
+      .def(
+          "step",
+          [](PythonScene& s) {
+            const LayoutWatch watch(s);
+            py::gil_scoped_release release;
+            s.step();
+          },
+          "one time step of dt")
       .def(
           "run",
           [](PythonScene& s, std::optional<double> duration) {
             const double d = duration.value_or(s.scene().settings().duration);
+            const LayoutWatch watch(s);
             py::gil_scoped_release release;
             return s.run(d);
           },

@@ -58,3 +58,20 @@ def test_writes_of_the_wrong_shape_name_the_body():
         scene.body("rope")
     with pytest.raises(ValueError, match=r"abscissa 1 is 1.5"):
         body.sample([0.5, 1.5])
+
+
+def test_a_scheduled_refinement_warns_that_views_are_stale():
+    document = free_thread()
+    document["nodes"][0]["components"][0]["refine"] = [{"time": 0.001, "abscissas": [0.5]}]
+    scene = filum.load_dict(document)
+    body = scene.body("thread")
+    assert body.positions.shape == (10, 3)
+    with pytest.warns(RuntimeWarning, match="layout changed"):
+        scene.run(0.002)
+    assert scene.layout_revision == 1
+    assert body.positions.shape == (11, 3)       # taken again: the new layout, one point more
+    # Steps that keep the layout say nothing.
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        scene.run(0.001)
