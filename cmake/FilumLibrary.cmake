@@ -1,12 +1,31 @@
 # filum_add_library(<folder-lib-name> <alias> DEPS <targets...>)
 # Headers live in <folder>/include/filum/<alias>/, sources in <folder>/src/.
+# Every library made here is installed and exported as filum::<name> (cmake/FilumInstall.cmake):
+# a new library needs no line of its own in the install rules.
+include(GNUInstallDirs)
+
 function(filum_add_library name)
   cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp)
   add_library(filum_${name} ${sources})
   add_library(filum::${name} ALIAS filum_${name})
-  target_include_directories(filum_${name} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  # The tree's include folder while building, the prefix's once installed.
+  target_include_directories(filum_${name} PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+                                                  $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_link_libraries(filum_${name} PUBLIC ${ARG_DEPS})
+  filum_install_library(filum_${name} ${name})
+  install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endfunction()
+
+# filum_install_library(<target> <export-name>) — installs a library into the export set
+# filumTargets, under the name filum::<export-name> for users of the installed package.
+function(filum_install_library target export_name)
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${export_name})
+  set_property(GLOBAL APPEND PROPERTY FILUM_EXPORTED_TARGETS ${target})
+  install(TARGETS ${target} EXPORT filumTargets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endfunction()
 
 # filum_add_module_tests(<module> LIBS ...) — every tests/<module>/*.cpp into one GoogleTest

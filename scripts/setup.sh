@@ -18,6 +18,9 @@ packages=(
   libgtest-dev libgmock-dev      # tests
   libbenchmark-dev               # apps/bench
   python3 python3-matplotlib     # pictures of runs (apps/tools/plot_run.py)
+  pybind11-dev python3-dev python3-numpy  # the Python module `filum` (python/): bindings, NumPy arrays
+  python3-pytest                 # its tests (python/tests, ctest label python)
+  python3-dask python3-distributed  # parameter sweeps on a LocalCluster or a cluster (python/filum_sweeps)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -7,7 +7,13 @@
 // Implicit schemes twice: "ImplicitEuler" / "ImplicitMidpoint" are the linearized default with its
 // error estimate, ".../newton" the same schemes solved by Newton (issue 12).
 //
-//   build-mech/apps/bench/accuracy_pareto [--quick] [--out DIR] [--no-plot] [--problem NAME]
+//   build/apps/bench/accuracy_pareto [--quick] [--out DIR] [--no-plot] [--problem NAME]
+//
+// One configuration at a time, for sweeps that spread the runs over processes or machines
+// (python/filum_sweeps, issue 16): --list prints the configurations (index, problem, integrator,
+// dt, n) in the order of the serial run; --configuration K runs configuration K alone and prints
+// its result row (full precision); --rows FILE takes such rows instead of running, and writes the
+// same CSV, report and plot as a serial run.
 //
 // Errors (see each problem's header): catenary — max distance to the catenary after 1 s of
 // damped settling (m; includes what has not settled yet); taut string — max |y − y_exact| over
@@ -28,6 +34,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -69,24 +76,103 @@ nlohmann::json integratorFor(const std::string& label) {
   return {{"type", label.substr(0, slash)}, {"solve", label.substr(slash + 1)}};
 }
 
+/// One run of the study: a problem, an integrator, a number of control points and a step.
+struct Configuration {
+  const ReferenceProblem* problem;
+  const Grid* grid;
+  std::string integrator;
+  int n;
+  double dt;
+};
+
+/// Every configuration, in the order of the serial run: problem, integrator, n, dt.
+std::vector<Configuration> listConfigurations(
+    const std::vector<std::pair<std::unique_ptr<ReferenceProblem>, Grid>>& problems,
+    const std::vector<std::string>& integrators, const std::string& only) {
+  std::vector<Configuration> out;
+  for (const auto& [problem, grid] : problems) {
+    if (!only.empty() && problem->name() != only) continue;
+    for (const std::string& type : integrators)
+      for (int n : grid.control_points) {
+        if (!isImplicit(type) && n > grid.explicit_max_points) continue;
+        for (double dt : isImplicit(type) ? grid.implicit_dt : grid.explicit_dt)
+          out.push_back({problem.get(), &grid, type, n, dt});
+      }
+  }
+  return out;
+}
+
+RunResult runConfiguration(const Configuration& c, bool quick) {
+  RunSettings settings;
+  settings.integrator = integratorFor(c.integrator);
+  settings.dt = c.dt;
+  settings.control_points = c.n;
+  settings.wall_budget = quick ? 0.0 : kWallBudget;
+  return filum::validation::runProblem(*c.problem, settings);
+}
+
+/// "K,stable,error,wall_seconds,simulated,steps,over_budget" at full precision (%.17g: read back
+/// bit for bit, so the front of gathered rows is the serial run's).
+void printResultRow(std::FILE* out, std::size_t index, const RunResult& r) {
+  std::fprintf(out, "%zu,%d,%.17g,%.17g,%.17g,%ld,%d\n", index, r.stable ? 1 : 0, r.error, r.wall_seconds, r.simulated,
+               r.steps, r.over_budget ? 1 : 0);
+}
+
+/// Reads printResultRow lines (any order) into results[K]; a missing or malformed row is an error
+/// naming the file and line.
+bool readResultRows(const std::string& path, std::vector<std::optional<RunResult>>& results) {
+  std::ifstream in(path);
+  if (!in) {
+    std::cerr << path << ": cannot read the result rows\n";
+    return false;
+  }
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.empty()) continue;
+    std::size_t index;
+    int stable, over_budget;
+    RunResult r;
+    char tail;
+    if (std::sscanf(line.c_str(), "%zu,%d,%lf,%lf,%lf,%ld,%d%c", &index, &stable, &r.error, &r.wall_seconds,
+                    &r.simulated, &r.steps, &over_budget, &tail) != 7 ||
+        index >= results.size()) {
+      std::cerr << path << ":" << number << ": expected a row 'K,stable,error,wall_s,simulated_s,steps,over_budget' with K < "
+                << results.size() << ", found '" << line << "'\n";
+      return false;
+    }
+    r.stable = stable != 0;
+    r.over_budget = over_budget != 0;
+    results[index] = r;
+  }
+  for (std::size_t k = 0; k < results.size(); ++k)
+    if (!results[k]) {
+      std::cerr << path << ": no row for configuration " << k << " (accuracy_pareto --list)\n";
+      return false;
+    }
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool quick = false, plot = true;
-  std::string out = ".", only;
+  bool quick = false, plot = true, list = false;
+  std::string out = ".", only, rows_file;
+  long configuration = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--quick") quick = true;
     else if (a == "--no-plot") plot = false;
     else if (a == "--out" && i + 1 < argc) out = argv[++i];
     else if (a == "--problem" && i + 1 < argc) only = argv[++i];
+    else if (a == "--list") list = true;
+    else if (a == "--configuration" && i + 1 < argc) configuration = std::strtol(argv[++i], nullptr, 10);
+    else if (a == "--rows" && i + 1 < argc) rows_file = argv[++i];
     else {
-      std::cerr << "usage: accuracy_pareto [--quick] [--out DIR] [--no-plot] [--problem catenary|taut_string|cantilever]\n";
+      std::cerr << "usage: accuracy_pareto [--quick] [--out DIR] [--no-plot] [--problem catenary|taut_string|cantilever]\n"
+                   "                       [--list | --configuration K | --rows FILE]\n";
       return 2;
     }
   }
-  std::filesystem::create_directories(out);
-
   filum::validation::Catenary::Options catenary_options;
   catenary_options.duration = 1.0;
   std::vector<std::pair<std::unique_ptr<ReferenceProblem>, Grid>> problems;
@@ -105,28 +191,46 @@ int main(int argc, char** argv) {
                                                 "ImplicitEuler",        "ImplicitMidpoint", "ImplicitEuler/newton",
                                                 "ImplicitMidpoint/newton"};
 
+  const std::vector<Configuration> configurations = listConfigurations(problems, integrators, only);
+
+  // One configuration at a time (sweeps): the list, or one run's result row.
+  if (list) {
+    for (std::size_t k = 0; k < configurations.size(); ++k) {
+      const Configuration& c = configurations[k];
+      std::printf("%zu,%s,%s,%.17g,%d\n", k, c.problem->name().c_str(), c.integrator.c_str(), c.dt, c.n);
+    }
+    return 0;
+  }
+  if (configuration >= 0) {
+    if (configuration >= static_cast<long>(configurations.size())) {
+      std::cerr << "--configuration " << configuration << ": expected an index below " << configurations.size()
+                << " (accuracy_pareto --list)\n";
+      return 2;
+    }
+    printResultRow(stdout, configuration, runConfiguration(configurations[configuration], quick));
+    return 0;
+  }
+  // Every result: gathered by a sweep (--rows), or run here one after the other.
+  std::vector<std::optional<RunResult>> results(configurations.size());
+  if (!rows_file.empty() && !readResultRows(rows_file, results)) return 1;
+  std::filesystem::create_directories(out);
+
+  std::size_t next = 0;  // configurations are grouped by problem, in the order of `problems`
   for (auto& [problem, grid] : problems) {
     if (!only.empty() && problem->name() != only) continue;
     std::printf("== %s: %s, %.4g s simulated per run\n", problem->name().c_str(), problem->errorMeaning().c_str(),
                 problem->duration());
     std::vector<Row> rows;
-    for (const std::string& type : integrators)
-      for (int n : grid.control_points) {
-        if (!isImplicit(type) && n > grid.explicit_max_points) continue;
-        for (double dt : isImplicit(type) ? grid.implicit_dt : grid.explicit_dt) {
-          RunSettings settings;
-          settings.integrator = integratorFor(type);
-          settings.dt = dt;
-          settings.control_points = n;
-          settings.wall_budget = quick ? 0.0 : kWallBudget;
-          Row row{type, dt, n, filum::validation::runProblem(*problem, settings)};
-          std::printf("  %-23s n = %2d dt = %.2e: %s error %.3e, %.3e s wall per simulated s\n", type.c_str(), n, dt,
-                      row.result.over_budget ? "TOO SLOW" : row.result.stable ? "        " : "UNSTABLE",
-                      row.result.error, row.result.wallPerSimulatedSecond());
-          std::fflush(stdout);
-          rows.push_back(std::move(row));
-        }
-      }
+    for (; next < configurations.size() && configurations[next].problem == problem.get(); ++next) {
+      const Configuration& c = configurations[next];
+      if (!results[next]) results[next] = runConfiguration(c, quick);
+      Row row{c.integrator, c.dt, c.n, *results[next]};
+      std::printf("  %-23s n = %2d dt = %.2e: %s error %.3e, %.3e s wall per simulated s\n", c.integrator.c_str(), c.n,
+                  c.dt, row.result.over_budget ? "TOO SLOW" : row.result.stable ? "        " : "UNSTABLE",
+                  row.result.error, row.result.wallPerSimulatedSecond());
+      std::fflush(stdout);
+      rows.push_back(std::move(row));
+    }
 
     // Pareto front: in order of cost, a run is on the front when it is more accurate than every
     // cheaper run — by more than kTie relative: runs that reach the same static solution (the

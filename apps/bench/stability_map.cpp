@@ -7,60 +7,151 @@
 // Writes stability_map.csv (integrator, E, ω_max, largest stable dt, ω_max·dt, capped) and, with
 // apps/tools/plot_stability.py and Debian's python3-matplotlib, stability_map.png.
 //
-//   build-mech/apps/bench/stability_map [--quick] [--out DIR] [--no-plot]
+//   build/apps/bench/stability_map [--quick] [--out DIR] [--no-plot]
 //
 // --quick: three moduli, 500-step runs, 8 bisections (a few seconds; the test suite's short form
 // is tests/mechanics/stability_map_test.cpp).
+//
+// One configuration (a modulus and an integrator) at a time, for sweeps that spread the runs over
+// processes or machines (python/filum_sweeps, issue 16): --list prints the configurations (index,
+// integrator, E) in the order of the CSV; --configuration K runs configuration K alone and prints
+// its result row (K, ω_max, largest stable dt at full precision); --rows FILE takes such rows
+// instead of running and writes the same CSV and plot as a serial run.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "validation/stability.hpp"
 
+namespace {
+
+constexpr double kDtMin = 1e-9, kDtMax = 1e-1;  // s, the bisection's bracket
+
+struct Configuration {
+  std::string integrator;
+  double youngs_modulus;  // E (Pa)
+};
+
+struct Result {
+  double omega = 0.0;  // ω_max (rad/s)
+  double dt = 0.0;     // largest stable step (s)
+};
+
+/// Moduli outer, integrators inner: the order of the CSV.
+std::vector<Configuration> listConfigurations(bool quick) {
+  const std::vector<double> moduli = quick ? std::vector<double>{1e6, 1e8, 2e9}
+                                           : std::vector<double>{1e5, 1e6, 1e7, 1e8, 1e9, 2e9, 1e10};
+  const std::vector<std::string> integrators = {"ExplicitEuler", "SymplecticEuler", "RungeKutta4", "ImplicitEuler",
+                                                "ImplicitMidpoint"};
+  std::vector<Configuration> out;
+  for (double E : moduli)
+    for (const std::string& type : integrators) out.push_back({type, E});
+  return out;
+}
+
+Result runConfiguration(const Configuration& c, bool quick) {
+  filum::validation::StabilityProblem problem;
+  problem.steps = quick ? 500 : 2000;
+  problem.youngs_modulus = c.youngs_modulus;
+  const int bisections = quick ? 8 : 14;
+  Result r;
+  r.omega = filum::validation::stiffestFrequency(problem);
+  r.dt = filum::validation::largestStableStep({{"type", c.integrator}}, problem, kDtMin, kDtMax, bisections);
+  return r;
+}
+
+/// Reads "K,omega,dt" rows (any order; %.17g reads back bit for bit) into results[K]; a missing or
+/// malformed row is an error naming the file and line.
+bool readResultRows(const std::string& path, std::vector<std::optional<Result>>& results) {
+  std::ifstream in(path);
+  if (!in) {
+    std::cerr << path << ": cannot read the result rows\n";
+    return false;
+  }
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.empty()) continue;
+    std::size_t index;
+    Result r;
+    char tail;
+    if (std::sscanf(line.c_str(), "%zu,%lf,%lf%c", &index, &r.omega, &r.dt, &tail) != 3 || index >= results.size()) {
+      std::cerr << path << ":" << number << ": expected a row 'K,omega_max,largest_stable_dt' with K < " << results.size()
+                << ", found '" << line << "'\n";
+      return false;
+    }
+    results[index] = r;
+  }
+  for (std::size_t k = 0; k < results.size(); ++k)
+    if (!results[k]) {
+      std::cerr << path << ": no row for configuration " << k << " (stability_map --list)\n";
+      return false;
+    }
+  return true;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  bool quick = false, plot = true;
-  std::string out = ".";
+  bool quick = false, plot = true, list = false;
+  std::string out = ".", rows_file;
+  long configuration = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--quick") quick = true;
     else if (a == "--no-plot") plot = false;
     else if (a == "--out" && i + 1 < argc) out = argv[++i];
+    else if (a == "--list") list = true;
+    else if (a == "--configuration" && i + 1 < argc) configuration = std::strtol(argv[++i], nullptr, 10);
+    else if (a == "--rows" && i + 1 < argc) rows_file = argv[++i];
     else {
-      std::cerr << "usage: stability_map [--quick] [--out DIR] [--no-plot]\n";
+      std::cerr << "usage: stability_map [--quick] [--out DIR] [--no-plot] [--list | --configuration K | --rows FILE]\n";
       return 2;
     }
   }
-  std::filesystem::create_directories(out);
-  const std::vector<double> moduli = quick ? std::vector<double>{1e6, 1e8, 2e9}
-                                           : std::vector<double>{1e5, 1e6, 1e7, 1e8, 1e9, 2e9, 1e10};
-  const std::vector<std::string> integrators = {"ExplicitEuler", "SymplecticEuler", "RungeKutta4", "ImplicitEuler",
-                                                "ImplicitMidpoint"};
-  const double dt_min = 1e-9, dt_max = 1e-1;
-  filum::validation::StabilityProblem problem;
-  problem.steps = quick ? 500 : 2000;
-  const int bisections = quick ? 8 : 14;
+  const std::vector<Configuration> configurations = listConfigurations(quick);
 
+  // One configuration at a time (sweeps): the list, or one run's result row.
+  if (list) {
+    for (std::size_t k = 0; k < configurations.size(); ++k)
+      std::printf("%zu,%s,%.17g\n", k, configurations[k].integrator.c_str(), configurations[k].youngs_modulus);
+    return 0;
+  }
+  if (configuration >= 0) {
+    if (configuration >= static_cast<long>(configurations.size())) {
+      std::cerr << "--configuration " << configuration << ": expected an index below " << configurations.size()
+                << " (stability_map --list)\n";
+      return 2;
+    }
+    const Result r = runConfiguration(configurations[configuration], quick);
+    std::printf("%ld,%.17g,%.17g\n", configuration, r.omega, r.dt);
+    return 0;
+  }
+  // Every result: gathered by a sweep (--rows), or run here one after the other.
+  std::vector<std::optional<Result>> results(configurations.size());
+  if (!rows_file.empty() && !readResultRows(rows_file, results)) return 1;
+
+  std::filesystem::create_directories(out);
   const std::string csv_path = out + "/stability_map.csv";
   std::ofstream csv(csv_path);
   csv << "integrator,youngs_modulus,omega_max,largest_stable_dt,omega_dt,capped\n";
   std::printf("%-17s %10s %12s %16s %10s\n", "integrator", "E (Pa)", "omega_max", "largest dt (s)", "omega*dt");
   const auto start = std::chrono::steady_clock::now();
-  for (double E : moduli) {
-    problem.youngs_modulus = E;
-    const double omega = filum::validation::stiffestFrequency(problem);
-    for (const std::string& type : integrators) {
-      const double dt = filum::validation::largestStableStep({{"type", type}}, problem, dt_min, dt_max, bisections);
-      const bool capped = dt >= dt_max;
-      std::printf("%-17s %10.1e %12.4e %16.4e %10.3f%s\n", type.c_str(), E, omega, dt, omega * dt,
-                  capped ? "  (stable at the largest step tried)" : "");
-      csv << type << ',' << E << ',' << omega << ',' << dt << ',' << omega * dt << ',' << (capped ? 1 : 0) << '\n';
-      std::fflush(stdout);
-    }
+  for (std::size_t k = 0; k < configurations.size(); ++k) {
+    const Configuration& c = configurations[k];
+    if (!results[k]) results[k] = runConfiguration(c, quick);
+    const double omega = results[k]->omega, dt = results[k]->dt;
+    const bool capped = dt >= kDtMax;
+    std::printf("%-17s %10.1e %12.4e %16.4e %10.3f%s\n", c.integrator.c_str(), c.youngs_modulus, omega, dt, omega * dt,
+                capped ? "  (stable at the largest step tried)" : "");
+    csv << c.integrator << ',' << c.youngs_modulus << ',' << omega << ',' << dt << ',' << omega * dt << ','
+        << (capped ? 1 : 0) << '\n';
+    std::fflush(stdout);
   }
   csv.close();
   std::printf("wrote %s (%.1f s)\n", csv_path.c_str(),

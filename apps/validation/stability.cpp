@@ -26,6 +26,9 @@ std::unique_ptr<Scene> stabilityScene(const nlohmann::json& integrator, const St
   components.push_back({{"type", "FixedPointConstraint"}, {"abscissa", 0.0}});
   const nlohmann::json document = {{"name", "stability"},
                                    {"dt", dt},
+                                   // The trial's own length: the default 1 s is 1e9 steps at the
+                                   // bracket's dt = 1e-9 s, beyond the loader's kMaxSteps.
+                                   {"duration", problem.steps * dt},
                                    {"gravity", {0.0, 0.0, -9.81}},
                                    {"integrator", integrator},
                                    {"nodes", nlohmann::json::array({{{"name", "thread"}, {"components", components}}})}};

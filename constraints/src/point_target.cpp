@@ -51,10 +51,22 @@ void PointTarget::init(const Scene& scene, const Component& owner, const Vec3& s
   body_->basis().evaluate(abscissa_, row_);
 }
 
+bool PointTarget::steer(const Vec3& position, const Vec3& velocity, double t0) {
+  if (kind_ == Kind::kAttached) return false;
+  kind_ = Kind::kSteered;
+  position_ = position;
+  velocity_ = velocity;
+  steered_at_ = t0;
+  path_ = geometry::ScriptedPath();
+  return true;
+}
+
 Vec3 PointTarget::position(const SceneState& s) const {
   switch (kind_) {
     case Kind::kScripted:
       return path_.position(s.time);
+    case Kind::kSteered:
+      return position_ + velocity_ * (s.time - steered_at_);
     case Kind::kAttached:
       return geometry::curvePoint(row_, body_->block(s.q));
     default:
@@ -68,6 +80,8 @@ Vec3 PointTarget::velocity(const SceneState& s) const {
       return path_.velocity(s.time);
     case Kind::kAttached:
       return geometry::curvePoint(row_, body_->block(s.v));
+    case Kind::kSteered:
+      return velocity_;
     default:
       return Vec3::Zero();
   }
@@ -84,6 +98,7 @@ Vec3 PointTarget::attachedAcceleration(const VecX& a) const {
 
 Vec3 PointTarget::positionAt(double t) const {
   if (kind_ == Kind::kAttached) throw std::logic_error("PointTarget::positionAt: an attached target needs a state");
+  if (kind_ == Kind::kSteered) return position_ + velocity_ * (t - steered_at_);
   return kind_ == Kind::kScripted ? path_.position(t) : position_;
 }
 

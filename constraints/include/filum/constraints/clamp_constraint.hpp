@@ -18,13 +18,14 @@
 
 #include "filum/constraints/baumgarte.hpp"
 #include "filum/constraints/point_target.hpp"
+#include "filum/constraints/target_constraint.hpp"
 #include "filum/core/constraint.hpp"
 #include "filum/core/params.hpp"
 #include "filum/geometry/spline_basis.hpp"
 
 namespace filum::constraints {
 
-class ClampConstraint final : public Constraint {
+class ClampConstraint final : public Constraint, public TargetConstraint {
  public:
   /// direction: non-zero (normalized), nullopt: the initial tangent P'(s).
   ClampConstraint(double abscissa, PointTarget target, std::optional<Vec3> direction,
@@ -42,7 +43,8 @@ class ClampConstraint final : public Constraint {
 
   double abscissa() const { return abscissa_; }
   const Vec3& direction() const { return direction_; }
-  const PointTarget& target() const { return target_; }
+  const PointTarget& target() const override { return target_; }
+  PointTarget& target() override { return target_; }
 
  private:
   void init(const Scene& scene) override;

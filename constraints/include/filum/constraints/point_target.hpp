@@ -3,6 +3,8 @@
 //   scripted   X(t) = path(t)         "path": [{"time": t, "position": [x, y, z]}, ...]
 //   attached   X(t) = P2(s2, t) = Σ_k b_k(s2) q2_k, a point of another spline (or of the same
 //              spline at another abscissa)  "target": {"object": "node/path", "abscissa": s2}.
+//   steered    X(t) = x + u (t − t0), set between steps by an application (steer(): a tool moved
+//              by a script or a device, Python's Scene.steer), not by the scene file.
 // Fixed and scripted targets are known functions of time whose acceleration Ẍ(t) goes into the
 // right-hand side of the rows (0 for fixed targets and linear paths, scripted_path.hpp). An
 // attached target moves with its body: its acceleration is an unknown of the same multiplier
@@ -29,7 +31,7 @@ namespace filum::constraints {
 
 class PointTarget {
  public:
-  enum class Kind { kStart, kFixed, kScripted, kAttached };
+  enum class Kind { kStart, kFixed, kScripted, kAttached, kSteered };
 
   /// Where the constrained point starts (resolved by init).
   PointTarget() = default;
@@ -46,6 +48,11 @@ class PointTarget {
   /// passed to refuse an attachment to the very same point (g ≡ 0, a singular system).
   void init(const Scene& scene, const Component& owner, const Vec3& start, const MechanicalState& own_body,
             double own_abscissa);
+
+  /// From time t0 on, X(t) = position + velocity (t − t0) (m, m/s): the target moves at constant
+  /// velocity until steered again. Replaces a fixed, start or scripted target (whose path is then
+  /// dropped); returns false, changing nothing, for a target attached to a body (it moves with it).
+  bool steer(const Vec3& position, const Vec3& velocity, double t0);
 
   Kind kind() const { return kind_; }
   bool attached() const { return kind_ == Kind::kAttached; }
@@ -78,7 +85,9 @@ class PointTarget {
   PointTarget(Kind kind, const Vec3& x) : kind_(kind), position_(x) {}
 
   Kind kind_ = Kind::kStart;
-  Vec3 position_ = Vec3::Zero();  // fixed (and resolved start) position
+  Vec3 position_ = Vec3::Zero();  // fixed (and resolved start) position; steered: X(t0)
+  Vec3 velocity_ = Vec3::Zero();  // steered: u
+  double steered_at_ = 0.0;       // steered: t0
   geometry::ScriptedPath path_;
   std::string object_;     // attached: node path
   std::string where_;      // attached: JSON place of "object" (file: /pointer)

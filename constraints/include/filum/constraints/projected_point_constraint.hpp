@@ -14,12 +14,13 @@
 
 #include "filum/constraints/baumgarte.hpp"
 #include "filum/constraints/point_target.hpp"
+#include "filum/constraints/target_constraint.hpp"
 #include "filum/core/constraint.hpp"
 #include "filum/geometry/spline_basis.hpp"
 
 namespace filum::constraints {
 
-class ProjectedPointConstraint : public Constraint {
+class ProjectedPointConstraint : public Constraint, public TargetConstraint {
  public:
   int rowCount() const override { return static_cast<int>(directions_.size()); }
   void buildRows(const SceneState& s, ConstraintRows& rows) const override;
@@ -27,7 +28,8 @@ class ProjectedPointConstraint : public Constraint {
 
   double abscissa() const { return abscissa_; }
   double stabilization() const { return baumgarte_.omega(); }
-  const PointTarget& target() const { return target_; }
+  const PointTarget& target() const override { return target_; }
+  PointTarget& target() override { return target_; }
   std::optional<Vec3> targetPoint(const SceneState& s) const override { return target_.position(s); }
   bool hasTargetPoint() const override { return true; }
   /// The unit directions d_i of the rows.

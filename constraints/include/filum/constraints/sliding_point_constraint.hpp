@@ -35,13 +35,14 @@
 
 #include "filum/constraints/baumgarte.hpp"
 #include "filum/constraints/point_target.hpp"
+#include "filum/constraints/target_constraint.hpp"
 #include "filum/core/constraint.hpp"
 #include "filum/core/params.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
 
 namespace filum::constraints {
 
-class SlidingPointConstraint final : public Constraint {
+class SlidingPointConstraint final : public Constraint, public TargetConstraint {
  public:
   /// abscissa: initial s(0) ∈ [0, 1]; friction η (N·s/m) >= 0.
   SlidingPointConstraint(double abscissa, PointTarget target, double friction,
@@ -68,7 +69,8 @@ class SlidingPointConstraint final : public Constraint {
   double abscissa(const SceneState& s) const { return s.q[extraIndex()]; }
   double abscissaRate(const SceneState& s) const { return s.v[extraIndex()]; }
   double friction() const { return friction_; }
-  const PointTarget& target() const { return target_; }
+  const PointTarget& target() const override { return target_; }
+  PointTarget& target() override { return target_; }
   std::optional<Vec3> targetPoint(const SceneState& s) const override { return target_.position(s); }
   bool hasTargetPoint() const override { return true; }
   /// P(s(t)) − X(t).
