@@ -24,17 +24,9 @@ std::size_t logCapacity(double duration, double rate) {
   return ticks >= static_cast<double>(kMaxLogSamples) ? kMaxLogSamples : static_cast<std::size_t>(ticks);
 }
 
-}  // namespace
-
-std::unique_ptr<HapticSession> HapticSession::fromScene(const nlohmann::json& document, const std::string& source,
-                                                        Scene& scene, double duration) {
-  if (!document.is_object() || !document.contains("haptics")) return nullptr;
-  const Params top(document, source, "");
-  const Params p = top.object("haptics").withOwner("haptics");
-  std::unique_ptr<HapticSession> session(new HapticSession());
-  HapticSession& s = *session;
-  const Params device = p.object("device");
-  DeviceLimits limits = DeviceLimits{};
+/// The device's limits: the preset its "model" names, with the block's "limits" over it.
+DeviceLimits readLimits(const Params& p, const Params& device) {
+  DeviceLimits limits;
   const std::string model = device.string("model", "Touch");
   try {
     limits = devicePreset(model);
@@ -46,23 +38,43 @@ std::unique_ptr<HapticSession> HapticSession::fromScene(const nlohmann::json& do
     limits = limitsFromParams(l, limits);
     l.finish();
   }
-  s.settings_.rate = p.positive("rate", 1000.0);
-  if (s.settings_.rate < kMinServoRate || s.settings_.rate > kMaxServoRate)
+  return limits;
+}
+
+/// "rate", "frame", "watchdog" and "fade".
+ServoSettings readServoSettings(const Params& p) {
+  ServoSettings settings;
+  settings.rate = p.positive("rate", 1000.0);
+  if (settings.rate < kMinServoRate || settings.rate > kMaxServoRate)
     p.fail("rate", "a servo rate in [100, 10000] Hz (below 100 Hz a stiff coupling buzzes; 1 kHz is a Phantom's)");
-  const double period = 1.0 / s.settings_.rate;
   if (p.has("frame")) {
     const Params f = p.object("frame");
-    s.settings_.frame = deviceFrameFromParams(f);
+    settings.frame = deviceFrameFromParams(f);
     f.finish();
   }
-  s.settings_.safety.watchdog = p.positive("watchdog", s.settings_.safety.watchdog);
-  s.settings_.safety.fade = p.positive("fade", s.settings_.safety.fade);
+  settings.safety.watchdog = p.positive("watchdog", settings.safety.watchdog);
+  settings.safety.fade = p.positive("fade", settings.safety.fade);
+  return settings;
+}
+
+}  // namespace
+
+std::unique_ptr<HapticSession> HapticSession::fromScene(const nlohmann::json& document, const std::string& source,
+                                                        Scene& scene, double duration) {
+  if (!document.is_object() || !document.contains("haptics")) return nullptr;
+  const Params top(document, source, "");
+  const Params p = top.object("haptics").withOwner("haptics");
+  std::unique_ptr<HapticSession> session(new HapticSession());
+  HapticSession& s = *session;
+  const Params device = p.object("device");
+  const DeviceLimits limits = readLimits(p, device);
+  s.settings_ = readServoSettings(p);
   if (p.has("coupling")) {
     const Params c = p.object("coupling");
-    s.coupling_ = couplingFromParams(c, limits, s.settings_.frame, period);
+    s.coupling_ = couplingFromParams(c, limits, s.settings_.frame, 1.0 / s.settings_.rate);
     c.finish();
   } else {
-    s.coupling_ = defaultCoupling(limits, s.settings_.frame, period);
+    s.coupling_ = defaultCoupling(limits, s.settings_.frame, 1.0 / s.settings_.rate);
   }
   s.device_ = makeDevice(device, limits);
   device.finish();
@@ -71,31 +83,34 @@ std::unique_ptr<HapticSession> HapticSession::fromScene(const nlohmann::json& do
   if (mode == "lockstep" && !s.device_->canRunLockstep())
     p.fail("mode", "\"thread\" for " + s.device_->name() + " (a physical device runs on the wall clock)", "\"lockstep\"");
   s.threaded_ = mode == "thread";
-
   const Params tool = p.object("tool");
-  const std::string type = tool.string("type");
-  s.tool_->grasp_stiffness = s.coupling_.stiffness;
-  s.tool_->grasp_damping = s.coupling_.damping;
-  if (type == "Grasper") {
-    s.tool_->radius = tool.positive("radius", 1e-3);
-    s.capture_ = tool.positive("capture", 3.0 * s.tool_->radius);
-    s.button_mask_ = 1u << (tool.integer("button", 1, 16, 1, "a button of the stylus, 1 to 16") - 1);
-    s.tool_->touching = tool.boolean("push", true);
-    s.tool_->push_stiffness = tool.positive("push_stiffness", s.coupling_.stiffness);
-  } else if (type == "Attachment") {
-    s.grasper_ = false;
-    s.attach_object_ = tool.string("object");
-    s.attach_abscissa_ = tool.abscissa("abscissa");
-    const MechanicalState* body = scene.bodyAt(s.attach_object_);
-    if (!body || !body->curve()) tool.fail("object", "the path of a node holding a curve body (e.g. \"thread\")");
-  } else {
-    tool.fail("type", "\"Grasper\" or \"Attachment\"", "\"" + type + "\"");
-  }
+  s.readTool(tool, scene);
   tool.finish();
   p.finish();
   s.servo_ = std::make_unique<ServoLoop>(*s.device_, s.settings_, logCapacity(duration, s.settings_.rate));
   s.attachTool(scene);
   return session;
+}
+
+void HapticSession::readTool(const Params& tool, const Scene& scene) {
+  const std::string type = tool.string("type");
+  tool_->grasp_stiffness = coupling_.stiffness;
+  tool_->grasp_damping = coupling_.damping;
+  if (type == "Grasper") {
+    tool_->radius = tool.positive("radius", 1e-3);
+    capture_ = tool.positive("capture", 3.0 * tool_->radius);
+    button_mask_ = 1u << (tool.integer("button", 1, 16, 1, "a button of the stylus, 1 to 16") - 1);
+    tool_->touching = tool.boolean("push", true);
+    tool_->push_stiffness = tool.positive("push_stiffness", coupling_.stiffness);
+  } else if (type == "Attachment") {
+    grasper_ = false;
+    attach_object_ = tool.string("object");
+    attach_abscissa_ = tool.abscissa("abscissa");
+    const MechanicalState* body = scene.bodyAt(attach_object_);
+    if (!body || !body->curve()) tool.fail("object", "the path of a node holding a curve body (e.g. \"thread\")");
+  } else {
+    tool.fail("type", "\"Grasper\" or \"Attachment\"", "\"" + type + "\"");
+  }
 }
 
 HapticSession::~HapticSession() { finish(); }

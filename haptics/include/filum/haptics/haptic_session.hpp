@@ -83,6 +83,8 @@ class HapticSession {
 
  private:
   HapticSession() = default;
+  /// The "tool" block: a Grasper's radius, capture, button, push; an Attachment's body point.
+  void readTool(const Params& tool, const Scene& scene);
   void attachTool(Scene& scene);
   /// The model's stiffness, felt on the device, limited to the passive and device bounds.
   void limitStiffness(LocalLinearModel& model) const;
