@@ -14,6 +14,7 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/haptics/haptic_session.hpp"
+#include "filum/visual/interactive_probe.hpp"
 #include "filum/output_settings.hpp"
 #include "filum/run_output.hpp"
 #include "filum/run_visual.hpp"
@@ -111,6 +112,13 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
       log << "error: " << (options.render ? "--render: " : "--meshes: ") << e.what() << '\n';
       return kRunIoError;
     }
+  }
+
+  // The haptic tool's sphere in the pictures (green while its jaws hold the thread).
+  std::unique_ptr<visual::ProbeVisual> tool_visual;
+  if (haptic && visuals) {
+    tool_visual = std::make_unique<visual::ProbeVisual>(haptic->sharedTool());
+    visuals->addOverlay(*tool_visual);
   }
 
   const long steps = std::lround(duration / dt);

@@ -64,7 +64,12 @@ void RunVisual::writeMeshes(const Scene& scene) {
 void RunVisual::render(const Scene& scene, double wall_per_simulated_ms) {
   if (!options_.render) return;
   visuals_.update(scene.state());
-  visual::Image frame = renderer_->render(visuals_.models());
+  std::vector<visual::VisualModel*> models = visuals_.models();
+  for (visual::VisualModel* overlay : overlays_) {
+    overlay->update(scene.state());
+    models.push_back(overlay);
+  }
+  visual::Image frame = renderer_->render(models);
   if (camera_.heads_up)
     visual::drawHeadsUp(frame, scene_name_ + " | " +
                                    visual::headsUpText(scene.state().time, wall_per_simulated_ms,

@@ -46,6 +46,9 @@ class RunVisual {
   void writeMeshes(const Scene& scene);
   /// Renders the current state; wall_per_simulated_ms < 0 when unknown (first frame).
   void render(const Scene& scene, double wall_per_simulated_ms);
+  /// Draws `model` too in the pictures (not in the meshes): a model that is not a scene
+  /// component, such as the haptic tool's sphere. It must outlive this object.
+  void addOverlay(visual::VisualModel& model) { overlays_.push_back(&model); }
   /// Final OBJ/PLY, video and contact sheet (idempotent).
   void finish(const Scene& scene);
   /// What was written, for the log ("meshes.pvd, video.avi, ...").
@@ -60,6 +63,7 @@ class RunVisual {
   std::unique_ptr<visual::PvdSeries> series_;
   std::unique_ptr<visual::OffscreenRenderer> renderer_;
   std::unique_ptr<visual::FrameRecorder> recorder_;
+  std::vector<visual::VisualModel*> overlays_;
   int mesh_frames_ = 0;
   bool finished_ = false;
 };
