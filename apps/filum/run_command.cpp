@@ -14,11 +14,11 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/haptics/haptic_session.hpp"
-#include "filum/visual/interactive_probe.hpp"
 #include "filum/output_settings.hpp"
 #include "filum/run_output.hpp"
 #include "filum/run_visual.hpp"
 #include "filum/timing_summary.hpp"
+#include "filum/visual/interactive_probe.hpp"
 
 namespace filum::app {
 
@@ -172,7 +172,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
           log << "interrupted (Ctrl-C) at t = " << scene->state().time << " s: forces off\n";
           if (visuals) visuals->finish(*scene);
           writeSummary(directory, TimingSummary::fromStepTimes(step_seconds, dt, seconds(Clock::now() - start)), log);
-          return kRunOk;
+          return kRunInterrupted;
         }
       }
       step_seconds.push_back(seconds(after - before));

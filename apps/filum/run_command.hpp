@@ -20,7 +20,9 @@ struct RunOptions {
 };
 
 /// Exit codes of `filum run`.
-enum RunStatus { kRunOk = 0, kRunSceneError = 2, kRunDiverged = 3, kRunIoError = 4 };
+/// kRunInterrupted: Ctrl-C (or SIGTERM) during a run with a haptic device, which stops after its
+/// step with the forces off (128 + SIGINT, the shell's convention).
+enum RunStatus { kRunOk = 0, kRunSceneError = 2, kRunDiverged = 3, kRunIoError = 4, kRunInterrupted = 130 };
 
 /// Runs the scene; messages go to `log` (stdout) and progress to `progress` (stderr).
 int runScene(const RunOptions& options, std::ostream& log, std::ostream& progress);

@@ -124,7 +124,7 @@ TEST(HapticSession, CtrlCStopsTheRunWithTheForcesOff) {
   std::string log;
   const int status = test::runQuietly(kScene, out, 1.6, log);
   haptics::clearInterrupt();
-  EXPECT_EQ(status, kRunOk) << log;
+  EXPECT_EQ(status, kRunInterrupted) << log;
   EXPECT_NE(log.find("interrupted (Ctrl-C)"), std::string::npos) << log;
   // The run stopped after its first step, and haptics.csv says nothing was sent.
   const std::string csv = readAll(out / "haptics.csv");
