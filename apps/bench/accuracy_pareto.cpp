@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/indexed_rows.hpp"
 #include "validation/cantilever.hpp"
 #include "validation/catenary.hpp"
 #include "validation/taut_string.hpp"
@@ -121,35 +122,18 @@ void printResultRow(std::FILE* out, std::size_t index, const RunResult& r) {
 /// Reads printResultRow lines (any order) into results[K]; a missing or malformed row is an error
 /// naming the file and line.
 bool readResultRows(const std::string& path, std::vector<std::optional<RunResult>>& results) {
-  std::ifstream in(path);
-  if (!in) {
-    std::cerr << path << ": cannot read the result rows\n";
-    return false;
-  }
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (line.empty()) continue;
-    std::size_t index;
-    int stable, over_budget;
-    RunResult r;
+  const auto parse = [](const std::string& line, std::size_t& index, RunResult& r) {
+    int stable = 0, over_budget = 0;
     char tail;
     if (std::sscanf(line.c_str(), "%zu,%d,%lf,%lf,%lf,%ld,%d%c", &index, &stable, &r.error, &r.wall_seconds,
-                    &r.simulated, &r.steps, &over_budget, &tail) != 7 ||
-        index >= results.size()) {
-      std::cerr << path << ":" << number << ": expected a row 'K,stable,error,wall_s,simulated_s,steps,over_budget' with K < "
-                << results.size() << ", found '" << line << "'\n";
+                    &r.simulated, &r.steps, &over_budget, &tail) != 7)
       return false;
-    }
     r.stable = stable != 0;
     r.over_budget = over_budget != 0;
-    results[index] = r;
-  }
-  for (std::size_t k = 0; k < results.size(); ++k)
-    if (!results[k]) {
-      std::cerr << path << ": no row for configuration " << k << " (accuracy_pareto --list)\n";
-      return false;
-    }
-  return true;
+    return true;
+  };
+  return filum::bench::readIndexedRows(path, results, parse, "K,stable,error,wall_s,simulated_s,steps,over_budget",
+                                       "accuracy_pareto");
 }
 
 }  // namespace

@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/indexed_rows.hpp"
 #include "validation/stability.hpp"
 
 namespace {
@@ -69,30 +70,11 @@ Result runConfiguration(const Configuration& c, bool quick) {
 /// Reads "K,omega,dt" rows (any order; %.17g reads back bit for bit) into results[K]; a missing or
 /// malformed row is an error naming the file and line.
 bool readResultRows(const std::string& path, std::vector<std::optional<Result>>& results) {
-  std::ifstream in(path);
-  if (!in) {
-    std::cerr << path << ": cannot read the result rows\n";
-    return false;
-  }
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (line.empty()) continue;
-    std::size_t index;
-    Result r;
+  const auto parse = [](const std::string& line, std::size_t& index, Result& r) {
     char tail;
-    if (std::sscanf(line.c_str(), "%zu,%lf,%lf%c", &index, &r.omega, &r.dt, &tail) != 3 || index >= results.size()) {
-      std::cerr << path << ":" << number << ": expected a row 'K,omega_max,largest_stable_dt' with K < " << results.size()
-                << ", found '" << line << "'\n";
-      return false;
-    }
-    results[index] = r;
-  }
-  for (std::size_t k = 0; k < results.size(); ++k)
-    if (!results[k]) {
-      std::cerr << path << ": no row for configuration " << k << " (stability_map --list)\n";
-      return false;
-    }
-  return true;
+    return std::sscanf(line.c_str(), "%zu,%lf,%lf%c", &index, &r.omega, &r.dt, &tail) == 3;
+  };
+  return filum::bench::readIndexedRows(path, results, parse, "K,omega_max,largest_stable_dt", "stability_map");
 }
 
 }  // namespace
