@@ -64,12 +64,12 @@ void RunVisual::writeMeshes(const Scene& scene) {
 void RunVisual::render(const Scene& scene, double wall_per_simulated_ms) {
   if (!options_.render) return;
   visuals_.update(scene.state());
-  std::vector<visual::VisualModel*> models = visuals_.models();
+  frame_models_.assign(visuals_.models().begin(), visuals_.models().end());  // (capacity kept between frames)
   for (visual::VisualModel* overlay : overlays_) {
     overlay->update(scene.state());
-    models.push_back(overlay);
+    frame_models_.push_back(overlay);
   }
-  visual::Image frame = renderer_->render(models);
+  visual::Image frame = renderer_->render(frame_models_);
   if (camera_.heads_up)
     visual::drawHeadsUp(frame, scene_name_ + " | " +
                                    visual::headsUpText(scene.state().time, wall_per_simulated_ms,

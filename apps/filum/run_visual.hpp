@@ -64,6 +64,7 @@ class RunVisual {
   std::unique_ptr<visual::OffscreenRenderer> renderer_;
   std::unique_ptr<visual::FrameRecorder> recorder_;
   std::vector<visual::VisualModel*> overlays_;
+  std::vector<visual::VisualModel*> frame_models_;  // the scene's models and the overlays, per frame
   int mesh_frames_ = 0;
   bool finished_ = false;
 };

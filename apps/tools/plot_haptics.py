@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The force a haptic device got, and its servo loop's period, from a run's haptics.csv.
 
-  python3 apps/tools/plot_haptics.py out/haptic_grasp [--out haptics.png]
+  /usr/bin/python3 apps/tools/plot_haptics.py out/haptic_grasp [--out haptics.png]
 
 haptics.csv (written by `filum run` for a scene with a "haptics" block) has one row per servo
 tick. The picture has two panels over time:

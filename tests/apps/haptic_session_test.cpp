@@ -57,7 +57,7 @@ TEST(HapticSession, TheJawsHoldTheThreadAndTheTautThreadPullsBack) {
   EXPECT_NEAR(grasp_abscissa, 0.9, 0.01);
   // Taut: the thread (EA / L*, EA = 2 GPa · π (0.1 mm)² = 62.8 N) and the coupling (k = 900 N/m)
   // in series carry F = k_s (|X| − L*), k_s = k k_t / (k + k_t), along the line to the fixed
-  // end. The thread's Green–Lagrange law differs from the linear EA ε by O(ε) (ε ≈ 1.4 % here),
+  // end. The thread's Green–Lagrange law differs from the linear EA ε by O(ε) (ε = F/EA ≈ 1.5 % here),
   // gravity on 2.9 mg adds 3e-5 N and the bending stiffness of the bend at the jaws a little
   // more: 5 % of F covers them.
   const double L = 0.1 * grasp_abscissa, EA = 2e9 * M_PI * 1e-8;

@@ -162,24 +162,24 @@ TEST(InteractionTool, TheReactionOnTheToolIsTheOppositeForceWithItsJacobians) {
     EXPECT_LT((r.force + on_body).norm(), 1e-12 * on_body.norm()) << (grasping ? "grasp" : "push");
     ASSERT_GT(on_body.norm(), 0.0);
     // Jacobians against central differences in the tool's position and velocity. The forces are
-    // smooth (quadratic in the overlap): the O(h²) truncation at h = 1e-7 m is ~1e-14 relative,
-    // below the cancellation error ε |F| / h ≈ 1e-9 of |K| — hence 1e-6 relative.
+    // smooth away from the sphere's rim (no sample sits on it here): the O(h²) truncation at
+    // h = 1e-7 m is ~1e-14 relative, below the cancellation error ε |F| / h ≈ 1e-9 of |K| —
+    // hence 1e-6 relative.
     const double h = 1e-7;
+    // Column j of ∂F/∂(variable): the variable (the tool's position or velocity) moved by ±h.
+    const auto column = [&](Vec3& variable, int j) {
+      const Vec3 kept = variable;
+      variable[j] = kept[j] + h;
+      const Vec3 plus = reactionAt(p, s);
+      variable[j] = kept[j] - h;
+      const Vec3 minus = reactionAt(p, s);
+      variable = kept;
+      return Vec3((plus - minus) / (2 * h));
+    };
     Eigen::Matrix3d K, D;
     for (int j = 0; j < 3; ++j) {
-      const Vec3 x = p.probe->position, v = p.probe->velocity;
-      p.probe->position[j] = x[j] + h;
-      const Vec3 plus = reactionAt(p, s);
-      p.probe->position[j] = x[j] - h;
-      const Vec3 minus = reactionAt(p, s);
-      p.probe->position = x;
-      K.col(j) = (plus - minus) / (2 * h);
-      p.probe->velocity[j] = v[j] + h;
-      const Vec3 faster = reactionAt(p, s);
-      p.probe->velocity[j] = v[j] - h;
-      const Vec3 slower = reactionAt(p, s);
-      p.probe->velocity = v;
-      D.col(j) = (faster - slower) / (2 * h);
+      K.col(j) = column(p.probe->position, j);
+      D.col(j) = column(p.probe->velocity, j);
     }
     EXPECT_LT((K - r.stiffness).norm(), 1e-6 * r.stiffness.norm()) << (grasping ? "grasp" : "push") << "\n" << K << "\n" << r.stiffness;
     EXPECT_LT((D - r.damping).norm(), 1e-6 * std::max(1.0, r.damping.norm())) << (grasping ? "grasp" : "push");
