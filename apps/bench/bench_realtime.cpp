@@ -14,7 +14,10 @@
 // Output: a table on stdout, realtime.csv and, with --plot, realtime.png (apps/tools/
 // plot_realtime.py: strain against wall time per simulated ms, one point per configuration).
 //   build/apps/bench/bench_realtime [--quick] [--repetitions R] [--duration T] [--out DIR] [--plot]
+//                                   [--sizes N...] [--schemes TEXT...] [--scenes NAME...]
 // --quick: n = 30 and 165 only, 1 s, 3 repetitions, no explicit schemes nor reference scenes.
+// --sizes, --schemes (labels containing one of the texts), --scenes (file stems): run only those;
+// --scenes alone skips the rope, --sizes alone the reference scenes (to profile one of them).
 // Built with -DFILUM_WITH_PEERS=ON it also runs the same rope in Bullet at 4 and 64 solver
 // iterations and in MuJoCo (n <= 165) — apps/bench/peers/ — and adds their rows to the CSV and
 // the plot.
@@ -179,11 +182,25 @@ int main(int argc, char** argv) {
   cli.add_option("--duration", duration, "simulated seconds of each rope run")->check(CLI::Range(1e-3, 1e3));
   cli.add_option("--out", out, "directory for realtime.csv (and realtime.png)");
   cli.add_flag("--plot", plot, "draw realtime.png with apps/tools/plot_realtime.py");
+  std::vector<int> sizes;
+  std::vector<std::string> scheme_filter, scene_filter;
+  cli.add_option("--sizes", sizes, "rope sizes (default 30 50 165 1000; --quick: 30 165)")->check(CLI::Range(4, 100000));
+  cli.add_option("--schemes", scheme_filter, "rope schemes whose label contains one of these texts");
+  cli.add_option("--scenes", scene_filter, "reference scenes (file stems in apps/scenes) to run; alone, no rope");
   CLI11_PARSE(cli, argc, argv);
   if (quick) {
     repetitions = std::min(repetitions, 3);
     duration = 1.0;
   }
+  const bool run_rope = !sizes.empty() || scene_filter.empty();
+  const bool run_scenes = !scene_filter.empty() || (sizes.empty() && !quick);
+  if (sizes.empty()) sizes = quick ? std::vector<int>{30, 165} : std::vector<int>{30, 50, 165, 1000};
+  if (!run_rope) sizes.clear();
+  const auto selected = [&](const std::string& label) {
+    return scheme_filter.empty() || std::any_of(scheme_filter.begin(), scheme_filter.end(), [&](const std::string& text) {
+             return label.find(text) != std::string::npos;
+           });
+  };
   std::filesystem::create_directories(out);
   const std::string csv_path = out + "/realtime.csv";
   std::FILE* csv = std::fopen(csv_path.c_str(), "w");
@@ -204,13 +221,16 @@ int main(int argc, char** argv) {
       {"symplectic Euler", {{"type", "SymplecticEuler"}}, true},
       {"RK4", {{"type", "RungeKutta4"}}, true},
   };
-  const std::vector<int> sizes = quick ? std::vector<int>{30, 165} : std::vector<int>{30, 50, 165, 1000};
-  std::printf("rope: 1 m, 0.1 kg, r = 5 mm, E = 1e8 Pa; median of %d runs; %g s simulated (explicit: 0.05 s)\n",
+  if (run_rope)
+    std::printf("rope: 1 m, 0.1 kg, r = 5 mm, E = 1e8 Pa; median of %d runs; %g s simulated (explicit: 0.05 s)\n",
               repetitions, duration);
   for (int n : sizes) {
     for (const Scheme& scheme : implicit_schemes)
-      printRow(csv, "rope", n, scheme.label, measure(ropeDocument(n, scheme.integrator, 1e-3, duration), "rope", repetitions));
-    if (quick || n > 165) continue;  // explicit steps at n = 1000 would take hours
+      if (selected(scheme.label))
+        printRow(csv, "rope", n, scheme.label, measure(ropeDocument(n, scheme.integrator, 1e-3, duration), "rope", repetitions));
+    if (quick || n > 165 || !std::any_of(explicit_schemes.begin(), explicit_schemes.end(),
+                                         [&](const Scheme& scheme) { return selected(scheme.label); }))
+      continue;  // explicit steps at n = 1000 would take hours
     // Explicit schemes at 90 % of their stability limit ω_max dt = 2 (symplectic) or 2√2 (RK4).
     const double omega = [&] {
       auto scene = filum::loadScene(ropeDocument(n, implicit_schemes[0].integrator, 1e-3, duration), "rope",
@@ -219,16 +239,23 @@ int main(int argc, char** argv) {
       return filum::validation::stiffestFrequency(*scene, scene->state());
     }();
     for (const Scheme& scheme : explicit_schemes) {
+      if (!selected(scheme.label)) continue;
       const double limit = scheme.label == "RK4" ? 2.0 * std::sqrt(2.0) : 2.0;
       printRow(csv, "rope", n, scheme.label,
                measure(ropeDocument(n, scheme.integrator, 0.9 * limit / omega, std::min(duration, 0.05)), "rope", repetitions));
     }
   }
-  if (!quick) {
+  if (run_scenes) {
     std::printf("reference scenes, as they are (their own dt and integrator), %g s or their duration\n", duration);
     std::vector<std::filesystem::path> scenes;
     for (const auto& entry : std::filesystem::directory_iterator(std::string(FILUM_SOURCE_DIR) + "/apps/scenes"))
-      if (entry.path().extension() == ".json") scenes.push_back(entry.path());
+      if (entry.path().extension() == ".json" &&
+          (scene_filter.empty() || std::count(scene_filter.begin(), scene_filter.end(), entry.path().stem().string())))
+        scenes.push_back(entry.path());
+    if (scenes.size() < scene_filter.size()) {
+      std::fprintf(stderr, "error: --scenes names a scene that is not in %s/apps/scenes\n", FILUM_SOURCE_DIR);
+      return 2;
+    }
     std::sort(scenes.begin(), scenes.end());
     for (const auto& path : scenes) {
       json document = filum::readJsonFile(path.string());

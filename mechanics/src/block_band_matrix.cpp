@@ -44,6 +44,24 @@ void BlockBandMatrix::addIsotropic(int i, int j, double value) {
   if (fits(i, j)) block(i - first_, j - first_).diagonal().array() += value;
 }
 
+void BlockBandMatrix::addSupportBlocks(int first, int count, const Eigen::Matrix3d* lower) {
+  if (count <= 0) return;
+  // Both ends inside and count − 1 <= r: every pair of the support is stored.
+  const int li = first - first_;
+  if (li < 0 || li + count > n_ || count - 1 > r_) {
+    JacobianAccumulator::addSupportBlocks(first, count, lower);  // block by block, misfits counted
+    return;
+  }
+  needed_range_ = std::max(needed_range_, count - 1);
+  for (int a = 0, k = 0; a < count; ++a) {
+    for (int b = 0; b < a; ++b, ++k) {  // pair (a, b) at k = a (a + 1) / 2 + b, diagonal last
+      block(li + a, li + b) += lower[k];
+      block(li + b, li + a) += lower[k].transpose();
+    }
+    block(li + a, li + a) += lower[k++];
+  }
+}
+
 void BlockBandMatrix::multiplyAdd(Eigen::Ref<const VecX> x, double factor, Eigen::Ref<VecX> y) const {
   // y_i += factor Σ_j A_ij x_j over the band.
   for (int i = 0; i < n_; ++i) {

@@ -1,5 +1,6 @@
 #include "filum/mechanics/curvature_bending.hpp"
 
+#include <array>
 #include <cmath>
 
 #include "filum/geometry/spline_curve.hpp"
@@ -9,43 +10,64 @@ namespace filum::mechanics {
 
 namespace {
 
-/// Density e = β C r^(−5/2) at one node and its derivatives in x = P', y = P''.
+/// Density e = β C r^(−5/2) at one node and its gradient in x = P', y = P'' (header):
+///   ∂e/∂x = β f (2|y|² x − 2(x·y) y − 5 C/r x),   ∂e/∂y = β f (2 r y − 2 (x·y) x),   f = r^(−5/2).
 struct BendingDensity {
   double energy;
-  Vec3 gx, gy;               // ∂e/∂x, ∂e/∂y
-  Eigen::Matrix3d hxx, hxy, hyy;  // ∂²e/∂x², ∂²e/∂x∂y (rows x, columns y), ∂²e/∂y²
+  Vec3 gx, gy;  // ∂e/∂x, ∂e/∂y
 
-  BendingDensity(double beta, const Vec3& x, const Vec3& y, bool hessian) {
+  BendingDensity(double beta, const Vec3& x, const Vec3& y) {
     const double r = x.squaredNorm();
     if (r == 0.0) {  // degenerate parametrization: no curvature defined, no force
       energy = 0.0;
       gx.setZero();
       gy.setZero();
-      hxx.setZero();
-      hxy.setZero();
-      hyy.setZero();
       return;
     }
     const double xy = x.dot(y), yy = y.squaredNorm();
     const double C = r * yy - xy * xy;  // |x × y|²
-    const double f = 1.0 / (r * r * std::sqrt(r));  // r^(−5/2)
-    const Vec3 Cx = 2.0 * (yy * x - xy * y);
-    const Vec3 Cy = 2.0 * (r * y - xy * x);
-    const Vec3 fx = (-5.0 * f / r) * x;
-    energy = beta * C * f;
-    gx = beta * (f * Cx + C * fx);
-    gy = beta * f * Cy;
-    if (!hessian) return;
-    const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
-    const Eigen::Matrix3d Cxx = 2.0 * (yy * I - y * y.transpose());
-    const Eigen::Matrix3d Cyy = 2.0 * (r * I - x * x.transpose());
-    const Eigen::Matrix3d Cxy = 4.0 * x * y.transpose() - 2.0 * y * x.transpose() - 2.0 * xy * I;
-    const Eigen::Matrix3d fxx = (-5.0 * f / r) * I + (35.0 * f / (r * r)) * x * x.transpose();
-    hxx = beta * (f * Cxx + Cx * fx.transpose() + fx * Cx.transpose() + C * fxx);
-    hxy = beta * (f * Cxy + fx * Cy.transpose());
-    hyy = beta * f * Cyy;
+    const double bf = beta / (r * r * std::sqrt(r));  // β r^(−5/2)
+    energy = bf * C;
+    gx = bf * ((2.0 * yy - 5.0 * C / r) * x - 2.0 * xy * y);
+    gy = bf * (2.0 * r * y - 2.0 * xy * x);
   }
 };
+
+/// The density's Hessian at one node as the 30 numbers the piece sums use (rows of
+/// CurvatureBending::addPieceHessian): e_xx (6 entries of the symmetric block: 00 10 20 11 21 22),
+/// e_xy (9, column-major; rows x, columns y) twice, e_yy (6). From the header's derivatives,
+/// collected on I, x xᵀ, x yᵀ, y xᵀ and y yᵀ (no 3 × 3 products):
+///   e_xx = β f [(2|y|² − 5C/r) I + (35 C/r² − 20 |y|²/r) x xᵀ + 10 (x·y)/r (x yᵀ + y xᵀ) − 2 y yᵀ],
+///   e_xy = β f [−2 (x·y) I + 10 (x·y)/r x xᵀ − 6 x yᵀ − 2 y xᵀ],
+///   e_yy = β f [2 r I − 2 x xᵀ].
+void densityHessian(double beta, const Vec3& x, const Vec3& y, Eigen::Matrix<double, 30, 1>& h) {
+  const double r = x.squaredNorm();
+  if (r == 0.0) {
+    h.setZero();
+    return;
+  }
+  const double xy = x.dot(y), yy = y.squaredNorm();
+  const double C = r * yy - xy * xy;
+  const double bf = beta / (r * r * std::sqrt(r));
+  const double i_xx = bf * (2.0 * yy - 5.0 * C / r), c_xx = bf * (35.0 * C / (r * r) - 20.0 * yy / r);
+  const double c_sym = bf * 10.0 * xy / r, c_yy = -2.0 * bf;
+  const double i_xy = -2.0 * bf * xy, c_xy = -6.0 * bf, c_yx = -2.0 * bf;  // c_xx of e_xy is c_sym
+  const double i_yy = 2.0 * bf * r;
+  constexpr int kLower[6][2] = {{0, 0}, {1, 0}, {2, 0}, {1, 1}, {2, 1}, {2, 2}};
+  for (int k = 0; k < 6; ++k) {
+    const int i = kLower[k][0], j = kLower[k][1];
+    const double delta = i == j ? 1.0 : 0.0;
+    h[k] = i_xx * delta + c_xx * x[i] * x[j] + c_sym * (x[i] * y[j] + y[i] * x[j]) + c_yy * y[i] * y[j];
+    h[24 + k] = i_yy * delta + c_yy * x[i] * x[j];
+  }
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const double value =
+          (i == j ? i_xy : 0.0) + c_sym * x[i] * x[j] + c_xy * x[i] * y[j] + c_yx * y[i] * x[j];
+      h[6 + i + 3 * j] = value;
+      h[15 + i + 3 * j] = value;
+    }
+}
 
 }  // namespace
 
@@ -59,6 +81,7 @@ void CurvatureBending::init(const Scene&) {
   bending_stiffness_ = youngs_modulus_ * secondMomentOfArea(spline.radius());
   const int nodes = quadrature_nodes_ > 0 ? quadrature_nodes_ : defaultNodesPerPiece(spline.basis().degree());
   quadrature_ = CurveQuadrature(spline.basis(), nodes, spline.initialPositions(), std::nullopt);
+  hessian_.reset(quadrature_.pieces().size(), spline.pointCount());
 }
 
 void CurvatureBending::addForce(const SceneState& s, VecX& B) const {
@@ -66,7 +89,7 @@ void CurvatureBending::addForce(const SceneState& s, VecX& B) const {
   PointsMap Q = body().block(B);
   for (const QuadratureNode& node : quadrature_.nodes()) {
     const BendingDensity e(0.5 * bending_stiffness_ * node.weight, geometry::curveTangent(node.row, q),
-                           geometry::curveSecondDerivative(node.row, q), false);
+                           geometry::curveSecondDerivative(node.row, q));
     // Q_j = −(b'_j ∂e/∂x + b''_j ∂e/∂y)
     for (int j = 0; j < node.row.count; ++j)
       Q.row(node.row.first + j) -= (node.row.d1[j] * e.gx + node.row.d2[j] * e.gy).transpose();
@@ -78,70 +101,73 @@ double CurvatureBending::potentialEnergy(const SceneState& s) const {
   double energy = 0.0;
   for (const QuadratureNode& node : quadrature_.nodes()) {
     energy += BendingDensity(0.5 * bending_stiffness_ * node.weight, geometry::curveTangent(node.row, q),
-                             geometry::curveSecondDerivative(node.row, q), false)
+                             geometry::curveSecondDerivative(node.row, q))
                   .energy;
   }
   return energy;
 }
 
 void CurvatureBending::addJacobian(const SceneState& s, double k_factor, double, JacobianAccumulator& out) const {
-  // K = −∇²E, so k_factor·K is the Hessian scaled by −k_factor. By the chain rule through
-  // x = P' = Σ b'_j q_j and y = P'' = Σ b''_j q_j, block (a, b) of the Hessian is
-  //   Σ_g [b'_a b'_b e_xx + b'_a b''_b e_xy + b''_a b'_b e_xyᵀ + b''_a b''_b e_yy]_g,
-  // symmetric as a whole (block (b, a) = block (a, b)ᵀ). Per piece of the spline (its nodes share
-  // one support) the four sums are accumulated as rank-one updates over the pairs a >= b — the
-  // node's Hessian entries times the pairs' basis products — and emitted once per pair.
+  // K = −∇²E, so k_factor·K is the Hessian scaled by −k_factor. The Hessian's blocks are kept for
+  // the positions they were computed at: RayleighDamping's lagged K and the step matrix both ask
+  // at a step's first state, and the second request replays them (the density's second
+  // derivatives are most of an implicit step's cost for a suture).
   if (k_factor == 0.0) return;
-  const ConstPointsMap q = body().block(s.q);
-  const auto& nodes = quadrature_.nodes();
+  const auto q = s.q.segment(3 * Eigen::Index(body().offset()), 3 * Eigen::Index(body().pointCount()));
+  const int points = body().pointCount();
+  hessian_.add(quadrature_.pieces(), q, k_factor, body().offset(), out,
+               [this, points](std::size_t p, const double* coordinates, Eigen::Matrix3d* blocks) {
+                 const ConstPointsMap positions(coordinates, points, 3);
+                 const QuadraturePiece& piece = quadrature_.pieces()[p];
+                 if (piece.count == 4)  // the cubic B-spline: fixed sizes, unrolled
+                   pieceHessian<4>(piece, positions, blocks);
+                 else
+                   pieceHessian<0>(piece, positions, blocks);
+               });
+}
+
+template <int Count>
+void CurvatureBending::pieceHessian(const QuadraturePiece& piece, const ConstPointsMap& q, Eigen::Matrix3d* blocks) const {
+  // By the chain rule through x = P' = Σ b'_j q_j and y = P'' = Σ b''_j q_j, block (a, b) of the
+  // Hessian is
+  //   Σ_g [b'_a b'_b e_xx + b'_a b''_b e_xy + b''_a b'_b e_xyᵀ + b''_a b''_b e_yy]_g,
+  // symmetric as a whole (block (b, a) = block (a, b)ᵀ). The piece's nodes share one support: the
+  // four sums are accumulated as rank-one updates over the pairs a >= b — the node's 30 Hessian
+  // numbers times the pairs' basis products — and turned into 3 × 3 blocks once per pair.
   constexpr int kMax = geometry::BasisRow::kMaxSupport;
-  constexpr int kPairs = kMax * (kMax + 1) / 2;
-  // Rows: e_xx (6 entries of the symmetric block), e_xy for b'_a b''_b (9, column-major), e_xy
-  // for b''_a b'_b (9, transposed when emitted), e_yy (6).
-  Eigen::Matrix<double, 30, kPairs> sums;
-  Eigen::Matrix<double, 6, 1> xx, yy;
-  Eigen::Matrix<double, 9, 1> xy;
-  Eigen::Matrix<double, 4, kPairs> products;  // rows: b'b', b'b'', b''b', b''b''
-  const double scale = -k_factor;
-  const int base = body().offset();
-  const auto symmetric = [](const Eigen::Matrix3d& m, Eigen::Matrix<double, 6, 1>& v) {
-    v << m(0, 0), m(1, 0), m(2, 0), m(1, 1), m(2, 1), m(2, 2);
-  };
-  std::size_t g = 0;
-  while (g < nodes.size()) {
-    const int first = nodes[g].row.first, count = nodes[g].row.count, pairs = count * (count + 1) / 2;
-    sums.leftCols(pairs).setZero();
-    for (; g < nodes.size() && nodes[g].row.first == first && nodes[g].row.count == count; ++g) {
-      const geometry::BasisRow& row = nodes[g].row;
-      const BendingDensity e(0.5 * bending_stiffness_ * nodes[g].weight, geometry::curveTangent(row, q),
-                             geometry::curveSecondDerivative(row, q), true);
-      symmetric(e.hxx, xx);
-      symmetric(e.hyy, yy);
-      xy = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(e.hxy.data());
-      int k = 0;
-      for (int a = 0; a < count; ++a)
-        for (int b = 0; b <= a; ++b, ++k)
-          products.col(k) << row.d1[a] * row.d1[b], row.d1[a] * row.d2[b], row.d2[a] * row.d1[b], row.d2[a] * row.d2[b];
-      sums.topRows<6>().leftCols(pairs).noalias() += xx * products.row(0).head(pairs);
-      sums.middleRows<9>(6).leftCols(pairs).noalias() += xy * products.row(1).head(pairs);
-      sums.middleRows<9>(15).leftCols(pairs).noalias() += xy * products.row(2).head(pairs);
-      sums.bottomRows<6>().leftCols(pairs).noalias() += yy * products.row(3).head(pairs);
-    }
+  constexpr int kPairs = Count > 0 ? Count * (Count + 1) / 2 : kMax * (kMax + 1) / 2;
+  const int count = Count > 0 ? Count : piece.count, pairs = count * (count + 1) / 2;
+  std::array<std::array<double, 30>, kPairs> sums{};  // per pair k: the four sums' 30 rows
+  Eigen::Matrix<double, 30, 1> h;
+  std::array<std::array<double, kPairs>, 4> products;  // b'_a b'_b, b'_a b''_b, b''_a b'_b, b''_a b''_b
+  const auto& nodes = quadrature_.nodes();
+  for (int g = piece.begin; g < piece.end; ++g) {
+    const geometry::BasisRow& row = nodes[g].row;
+    densityHessian(0.5 * bending_stiffness_ * nodes[g].weight, geometry::curveTangent(row, q),
+                   geometry::curveSecondDerivative(row, q), h);
     int k = 0;
     for (int a = 0; a < count; ++a)
       for (int b = 0; b <= a; ++b, ++k) {
-        const auto m = sums.col(k);
-        Eigen::Matrix3d block;
-        block << m[0] + m[24], m[1] + m[25], m[2] + m[26],  //
-            m[1] + m[25], m[3] + m[27], m[4] + m[28],      //
-            m[2] + m[26], m[4] + m[28], m[5] + m[29];
-        block += Eigen::Map<const Eigen::Matrix3d>(m.data() + 6) + Eigen::Map<const Eigen::Matrix3d>(m.data() + 15).transpose();
-        block *= scale;
-        if (a == b)
-          out.addBlock(base + first + a, base + first + a, block);
-        else
-          out.addBlockPair(base + first + a, base + first + b, block);
+        products[0][k] = row.d1[a] * row.d1[b];
+        products[1][k] = row.d1[a] * row.d2[b];
+        products[2][k] = row.d2[a] * row.d1[b];
+        products[3][k] = row.d2[a] * row.d2[b];
       }
+    for (k = 0; k < pairs; ++k) {
+      double* column = sums[k].data();
+      for (int r = 0; r < 6; ++r) column[r] += h[r] * products[0][k];
+      for (int r = 6; r < 15; ++r) column[r] += h[r] * products[1][k];
+      for (int r = 15; r < 24; ++r) column[r] += h[r] * products[2][k];
+      for (int r = 24; r < 30; ++r) column[r] += h[r] * products[3][k];
+    }
+  }
+  for (int k = 0; k < pairs; ++k) {
+    const double* m = sums[k].data();
+    Eigen::Matrix3d& block = blocks[k];
+    block << m[0] + m[24], m[1] + m[25], m[2] + m[26],  //
+        m[1] + m[25], m[3] + m[27], m[4] + m[28],      //
+        m[2] + m[26], m[4] + m[28], m[5] + m[29];
+    block += Eigen::Map<const Eigen::Matrix3d>(m + 6) + Eigen::Map<const Eigen::Matrix3d>(m + 15).transpose();
   }
 }
 

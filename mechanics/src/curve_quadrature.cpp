@@ -23,6 +23,12 @@ CurveQuadrature::CurveQuadrature(const geometry::SplineBasis& basis, int nodes_p
       nodes_.push_back(node);
     }
   }
+  for (std::size_t g = 0; g < nodes_.size(); ++g) {
+    const geometry::BasisRow& row = nodes_[g].row;
+    if (pieces_.empty() || pieces_.back().first != row.first || pieces_.back().count != row.count)
+      pieces_.push_back({row.first, row.count, static_cast<int>(g), static_cast<int>(g)});
+    pieces_.back().end = static_cast<int>(g) + 1;
+  }
 }
 
 }  // namespace filum::mechanics

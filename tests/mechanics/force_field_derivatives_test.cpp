@@ -184,6 +184,29 @@ TEST(ForceFieldDerivatives, ConservativeStiffnessesAreSymmetric) {
   }
 }
 
+TEST(ForceFieldDerivatives, KeptHessiansFollowThePositions) {
+  // GreenLagrangeStretching and CurvatureBending keep ∇²E for the positions last asked
+  // (SupportHessianCache). Asked at s1, then s2, then s1 again, and with another k factor, each
+  // answer is the one a fresh field gives at that state: bit for bit, since the same operations
+  // run in the same order (a stale replay would differ by the change of K, ~1e-2 relative here).
+  for (const char* type : {"GreenLagrangeStretching", "CurvatureBending"}) {
+    const json field_json = json::array({{{"type", type}, {"youngs_modulus", 2e9}}});
+    auto kept = test::loadThreadWith(test::ThreadSpec{}, field_json);
+    const ForceField& field = *kept->forceFields().back();
+    const SceneState s1 = perturbed(*kept, false, 11), s2 = perturbed(*kept, false, 12);
+    const auto fresh = [&](const SceneState& s, double k_factor) {
+      auto scene = test::loadThreadWith(test::ThreadSpec{}, field_json);
+      return test::fieldJacobian(*scene->forceFields().back(), s, k_factor, 0.0);
+    };
+    const MatX K1 = fresh(s1, 1.0), K2 = fresh(s2, 1.0);
+    ASSERT_GT((K1 - K2).cwiseAbs().maxCoeff(), 1e-3 * K1.cwiseAbs().maxCoeff()) << type << ": the states must differ";
+    EXPECT_EQ(test::fieldJacobian(field, s1, 1.0, 0.0), K1) << type;
+    EXPECT_EQ(test::fieldJacobian(field, s1, 1.0, 0.0), K1) << type << " replayed";
+    EXPECT_EQ(test::fieldJacobian(field, s2, 1.0, 0.0), K2) << type << " after the positions changed";
+    EXPECT_EQ(test::fieldJacobian(field, s1, -2.5, 0.0), fresh(s1, -2.5)) << type << " back, another factor";
+  }
+}
+
 TEST(ForceFieldDerivatives, EnergiesVanishAtRestAndUnderRigidMotions) {
   // Straight rest shape: every elastic energy is zero at the initial state and after a rigid
   // rotation + translation (its Gauss quadrature reproduces |P'| exactly only up to round-off:

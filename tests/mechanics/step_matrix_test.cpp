@@ -14,6 +14,7 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/spline_curve.hpp"
 #include "filum/mechanics/block_band_ldlt.hpp"
+#include "filum/mechanics/block_band_matrix.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
 #include "filum/mechanics/implicit_euler.hpp"
 #include "filum/mechanics/step_matrix.hpp"
@@ -104,6 +105,31 @@ void expectSolversAgree(const json& components, double h, double tolerance, cons
       EXPECT_NE(A.method().find(expect_auto), std::string::npos) << A.method();
     }
   }
+}
+
+TEST(BlockBandMatrix, SupportBlocksAddAsTheirBlocksOneByOne) {
+  // addSupportBlocks' direct path (one layout check per support) against the interface's
+  // default (addBlock, addBlockPair per pair): the same additions, so equal bit for bit; a
+  // support that reaches past the band falls back and counts its misfits.
+  const int first = 5, points = 9;
+  Eigen::Matrix3d lower[10];
+  for (int k = 0; k < 10; ++k) lower[k] = Eigen::Matrix3d::Random();
+  for (int k : {0, 2, 5, 9}) lower[k] = lower[k] + lower[k].transpose().eval();  // diagonal blocks symmetric
+  mechanics::BlockBandMatrix direct, reference;
+  direct.resize(first, points, 3);
+  reference.resize(first, points, 3);
+  direct.addSupportBlocks(first + 2, 4, lower);
+  reference.JacobianAccumulator::addSupportBlocks(first + 2, 4, lower);
+  for (int i = 0; i < points; ++i)
+    for (int j = std::max(0, i - 3); j <= std::min(points - 1, i + 3); ++j)
+      EXPECT_EQ(direct.block(i, j), reference.block(i, j)) << "block " << i << ", " << j;
+  EXPECT_EQ(direct.misfits(), 0);
+  EXPECT_EQ(direct.neededRange(), 3);
+  mechanics::BlockBandMatrix narrow;
+  narrow.resize(first, points, 2);
+  narrow.addSupportBlocks(first + 2, 4, lower);
+  EXPECT_EQ(narrow.misfits(), 2);  // pair (3, 0) and its transpose
+  EXPECT_EQ(narrow.neededRange(), 3);
 }
 
 TEST(StepMatrix, BandSparseAndDenseSolvesAgree) {

@@ -49,6 +49,8 @@ class BlockBandMatrix final : public JacobianAccumulator {
   void addBlock(int i, int j, const Eigen::Matrix3d& value) override;
   void addEntry(int row, int col, double value) override;
   void addIsotropic(int i, int j, double value) override;
+  /// One layout check for the whole support (both ends fit: every pair fits), then direct adds.
+  void addSupportBlocks(int first, int count, const Eigen::Matrix3d* lower) override;
 
  private:
   /// True when global points i and j have a stored block; notes a misfit otherwise.

@@ -13,10 +13,12 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "filum/core/force_field.hpp"
 #include "filum/mechanics/curve_quadrature.hpp"
 #include "filum/mechanics/elastic_parameters.hpp"
+#include "filum/mechanics/support_hessian_cache.hpp"
 
 namespace filum::mechanics {
 
@@ -39,10 +41,15 @@ class CurvatureBending final : public ForceField {
  private:
   void init(const Scene& scene) override;
 
+  /// The Hessian ∇²E of one piece at q: its count (count + 1) / 2 blocks (a, b <= a) into blocks.
+  template <int Count>
+  void pieceHessian(const QuadraturePiece& piece, const ConstPointsMap& q, Eigen::Matrix3d* blocks) const;
+
   double youngs_modulus_;
   int quadrature_nodes_;
   double bending_stiffness_ = 0.0;  // E I (N·m²)
   CurveQuadrature quadrature_;
+  mutable SupportHessianCache hessian_;  // ∇²E at the last positions asked (see addJacobian)
 };
 
 }  // namespace filum::mechanics

@@ -25,6 +25,12 @@ struct QuadratureNode {
   geometry::BasisRow row;   // b, b', b'' at s_g
 };
 
+/// Consecutive nodes that share one support (a polynomial piece): nodes [begin, end) act on the
+/// points first .. first + count − 1 of the body.
+struct QuadraturePiece {
+  int first = 0, count = 0, begin = 0, end = 0;
+};
+
 class CurveQuadrature {
  public:
   CurveQuadrature() = default;
@@ -34,11 +40,14 @@ class CurveQuadrature {
                   std::optional<double> rest_length);
 
   const std::vector<QuadratureNode>& nodes() const { return nodes_; }
+  /// The nodes grouped by support, in order.
+  const std::vector<QuadraturePiece>& pieces() const { return pieces_; }
   /// ℓ0 = Σ_g w_g |P0'(s_g)| (m).
   double restLength() const { return rest_length_; }
 
  private:
   std::vector<QuadratureNode> nodes_;
+  std::vector<QuadraturePiece> pieces_;
   double rest_length_ = 0.0;
 };
 

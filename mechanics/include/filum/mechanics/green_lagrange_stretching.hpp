@@ -37,6 +37,7 @@
 #include "filum/core/force_field.hpp"
 #include "filum/mechanics/curve_quadrature.hpp"
 #include "filum/mechanics/elastic_parameters.hpp"
+#include "filum/mechanics/support_hessian_cache.hpp"
 #include "filum/mechanics/stiffness_derivative.hpp"
 
 namespace filum::mechanics {
@@ -75,19 +76,16 @@ class GreenLagrangeStretching final : public ForceField, public StiffnessDerivat
     double c = 0.0;     // E A w_g / a0_g (N)
     double a0sq = 0.0;  // |P0'(s_g)|²
   };
-  /// Nodes sharing one support (a polynomial piece): nodes_[begin, end) act on points
-  /// first .. first + count − 1 of the body.
-  struct Piece {
-    int first = 0, count = 0, begin = 0, end = 0;
-  };
   /// Σ_g over one piece of −b'_j c ε x into Q (Count > 0: the support size known at compile time).
   template <int Count>
-  void addPieceForce(const Piece& piece, const double* q, double* Q) const;
+  void addPieceForce(const QuadraturePiece& piece, const double* q, double* Q) const;
+  /// The Hessian ∇²E of one piece at q: its count (count + 1) / 2 blocks (a, b <= a).
+  void pieceHessian(const QuadraturePiece& piece, const double* q, Eigen::Matrix3d* blocks) const;
 
   CurveQuadrature quadrature_;
   std::vector<double> c_;         // E A w_g / a0_g per node (N)
   std::vector<Node> nodes_;
-  std::vector<Piece> pieces_;
+  mutable SupportHessianCache hessian_;  // ∇²E at the last positions asked (see addJacobian)
 };
 
 }  // namespace filum::mechanics
