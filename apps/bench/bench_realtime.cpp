@@ -14,10 +14,11 @@
 // Output: a table on stdout, realtime.csv and, with --plot, realtime.png (apps/tools/
 // plot_realtime.py: strain against wall time per simulated ms, one point per configuration).
 //   build/apps/bench/bench_realtime [--quick] [--repetitions R] [--duration T] [--out DIR] [--plot]
-//                                   [--sizes N...] [--schemes TEXT...] [--scenes NAME...]
+//                                   [--sizes N...] [--schemes TEXT...] [--scenes NAME...] [--step-kinds]
 // --quick: n = 30 and 165 only, 1 s, 3 repetitions, no explicit schemes nor reference scenes.
 // --sizes, --schemes (labels containing one of the texts), --scenes (file stems): run only those;
 // --scenes alone skips the rope, --sizes alone the reference scenes (to profile one of them).
+// --step-kinds: the implicit steps by kind (reused, fresh, refreshed, corrected), mean wall each.
 // Built with -DFILUM_WITH_PEERS=ON it also runs the same rope in Bullet at 4 and 64 solver
 // iterations and in MuJoCo (n <= 165) — apps/bench/peers/ — and adds their rows to the CSV and
 // the plot.
@@ -46,10 +47,21 @@ namespace {
 
 using nlohmann::json;
 
+bool print_step_kinds = false;  // --step-kinds
+
 struct Scheme {
   std::string label;  // as printed and in the CSV
   json integrator;
   bool explicit_scheme = false;
+};
+
+/// Steps of an implicit solver by what they did, with their wall time: reused an earlier matrix
+/// (and its estimate passed), assembled a fresh one, reused and were taken again (refreshed), went
+/// on to Newton after the estimate (corrected). Printed with --step-kinds.
+struct StepKinds {
+  static constexpr const char* kNames[4] = {"reused", "fresh", "refreshed", "corrected"};
+  double wall[4] = {0, 0, 0, 0};  // s
+  long count[4] = {0, 0, 0, 0};
 };
 
 struct Figures {
@@ -59,6 +71,7 @@ struct Figures {
   double dt = 0.0;
   double simulated = 0.0;
   long corrections = -1, estimates = -1, halvings = -1, reuses = -1, refreshes = -1;  // implicit solvers only
+  StepKinds kinds;  // implicit solvers, first run
   std::string failure;
 };
 
@@ -122,10 +135,23 @@ Figures measure(const json& document, const std::string& name, int repetitions) 
     // m g ℓ with ℓ = 1 m; without gravity (taut string) the initial energy itself.
     const double scale = std::max(totalMass(*scene) * scene->settings().gravity.norm() * 1.0, std::abs(e0));
     double strain = 0.0, wall = 0.0;
+    StepKinds kinds;
+    const auto* solver = implicitSolver(*scene);
     for (long k = 0; k < steps; ++k) {
+      const long reuses = solver ? solver->reuses() : 0, refreshes = solver ? solver->refreshes() : 0,
+                 corrections = solver ? solver->corrections() : 0;
       const auto start = std::chrono::steady_clock::now();
       const filum::StepReport report = scene->step();
-      wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double step_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      wall += step_wall;
+      if (solver) {
+        const int kind = solver->corrections() > corrections ? 3
+                         : solver->refreshes() > refreshes   ? 2
+                         : solver->reuses() > reuses         ? 0
+                                                             : 1;
+        kinds.wall[kind] += step_wall;
+        ++kinds.count[kind];
+      }
       if (!report.ok) {
         figures.failure = report.message;
         return figures;
@@ -133,6 +159,7 @@ Figures measure(const json& document, const std::string& name, int repetitions) 
       if (r == 0 && k % sample_every == 0) strain = std::max(strain, maxStrain(*scene));
     }
     walls.push_back(1e3 * wall / (1e3 * steps * dt));
+    if (solver && r == 0) figures.kinds = kinds;
     if (r == 0) {
       figures.max_strain = std::max(strain, maxStrain(*scene));
       figures.energy_drift = (scene->energy(scene->state()).total() - e0) / scale;
@@ -163,6 +190,13 @@ void printRow(std::FILE* csv, const std::string& problem, int n, const std::stri
   if (f.estimates >= 0) std::printf("  corrected %ld/%ld halved %ld", f.corrections, f.estimates, f.halvings);
   if (f.reuses > 0) std::printf(" reused %ld refreshed %ld", f.reuses, f.refreshes);
   std::printf("\n");
+  if (print_step_kinds && f.estimates >= 0) {
+    std::printf("%-22s %5s  steps by kind (first run): ", "", "");
+    for (int k = 0; k < 4; ++k)
+      if (f.kinds.count[k] > 0)
+        std::printf(" %s %ld x %.1f us", StepKinds::kNames[k], f.kinds.count[k], 1e6 * f.kinds.wall[k] / f.kinds.count[k]);
+    std::printf("\n");
+  }
   std::fflush(stdout);
   std::fprintf(csv, "%s,%d,%s,%g,%g,%.6g,%.6g,%.6g,%ld,%ld,%ld,%ld,ok\n", problem.c_str(), n, scheme.c_str(), f.dt,
                f.simulated, f.wall_ms_per_sim_ms, f.max_strain, f.energy_drift, f.corrections, f.halvings, f.reuses,
@@ -186,6 +220,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> scheme_filter, scene_filter;
   cli.add_option("--sizes", sizes, "rope sizes (default 30 50 165 1000; --quick: 30 165)")->check(CLI::Range(4, 100000));
   cli.add_option("--schemes", scheme_filter, "rope schemes whose label contains one of these texts");
+  cli.add_flag("--step-kinds", print_step_kinds, "also print the implicit steps by kind (reused, fresh, refreshed, corrected) with their mean wall time");
   cli.add_option("--scenes", scene_filter, "reference scenes (file stems in apps/scenes) to run; alone, no rope");
   CLI11_PARSE(cli, argc, argv);
   if (quick) {

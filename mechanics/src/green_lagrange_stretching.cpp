@@ -27,6 +27,24 @@ void GreenLagrangeStretching::init(const Scene&) {
     nodes_.push_back({node.row.d1, c_.back(), node.rest_speed * node.rest_speed});
   }
   hessian_.reset(quadrature_.pieces().size(), spline.pointCount());
+  // Every piece with 4 points and 5 nodes (the uniform cubic B-spline's default): the packed
+  // fixed-size form of addCubicPieceForces.
+  cubic_pieces_.clear();
+  const auto& pieces = quadrature_.pieces();
+  if (std::all_of(pieces.begin(), pieces.end(),
+                  [](const QuadraturePiece& piece) { return piece.count == 4 && piece.end - piece.begin == 5; })) {
+    cubic_pieces_.resize(pieces.size());
+    for (std::size_t p = 0; p < pieces.size(); ++p)
+      for (int g = 0; g < 5; ++g) {
+        const Node& node = nodes_[pieces[p].begin + g];
+        for (int j = 0; j < 4; ++j) cubic_pieces_[p].d1(g, j) = node.d1[j];
+        cubic_pieces_[p].c[g] = node.c;
+        cubic_pieces_[p].a0sq[g] = node.a0sq;
+        cubic_pieces_[p].inverse_2a0sq[g] = 1.0 / (2.0 * node.a0sq);
+        for (int a = 0, k = 0; a < 4; ++a)
+          for (int b = 0; b <= a; ++b, ++k) cubic_pieces_[p].pair_products(g, k) = node.d1[a] * node.d1[b];
+      }
+  }
 }
 
 template <int Count>
@@ -49,9 +67,31 @@ void GreenLagrangeStretching::addPieceForce(const QuadraturePiece& piece, const 
   for (int i = 0; i < 3 * count; ++i) target[i] += force[i];
 }
 
+void GreenLagrangeStretching::addCubicPieceForces(const double* q, double* Q) const {
+  // The uniform cubic B-spline with 5 nodes per piece (the default): per piece, as fixed-size
+  // products the compiler vectorizes,
+  //   X = B' P (5 × 3: x_g = P'(s_g) in row g),  S = diag(c_g ε_g) X,  Q_piece −= B'ᵀ S,
+  // with B' (5 × 4) the nodes' basis derivatives and P (4 × 3) the piece's control points.
+  using Points4 = Eigen::Matrix<double, 4, 3, Eigen::RowMajor>;
+  for (std::size_t p = 0; p < quadrature_.pieces().size(); ++p) {
+    const QuadraturePiece& piece = quadrature_.pieces()[p];
+    const CubicPiece& cubic = cubic_pieces_[p];
+    const Eigen::Map<const Points4> points(q + 3 * piece.first);
+    Eigen::Matrix<double, 5, 3> x = cubic.d1 * points;
+    const Eigen::Matrix<double, 5, 1> scale =
+        cubic.c.cwiseProduct(x.rowwise().squaredNorm() - cubic.a0sq).cwiseProduct(cubic.inverse_2a0sq);  // c ε
+    x.array().colwise() *= scale.array();
+    Eigen::Map<Points4>(Q + 3 * piece.first).noalias() -= cubic.d1.transpose() * x;
+  }
+}
+
 void GreenLagrangeStretching::addForce(const SceneState& s, VecX& B) const {
   const double* q = body().block(s.q).data();
   double* Q = body().block(B).data();
+  if (!cubic_pieces_.empty()) {
+    addCubicPieceForces(q, Q);
+    return;
+  }
   for (const QuadraturePiece& piece : quadrature_.pieces()) {
     if (piece.count == 4)  // the cubic B-spline: the support size known at compile time
       addPieceForce<4>(piece, q, Q);
@@ -81,10 +121,17 @@ void GreenLagrangeStretching::addJacobian(const SceneState& s, double k_factor, 
   const auto q = s.q.segment(3 * Eigen::Index(body().offset()), 3 * Eigen::Index(body().pointCount()));
   hessian_.add(quadrature_.pieces(), q, k_factor, body().offset(), out,
                [this](std::size_t p, const double* points, Eigen::Matrix3d* blocks) {
-                 pieceHessian(quadrature_.pieces()[p], points, blocks);
+                 const QuadraturePiece& piece = quadrature_.pieces()[p];
+                 if (!cubic_pieces_.empty())
+                   cubicPieceHessian(piece, cubic_pieces_[p], points, blocks);
+                 else if (piece.count == 4)  // the cubic B-spline: fixed sizes, unrolled
+                   pieceHessian<4>(piece, points, blocks);
+                 else
+                   pieceHessian<0>(piece, points, blocks);
                });
 }
 
+template <int Count>
 void GreenLagrangeStretching::pieceHessian(const QuadraturePiece& piece, const double* q,
                                            Eigen::Matrix3d* blocks) const {
   // Block (a, b) of the Hessian over one piece (its nodes share one support) is
@@ -93,32 +140,55 @@ void GreenLagrangeStretching::pieceHessian(const QuadraturePiece& piece, const d
   // term per node and pair a >= b, instead of a full 3 × 3 product per node and pair. With the
   // definite Jacobian the isotropic term c ε is clamped at 0 (compression).
   constexpr int kMax = geometry::BasisRow::kMaxSupport;
-  constexpr int kPairs = kMax * (kMax + 1) / 2;
-  // Column k of `sums`: pair k = (a, b <= a) of the piece; rows xx xy xz yy yz zz, isotropic, 0.
-  Eigen::Matrix<double, 8, kPairs> sums;
-  Eigen::Matrix<double, 8, 1> outer;
-  Eigen::Matrix<double, 1, kPairs> products;
-  const int count = piece.count, pairs = count * (count + 1) / 2;
+  constexpr int kPairs = Count > 0 ? Count * (Count + 1) / 2 : kMax * (kMax + 1) / 2;
+  const int count = Count > 0 ? Count : piece.count, pairs = count * (count + 1) / 2;
+  // sums[k]: pair k = (a, b <= a) of the piece; xx xy xz yy yz zz, isotropic.
+  std::array<std::array<double, 7>, kPairs> sums{};
   const double* points = q + 3 * piece.first;
-  sums.leftCols(pairs).setZero();
   for (int g = piece.begin; g < piece.end; ++g) {
     const Node& node = nodes_[g];
-    Vec3 x = Vec3::Zero();  // P'(s_g)
-    for (int j = 0; j < count; ++j) x += node.d1[j] * Vec3(points[3 * j], points[3 * j + 1], points[3 * j + 2]);
+    double x[3] = {0.0, 0.0, 0.0};  // P'(s_g)
+    for (int j = 0; j < count; ++j)
+      for (int c = 0; c < 3; ++c) x[c] += node.d1[j] * points[3 * j + c];
     const double beta = node.c / node.a0sq;
-    double isotropic = node.c * (x.squaredNorm() - node.a0sq) / (2.0 * node.a0sq);  // c ε
+    double isotropic = node.c * (x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - node.a0sq) / (2.0 * node.a0sq);  // c ε
     if (definite_jacobian_) isotropic = std::max(isotropic, 0.0);
-    outer << beta * x.x() * x.x(), beta * x.x() * x.y(), beta * x.x() * x.z(), beta * x.y() * x.y(),
-        beta * x.y() * x.z(), beta * x.z() * x.z(), isotropic, 0.0;
-    int k = 0;
-    for (int a = 0; a < count; ++a)
-      for (int b = 0; b <= a; ++b) products[k++] = node.d1[a] * node.d1[b];
-    if (pairs == 10)  // the cubic B-spline: fixed sizes, unrolled
-      sums.leftCols<10>().noalias() += outer * products.leftCols<10>();
-    else
-      sums.leftCols(pairs).noalias() += outer * products.leftCols(pairs);  // rank-one update
+    const double outer[7] = {beta * x[0] * x[0], beta * x[0] * x[1], beta * x[0] * x[2], beta * x[1] * x[1],
+                             beta * x[1] * x[2], beta * x[2] * x[2], isotropic};
+    for (int a = 0, k = 0; a < count; ++a)
+      for (int b = 0; b <= a; ++b, ++k) {
+        const double p = node.d1[a] * node.d1[b];
+        for (int r = 0; r < 7; ++r) sums[k][r] += p * outer[r];
+      }
   }
   for (int k = 0; k < pairs; ++k) {
+    const auto& m = sums[k];
+    blocks[k] << m[0] + m[6], m[1], m[2], m[1], m[3] + m[6], m[4], m[2], m[4], m[5] + m[6];
+  }
+}
+
+void GreenLagrangeStretching::cubicPieceHessian(const QuadraturePiece& piece, const CubicPiece& cubic, const double* q,
+                                                Eigen::Matrix3d* blocks) const {
+  // pieceHessian's sums as one fixed-size product: sums (7 × 10) = O (7 × 5) · Π (5 × 10), column g
+  // of O the node's xx xy xz yy yz zz terms β x xᵀ and its isotropic term c ε, Π(g, k) the pair
+  // k's basis product b'_a b'_b at node g (kept with the piece).
+  using Points4 = Eigen::Matrix<double, 4, 3, Eigen::RowMajor>;
+  const Eigen::Map<const Points4> points(q + 3 * piece.first);
+  const Eigen::Matrix<double, 5, 3> x = cubic.d1 * points;
+  const Eigen::Matrix<double, 5, 1> beta = cubic.c.cwiseQuotient(cubic.a0sq);
+  Eigen::Matrix<double, 5, 1> isotropic =
+      cubic.c.cwiseProduct(x.rowwise().squaredNorm() - cubic.a0sq).cwiseProduct(cubic.inverse_2a0sq);  // c ε
+  if (definite_jacobian_) isotropic = isotropic.cwiseMax(0.0);
+  Eigen::Matrix<double, 5, 7> outer;  // row g: O's column g
+  outer.col(0) = beta.cwiseProduct(x.col(0).cwiseProduct(x.col(0)));
+  outer.col(1) = beta.cwiseProduct(x.col(0).cwiseProduct(x.col(1)));
+  outer.col(2) = beta.cwiseProduct(x.col(0).cwiseProduct(x.col(2)));
+  outer.col(3) = beta.cwiseProduct(x.col(1).cwiseProduct(x.col(1)));
+  outer.col(4) = beta.cwiseProduct(x.col(1).cwiseProduct(x.col(2)));
+  outer.col(5) = beta.cwiseProduct(x.col(2).cwiseProduct(x.col(2)));
+  outer.col(6) = isotropic;
+  const Eigen::Matrix<double, 7, 10> sums = outer.transpose() * cubic.pair_products;
+  for (int k = 0; k < 10; ++k) {
     const auto m = sums.col(k);
     blocks[k] << m[0] + m[6], m[1], m[2], m[1], m[3] + m[6], m[4], m[2], m[4], m[5] + m[6];
   }

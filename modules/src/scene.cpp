@@ -191,20 +191,35 @@ std::string Scene::findNonFinite(const VecX& v) const {
 void Scene::computeForce(const SceneState& s, VecX& B) {
   // Stage 3a: accumulate generalized forces B (paper eq. 2): gravity and every force field.
   B.setZero(3 * point_count_);
+  addForces(s, B);
+  // One finiteness check per evaluation; only when it fails are the sources evaluated again one
+  // by one, to name the first that produced a non-finite force (the step is rolled back anyway).
+  if (fault_.empty() && !B.allFinite()) fault_ = nonFiniteForceSource(s);
+}
+
+void Scene::addForces(const SceneState& s, VecX& B) const {
   for (const MechanicalState* body : bodies_) body->addGravity(settings_.gravity, body->block(B));
-  for (const ForceField* field : force_fields_) {
-    field->addForce(s, B);
-    if (fault_.empty() && !B.allFinite()) fault_ = field->describe() + " produced a non-finite force";
-  }
+  for (const ForceField* field : force_fields_) field->addForce(s, B);
   // Contact penalties of the step's contact set (stage 2 detected it).
-  if (collision_) {
-    collision_->addForce(s, B);
-    if (fault_.empty() && !B.allFinite()) fault_ = collision_->describe() + " produced a non-finite contact force";
-  }
+  if (collision_) collision_->addForce(s, B);
   // Known constraint forces (friction along a sliding point's tangent).
   for (const Constraint* c : constraints_)
     if (c->active()) c->addForce(s, B);
-  if (fault_.empty() && !B.allFinite()) fault_ = "a constraint produced a non-finite force";
+}
+
+std::string Scene::nonFiniteForceSource(const SceneState& s) const {
+  VecX B = VecX::Zero(3 * point_count_);
+  for (const MechanicalState* body : bodies_) body->addGravity(settings_.gravity, body->block(B));
+  if (!B.allFinite()) return "gravity produced a non-finite force";
+  for (const ForceField* field : force_fields_) {
+    field->addForce(s, B);
+    if (!B.allFinite()) return field->describe() + " produced a non-finite force";
+  }
+  if (collision_) {
+    collision_->addForce(s, B);
+    if (!B.allFinite()) return collision_->describe() + " produced a non-finite contact force";
+  }
+  return "a constraint produced a non-finite force";
 }
 
 void Scene::applyConstraints(const SceneState& s, const BlockInverse& inverse, VecX& a) {

@@ -59,6 +59,7 @@ class BlockBandLdlt {
   // Row I holds blocks (I, I − r .. I); after factor() the strictly lower ones are L, the
   // diagonal one D_I as its own LDLᵀ (δ on the diagonal, the unit lower factor below).
   std::vector<Eigen::Matrix3d> blocks_;
+  std::vector<Eigen::Vector3d> reciprocals_;  // 1/δ of each D_I (after factor())
   std::vector<Eigen::Matrix3d> work_;  // W_Ik = L_Ik D_k of the row being factored (r + 1)
 };
 

@@ -79,7 +79,19 @@ class GreenLagrangeStretching final : public ForceField, public StiffnessDerivat
   /// Σ_g over one piece of −b'_j c ε x into Q (Count > 0: the support size known at compile time).
   template <int Count>
   void addPieceForce(const QuadraturePiece& piece, const double* q, double* Q) const;
+  /// addForce for a body whose pieces are all cubic with 5 nodes (cubic_pieces_).
+  void addCubicPieceForces(const double* q, double* Q) const;
+  /// A piece of 4 points and 5 nodes, packed for fixed-size products.
+  struct CubicPiece {
+    Eigen::Matrix<double, 5, 4> d1;  // b'_j(s_g)
+    Eigen::Matrix<double, 5, 1> c, a0sq, inverse_2a0sq;
+    Eigen::Matrix<double, 5, 10> pair_products;  // b'_a b'_b of pair k = a (a + 1) / 2 + b at node g
+  };
+  std::vector<CubicPiece> cubic_pieces_;  // empty unless every piece is one
+  void cubicPieceHessian(const QuadraturePiece& piece, const CubicPiece& cubic, const double* q,
+                         Eigen::Matrix3d* blocks) const;
   /// The Hessian ∇²E of one piece at q: its count (count + 1) / 2 blocks (a, b <= a).
+  template <int Count>
   void pieceHessian(const QuadraturePiece& piece, const double* q, Eigen::Matrix3d* blocks) const;
 
   CurveQuadrature quadrature_;

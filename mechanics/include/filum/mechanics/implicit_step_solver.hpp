@@ -45,9 +45,10 @@
 // which also refreshes the matrix for the next steps. Newton is not continued from the stale
 // step's a_1: that iterate can be far off, and Newton from it failed often enough to halve
 // hanging_thread.json's steps 755 times in 2 s (none from a fresh start). reuses() counts the
-// steps that reused a matrix, refreshes() those taken again. After a refresh the next 1, 3, 7 …
-// 31 steps (doubling with each failure in a row) do not reuse: in scenes where most reuses fail
-// (a thread snapping taut, sliding points) reuse would cost more than it saves.
+// steps that reused a matrix, refreshes() those taken again (from the force at a_0 the stale
+// attempt evaluated). The next step reuses the fresh matrix; when that fails too, the next 1, 3,
+// 7 … 31 steps (doubling with each failure in a row) do not reuse: in scenes where most reuses
+// fail (a thread snapping taut, sliding points) reuse would cost more than it saves.
 // Accuracy: a reused step passes the same estimate, but its error sits near the tolerance where a
 // fresh linearized step's is far below it. On the benchmark rope (apps/scenes/rope.json, 165
 // points, 1 s) the control points end within 1e-8 m of Newton's backward Euler without reuse
@@ -152,7 +153,9 @@ class ImplicitStepSolver {
   /// What solve() does once: with may_reuse, the first iteration may solve with an earlier
   /// factorization; kStale when it did and its estimate failed.
   enum class Attempt { kConverged, kNotConverged, kFailed, kStale };
-  Attempt iterate(Scene& scene, const SceneState& s0, double h, double theta, double kappa, VecX& a, bool may_reuse);
+  /// first_force_known: the force at a_0 is first_force_ (kept by the stale attempt before).
+  Attempt iterate(Scene& scene, const SceneState& s0, double h, double theta, double kappa, VecX& a, bool may_reuse,
+                  bool first_force_known = false);
   /// next_ = a + A⁻¹ r with r in force_ (overwritten), constrained; false if not finite.
   bool update(Scene& scene, const SceneState& s0, const VecX& a, int k);
 
@@ -161,6 +164,7 @@ class ImplicitStepSolver {
   SceneState eval_;      // the state the forces are evaluated at
   VecX a_, force_, ma_, next_;
   VecX residual_;  // Q − M a at a_1, kept for the Newton iteration that may follow the estimate
+  VecX first_force_;  // Q at a_0 of an attempt that reuses a matrix (the fresh attempt after it starts there)
   std::string failure_;
   int last_iterations_ = 0;
   long total_iterations_ = 0;

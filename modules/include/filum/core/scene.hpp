@@ -163,6 +163,11 @@ class Scene {
   MechanicalState* bodyAt(const std::string& path) const;
 
  private:
+  /// B += gravity, force fields, contact penalties and known constraint forces at s.
+  void addForces(const SceneState& s, VecX& B) const;
+  /// Which of addForces' sources first makes a force non-finite at s (a message naming it).
+  std::string nonFiniteForceSource(const SceneState& s) const;
+
   void bindBodyComponent(BodyComponent& component);
   /// Names the first non-finite block of v (per body) or returns "".
   std::string findNonFinite(const VecX& v) const;
