@@ -29,6 +29,7 @@ DynamicSpline::DynamicSpline(std::unique_ptr<geometry::SplineBasis> basis, Point
       radius_(radius),
       rest_length_(arcLength(*basis_, initial_)),
       mass_matrix_(mechanics::massMatrix(*basis_, mass)),
+      mass_band_(mass_matrix_, basis_->degree()),
       factor_(mass_matrix_, basis_->degree()),
       basis_integrals_(basisIntegrals(*basis_)) {}
 
@@ -62,6 +63,7 @@ void DynamicSpline::adopt(int degree, std::vector<double> knots, const SparseMat
   initial_ = R * initial_;  // the rest shape, mapped like any configuration
   if (initial_velocities_.rows() > 0) initial_velocities_ = R * initial_velocities_;  // Ṗ = Σ b_i q̇_i: the same map
   mass_matrix_ = mechanics::massMatrix(*basis_, mass_);
+  mass_band_ = ScalarBand(mass_matrix_, basis_->degree());
   factor_ = BandedCholesky(mass_matrix_, basis_->degree());
   basis_integrals_ = basisIntegrals(*basis_);
   noteLayoutChange();

@@ -31,12 +31,12 @@ void ParametricBending::init(const Scene&) {
   const int n = spline.pointCount();
   stiffness_.resize(n, n);
   stiffness_.setFromTriplets(entries.begin(), entries.end());
+  band_ = ScalarBand(stiffness_, spline.basis().degree());
   kq_.setZero(n, 3);
 }
 
 void ParametricBending::addForce(const SceneState& s, VecX& B) const {
-  kq_.noalias() = stiffness_ * body().block(s.q);  // Q = −K_b q
-  body().block(B) -= kq_;
+  band_.subtractProduct(body().block(s.q), body().block(B));  // Q = −K_b q
 }
 
 double ParametricBending::potentialEnergy(const SceneState& s) const {

@@ -3,6 +3,8 @@
 
 #include <iostream>
 #include <limits>
+#include <memory>
+#include <stdexcept>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -10,6 +12,7 @@
 #include "filum/geometry/uniform_cubic_bspline.hpp"
 #include "filum/mechanics/banded_cholesky.hpp"
 #include "filum/mechanics/mass_matrix.hpp"
+#include "filum/mechanics/scalar_band.hpp"
 #include "support/finite_difference.hpp"
 
 namespace filum::mechanics {
@@ -100,3 +103,26 @@ TEST(GravityForce, AFreeThreadFallsAtExactlyG) {
 
 }  // namespace
 }  // namespace filum::mechanics
+
+namespace filum {
+namespace {
+
+TEST(ScalarBand, ProductsEqualTheSparseMatrixProducts) {
+  // The band product sums the same entries in another order: equal to a few ulps of the row's
+  // |A| |x| (≤ 2r + 1 terms, each rounded once: (2r + 1) ε relative is asserted).
+  const auto basis = std::make_unique<geometry::UniformCubicBSpline>(40);
+  const SparseMatrix M = mechanics::massMatrix(*basis, 0.3);
+  const mechanics::ScalarBand band(M, basis->degree());
+  const Points x = Points::Random(40, 3);
+  Points y(40, 3), z = Points::Ones(40, 3);
+  band.multiply(x, y);
+  const Points expected = M * x;
+  const double bound = 7 * std::numeric_limits<double>::epsilon() * (M.cwiseAbs() * x.cwiseAbs()).maxCoeff();
+  EXPECT_LE((y - expected).cwiseAbs().maxCoeff(), bound);
+  band.subtractProduct(x, z);
+  EXPECT_LE((z - (Points::Ones(40, 3) - expected)).cwiseAbs().maxCoeff(), 2 * bound);
+  EXPECT_THROW(mechanics::ScalarBand(M, 2), std::logic_error);  // entries 3 apart do not fit
+}
+
+}  // namespace
+}  // namespace filum

@@ -13,6 +13,7 @@
 #include "filum/geometry/bspline_curve.hpp"
 #include "filum/geometry/spline_basis.hpp"
 #include "filum/mechanics/banded_cholesky.hpp"
+#include "filum/mechanics/scalar_band.hpp"
 
 namespace filum::mechanics {
 
@@ -52,7 +53,7 @@ class DynamicSpline final : public CurveBody {
   /// Velocities at t = 0 (n × 3, m/s); zero unless set.
   void setInitialVelocities(Points velocities);
   void solveMass(PointsRef B) const override { factor_.solve(B); }
-  void multiplyMass(ConstPointsRef x, PointsRef out) const override { out.noalias() = mass_matrix_ * x; }
+  void multiplyMass(ConstPointsRef x, PointsRef out) const override { mass_band_.multiply(x, out); }
   /// factor·(M ⊗ I₃) from the sparse M: 2d + 1 isotropic entries per control point.
   void addMassMatrix(double factor, JacobianAccumulator& out) const override;
   int couplingRange() const override { return basis_->degree(); }
@@ -89,6 +90,7 @@ class DynamicSpline final : public CurveBody {
   double radius_;             // cross-section radius (m)
   double rest_length_;        // arc length of the initial curve (m)
   SparseMatrix mass_matrix_;  // M (n × n)
+  ScalarBand mass_band_;      // M as a band (half bandwidth: the degree), for products
   BandedCholesky factor_;     // M = L Lᵀ, computed once
   VecX basis_integrals_;      // w_i = ∫ b_i ds (n)
 };

@@ -16,6 +16,7 @@
 
 #include "filum/core/force_field.hpp"
 #include "filum/mechanics/elastic_parameters.hpp"
+#include "filum/mechanics/scalar_band.hpp"
 #include "filum/mechanics/stiffness_derivative.hpp"
 
 namespace filum::mechanics {
@@ -46,6 +47,7 @@ class ParametricBending final : public ForceField, public StiffnessDerivative {
   ElasticParameters parameters_;
   double bending_stiffness_ = 0.0;
   SparseMatrix stiffness_;  // K_b
+  ScalarBand band_;         // K_b as a band, for the force
   mutable Points kq_;       // workspace K_b q
 };
 
