@@ -6,7 +6,7 @@ namespace filum::mechanics {
 
 void ExplicitEuler::step(Scene& scene, SceneState& s, double dt) {
   scene.computeAcceleration(s, a_);
-  s.q += dt * s.v;  // with v_n, before the velocity update
+  scene.integratePositions(s.q, s.v, dt, s.q);  // q ⊕ dt v with v_n, before the velocity update
   s.v += dt * a_;
   s.time += dt;
 }

@@ -63,7 +63,7 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
   // a holds the 3N point accelerations, then those of the constraints' extra DOFs (a sliding
   // point's s̈): these follow from the constrained point accelerations (Scene::applyConstraints,
   // stage 3d), so the Newton system and its convergence test are on the points only.
-  const Eigen::Index size = s0.q.size();
+  const Eigen::Index size = scene.velocitySize();  // = s0.q.size(): no internal DOFs under implicit steps (Scene::init)
   const Eigen::Index n3 = 3 * scene.dofPointCount();
   a.setZero(size);  // a_0 = 0: the first iterate evaluates forces at (q0 + θh v0, v0)
   eval_.time = s0.time + theta * h;
@@ -96,7 +96,7 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
     if (k == 0 && may_reuse) first_force_ = force_;  // for the fresh attempt, should this one be stale
     if (k > 0) {  // a_0 = 0: M a_0 = 0
       for (const MechanicalState* body : scene.bodies()) body->multiplyMass(body->block(a), body->block(ma_));
-      force_ -= ma_;
+      force_.head(n3) -= ma_;
     }
 
     // A = M − θh D − κh² K at the iterate, factored: at every Newton iterate, at the first only
@@ -180,10 +180,11 @@ bool ImplicitStepSolver::assembleAt(const Scene& scene, double h, double theta, 
 bool ImplicitStepSolver::update(Scene& scene, const SceneState& s0, const VecX& a, int k) {
   // next = a + A⁻¹ r (r in force_, solved in place), then constrained through A⁻¹ (which also
   // sets the extra DOFs' accelerations after the points).
-  matrix_.solveAll(force_);
-  const Eigen::Index n3 = force_.size();
+  // The forces are laid out as v (scene_state.hpp): the points' 3N, then the extra DOFs (no force).
+  const Eigen::Index n3 = 3 * scene.dofPointCount();
+  matrix_.solveAll(force_.head(n3));
   next_.resize(a.size());
-  next_.head(n3) = a.head(n3) + force_;
+  next_.head(n3) = a.head(n3) + force_.head(n3);
   next_.tail(a.size() - n3).setZero();
   scene.applyConstraints(s0, matrix_, next_);
   if (next_.allFinite()) return true;

@@ -7,7 +7,7 @@ namespace filum::mechanics {
 void SymplecticEuler::step(Scene& scene, SceneState& s, double dt) {
   scene.computeAcceleration(s, a_);
   s.v += dt * a_;
-  s.q += dt * s.v;
+  scene.integratePositions(s.q, s.v, dt, s.q);  // q ⊕ dt v_{n+1}
   s.time += dt;
 }
 

@@ -101,10 +101,20 @@ void Scene::init() {
   for (ForceField* f : force_fields_) bindBodyComponent(*f);
   for (Constraint* c : constraints_) bindBodyComponent(*c);
   setExtraIndices();
-  state_.q.conservativeResize(3 * point_count_ + extra_count_);
-  state_.v.setZero(3 * point_count_ + extra_count_);
+  setInternalOffsets();
+  state_.q.conservativeResize(positionSize());
+  state_.v.setZero(velocitySize());
   for (MechanicalState* body : bodies_) body->initialVelocities(body->block(state_.v));
   for (const Constraint* c : constraints_) c->initialExtra(state_.q);
+  for (const MechanicalState* body : bodies_)
+    body->initialInternalState(body->internalPositions(state_.q), body->internalVelocities(state_.v));
+  if (hasInternalDofs() && integrator_->needsJacobians())
+    for (const MechanicalState* body : bodies_)
+      if (body->internalVelocityCount() > 0)
+        throw SceneError(body->origin(),
+                         "an explicit integrator for a body with internal DOFs (implicit steps assemble the points' "
+                         "matrix only)",
+                         integrator_->typeName());
   for (Constraint* c : constraints_) c->updateRelease(state_);
   if (integrator_->needsJacobians())
     for (const ForceField* f : force_fields_)
@@ -129,6 +139,33 @@ void Scene::setExtraIndices() {
   }
 }
 
+void Scene::setInternalOffsets() {
+  const int start = 3 * point_count_ + extra_count_;
+  internal_position_count_ = 0;
+  internal_velocity_count_ = 0;
+  for (MechanicalState* body : bodies_) {
+    body->setInternalOffsets(start + internal_position_count_, start + internal_velocity_count_);
+    internal_position_count_ += body->internalPositionCount();
+    internal_velocity_count_ += body->internalVelocityCount();
+  }
+  internal_increment_.setZero(internal_velocity_count_);
+}
+
+void Scene::integratePositions(const VecX& q0, const VecX& w, double h, VecX& q1) const {
+  // Points and extra DOFs: q + h w. Internal DOFs: each body's own q ⊕ h w.
+  const Eigen::Index linear = 3 * Eigen::Index(point_count_) + extra_count_;
+  if (&q1 != &q0) q1.resize(q0.size());
+  q1.head(linear) = q0.head(linear) + h * w.head(linear);
+  if (!hasInternalDofs()) return;
+  for (const MechanicalState* body : bodies_) {
+    const int nv = body->internalVelocityCount();
+    if (nv == 0 && body->internalPositionCount() == 0) continue;
+    auto increment = internal_increment_.head(nv);
+    increment = h * body->internalVelocities(w);
+    body->integrateInternal(body->internalPositions(q0), increment, body->internalPositions(q1));
+  }
+}
+
 void Scene::bindComponents() {
   for (ForceField* f : force_fields_) bindBodyComponent(*f);
   for (Constraint* c : constraints_) bindBodyComponent(*c);
@@ -143,7 +180,7 @@ void Scene::bindComponents() {
 }
 
 void Scene::resizeWorkspace() {
-  force_.setZero(3 * point_count_);
+  force_.setZero(velocitySize());
   last_good_ = state_;
   substep_start_.assign(kMaxContactHalvings + 1, state_);
 }
@@ -190,7 +227,7 @@ std::string Scene::findNonFinite(const VecX& v) const {
 
 void Scene::computeForce(const SceneState& s, VecX& B) {
   // Stage 3a: accumulate generalized forces B (paper eq. 2): gravity and every force field.
-  B.setZero(3 * point_count_);
+  B.setZero(velocitySize());
   addForces(s, B);
   // One finiteness check per evaluation; only when it fails are the sources evaluated again one
   // by one, to name the first that produced a non-finite force (the step is rolled back anyway).
@@ -198,7 +235,10 @@ void Scene::computeForce(const SceneState& s, VecX& B) {
 }
 
 void Scene::addForces(const SceneState& s, VecX& B) const {
-  for (const MechanicalState* body : bodies_) body->addGravity(settings_.gravity, body->block(B));
+  for (const MechanicalState* body : bodies_) {
+    body->addGravity(settings_.gravity, body->block(B));
+    if (body->internalVelocityCount() > 0) body->addInternalForce(s, body->internalVelocities(B));
+  }
   for (const ForceField* field : force_fields_) field->addForce(s, B);
   // Contact penalties of the step's contact set (stage 2 detected it).
   if (collision_) collision_->addForce(s, B);
@@ -208,9 +248,13 @@ void Scene::addForces(const SceneState& s, VecX& B) const {
 }
 
 std::string Scene::nonFiniteForceSource(const SceneState& s) const {
-  VecX B = VecX::Zero(3 * point_count_);
-  for (const MechanicalState* body : bodies_) body->addGravity(settings_.gravity, body->block(B));
-  if (!B.allFinite()) return "gravity produced a non-finite force";
+  VecX B = VecX::Zero(velocitySize());
+  for (const MechanicalState* body : bodies_) {
+    body->addGravity(settings_.gravity, body->block(B));
+    if (!B.allFinite()) return "gravity produced a non-finite force";
+    if (body->internalVelocityCount() > 0) body->addInternalForce(s, body->internalVelocities(B));
+    if (!B.allFinite()) return body->describe() + " produced a non-finite force on its internal DOFs";
+  }
   for (const ForceField* field : force_fields_) {
     field->addForce(s, B);
     if (!B.allFinite()) return field->describe() + " produced a non-finite force";
@@ -236,7 +280,7 @@ void Scene::applyConstraints(const SceneState& s, const BlockInverse& inverse, V
   if (contact_rows > 0) collision_->takeMultipliers(constraint_solver_->multipliers(), first_contact_row);
   // Stage 3d: accelerations of the constraints' extra DOFs (a sliding point's s̈ by the direct
   // relation of talk 002), from the constrained point accelerations.
-  if (extra_count_ > 0 && a.size() == 3 * point_count_ + extra_count_)
+  if (extra_count_ > 0 && a.size() == velocitySize())
     for (const Constraint* c : constraints_)
       if (c->extraDofCount() > 0) c->extraAcceleration(s, a);
   if (fault_.empty() && !a.allFinite()) fault_ = constraint_solver_->describe() +
@@ -248,10 +292,12 @@ void Scene::computeAcceleration(const SceneState& s, VecX& a) {
   computeForce(s, force_);
   // Stage 3b: tendency accelerations A_t = M⁻¹ B, one banded solve per body (paper eq. 3);
   // a also holds the extra DOFs after the points (scene_state.hpp), set by applyConstraints.
-  a.resize(3 * point_count_ + extra_count_);
-  a.head(3 * point_count_) = force_;
-  a.tail(extra_count_).setZero();
-  for (const MechanicalState* body : bodies_) body->solveMass(body->block(a));
+  a = force_;  // velocity layout: points, extra DOFs (no force: set by applyConstraints), internal DOFs
+  a.segment(3 * point_count_, extra_count_).setZero();
+  for (const MechanicalState* body : bodies_) {
+    body->solveMass(body->block(a));
+    if (body->internalVelocityCount() > 0) body->solveInternalMass(body->internalVelocities(a));
+  }
   applyConstraints(s, mass_inverse_, a);
 }
 
@@ -394,6 +440,11 @@ Energy Scene::energy(const SceneState& s) const {
   for (const MechanicalState* body : bodies_) {
     e.kinetic += body->kineticEnergy(body->block(s.v));
     e.potential += body->gravityPotential(settings_.gravity, body->block(s.q));
+    if (body->internalVelocityCount() > 0) {  // ½ vᵀ M v of the internal DOFs
+      VecX mv(body->internalVelocityCount());
+      body->multiplyInternalMass(body->internalVelocities(s.v), mv);
+      e.kinetic += 0.5 * body->internalVelocities(s.v).dot(mv);
+    }
   }
   for (const ForceField* field : force_fields_) e.potential += field->potentialEnergy(s);
   return e;
@@ -413,14 +464,25 @@ VecX Scene::constraintViolation(const SceneState& s) const {
   return g;
 }
 
+namespace {
+/// Refining or coarsening maps points only: a body with internal DOFs per point is refused.
+void requirePointsOnly(const CurveBody& body, const char* what) {
+  if (body.internalVelocityCount() > 0 || body.internalPositionCount() > 0)
+    throw SceneError(body.origin(), std::string("a body of points only to ") + what,
+                     body.describe() + ", which has internal DOFs (their map is not defined)");
+}
+}  // namespace
+
 void Scene::refine(CurveBody& body, const std::vector<double>& abscissas) {
   if (!initialized_) init();
+  requirePointsOnly(body, "insert control points into");
   const SparseMatrix A = body.refine(abscissas);  // throws before changing anything
   relayout(body, A);
 }
 
 bool Scene::coarsen(CurveBody& body, double abscissa, double tolerance) {
   if (!initialized_) init();
+  requirePointsOnly(body, "remove control points from");
   const SparseMatrix R = body.coarsen(abscissa, body.block(state_.q), tolerance);
   if (R.rows() == 0) return false;  // the curve would move further than the tolerance
   relayout(body, R);
@@ -434,15 +496,21 @@ void Scene::relayout(const CurveBody& body, const SparseMatrix& A) {
   // The old layout, to carry the state over: state_ and the offsets are still those of before
   // the body changed its points (a layout change may allocate).
   const SceneState old = state_;
-  std::vector<int> old_offsets;
-  for (const MechanicalState* b : bodies_) old_offsets.push_back(b->offset());
+  const int old_extras = 3 * point_count_;
+  std::vector<int> old_offsets, old_internal_q, old_internal_v;
+  for (const MechanicalState* b : bodies_) {
+    old_offsets.push_back(b->offset());
+    old_internal_q.push_back(b->internalPositionOffset());
+    old_internal_v.push_back(b->internalVelocityOffset());
+  }
   point_count_ = 0;
   for (MechanicalState* b : bodies_) {
     b->setOffset(point_count_);
     point_count_ += b->pointCount();
   }
-  state_.q.resize(3 * point_count_ + extra_count_);
-  state_.v.resize(3 * point_count_ + extra_count_);
+  setInternalOffsets();
+  state_.q.resize(positionSize());
+  state_.v.resize(velocitySize());
   for (std::size_t k = 0; k < bodies_.size(); ++k) {
     MechanicalState* b = bodies_[k];
     const int n = b == &body ? static_cast<int>(A.cols()) : b->pointCount();
@@ -455,8 +523,15 @@ void Scene::relayout(const CurveBody& body, const SparseMatrix& A) {
       b->block(state_.v) = v;
     }
   }
-  state_.q.tail(extra_count_) = old.q.tail(extra_count_);  // abscissas: s is kept by both
-  state_.v.tail(extra_count_) = old.v.tail(extra_count_);
+  // Abscissas: s is kept by both. Internal DOFs of the other bodies: carried over as they are
+  // (Scene::refine and coarsen refuse a body that has its own).
+  state_.q.segment(3 * point_count_, extra_count_) = old.q.segment(old_extras, extra_count_);
+  state_.v.segment(3 * point_count_, extra_count_) = old.v.segment(old_extras, extra_count_);
+  for (std::size_t k = 0; k < bodies_.size(); ++k) {
+    const MechanicalState* b = bodies_[k];
+    b->internalPositions(state_.q) = old.q.segment(old_internal_q[k], b->internalPositionCount());
+    b->internalVelocities(state_.v) = old.v.segment(old_internal_v[k], b->internalVelocityCount());
+  }
   ++layout_revision_;
   bindComponents();
 }

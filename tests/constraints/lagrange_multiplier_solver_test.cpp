@@ -169,7 +169,7 @@ TEST(LagrangeMultiplierSolver, GeneralOperatorsGiveTheSameAccelerations) {
   VecX force, tendency(s.q.size());
   scene->computeForce(s, force);
   tendency.setZero();
-  tendency.head(n3) = force;
+  tendency.head(n3) = force.head(n3);  // forces are laid out as v: points first
   for (const MechanicalState* body : scene->bodies()) body->solveMass(body->block(tendency));
   ConstraintRows rows;
   rows.clear();

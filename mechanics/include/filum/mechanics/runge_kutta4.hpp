@@ -20,6 +20,7 @@ class RungeKutta4 final : public Integrator {
  private:
   SceneState stage_;
   VecX a1_, a2_, a3_, a4_, v2_, v3_, v4_;
+  VecX velocity_;  // v1 + 2 v2 + 2 v3 + v4
 };
 
 }  // namespace filum::mechanics

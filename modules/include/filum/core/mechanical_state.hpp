@@ -3,6 +3,16 @@
 //
 // The values of the DOFs live in the scene's SceneState (one flat vector for every body);
 // a MechanicalState only knows its block [offset, offset + pointCount) of it.
+//
+// Internal DOFs. A body may have DOFs besides its points: a rod node's rotation, a twist angle.
+// They may have more positions than velocities (nq ≠ nv: a unit quaternion, 4 numbers, in q; an
+// angular velocity, 3, in v), and they sit after every body's points and the constraints' extra
+// DOFs (scene_state.hpp), so that points are laid out alike in q and v and every client that
+// works on points (constraints, collision, visual) is unaffected by them. The body declares
+// their counts and provides what integrators need of them: q1 = q0 ⊕ w (integrateInternal: move
+// positions along a velocity-space increment) and w = q1 ⊖ q0 (differenceInternal), their mass
+// operator (solveInternalMass, multiplyInternalMass) and the forces the body itself exerts on them
+// (addInternalForce: e.g. the gyroscopic torque −ω × Jω of a rotating frame).
 #pragma once
 
 #include "filum/core/component.hpp"
@@ -54,6 +64,47 @@ class MechanicalState : public Component {
   /// Kinetic energy ½ Σ_α (v^α)ᵀ M v^α (J).
   double kineticEnergy(ConstPointsRef v) const;
 
+  // Internal DOFs (see the header). Their blocks: q.segment(internalPositionOffset(), nq),
+  // v.segment(internalVelocityOffset(), nv), and the same as v for forces and accelerations.
+
+  /// nq and nv: internal position and velocity values (0 for a body of points only).
+  virtual int internalPositionCount() const { return 0; }
+  virtual int internalVelocityCount() const { return 0; }
+  /// Their values at t = 0 (q: nq, v: nv).
+  virtual void initialInternalState(Eigen::Ref<VecX> /*q*/, Eigen::Ref<VecX> /*v*/) const {}
+  /// q1 = q0 ⊕ w: the internal positions q0 moved along the velocity-space increment w (nv),
+  /// e.g. a unit quaternion turned by the rotation vector w. q1 may alias q0. Default q0 + w.
+  virtual void integrateInternal(Eigen::Ref<const VecX> q0, Eigen::Ref<const VecX> w, Eigen::Ref<VecX> q1) const {
+    q1 = q0 + w;
+  }
+  /// w = q1 ⊖ q0, the increment that integrateInternal maps q0 to q1 by. Default q1 − q0.
+  virtual void differenceInternal(Eigen::Ref<const VecX> q1, Eigen::Ref<const VecX> q0, Eigen::Ref<VecX> w) const {
+    w = q1 - q0;
+  }
+  /// B += the generalized forces of the body itself on its internal DOFs at state s (B: the
+  /// internal velocity block), e.g. the gyroscopic torque of a rotating frame.
+  virtual void addInternalForce(const SceneState& /*s*/, Eigen::Ref<VecX> /*B*/) const {}
+  /// In place B := M⁻¹ B and out := M x on the internal velocity block.
+  virtual void solveInternalMass(Eigen::Ref<VecX> /*B*/) const {}
+  virtual void multiplyInternalMass(Eigen::Ref<const VecX> /*x*/, Eigen::Ref<VecX> out) const { out.setZero(); }
+
+  /// Where the internal blocks start in q and in v (set by Scene::init).
+  int internalPositionOffset() const { return internal_position_offset_; }
+  int internalVelocityOffset() const { return internal_velocity_offset_; }
+  void setInternalOffsets(int position, int velocity) {
+    internal_position_offset_ = position;
+    internal_velocity_offset_ = velocity;
+  }
+  /// This body's internal block of a position vector (q) or of a velocity-layout vector (v, a, B).
+  Eigen::Ref<const VecX> internalPositions(const VecX& q) const {
+    return q.segment(internal_position_offset_, internalPositionCount());
+  }
+  Eigen::Ref<VecX> internalPositions(VecX& q) const { return q.segment(internal_position_offset_, internalPositionCount()); }
+  Eigen::Ref<const VecX> internalVelocities(const VecX& v) const {
+    return v.segment(internal_velocity_offset_, internalVelocityCount());
+  }
+  Eigen::Ref<VecX> internalVelocities(VecX& v) const { return v.segment(internal_velocity_offset_, internalVelocityCount()); }
+
   /// Index of this body's first point in the scene's state (set by Scene::init).
   int offset() const { return offset_; }
   void setOffset(int offset) { offset_ = offset; }
@@ -66,6 +117,7 @@ class MechanicalState : public Component {
 
  private:
   int offset_ = 0;
+  int internal_position_offset_ = 0, internal_velocity_offset_ = 0;
 };
 
 }  // namespace filum

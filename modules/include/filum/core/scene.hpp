@@ -146,6 +146,17 @@ class Scene {
   int dofPointCount() const { return point_count_; }
   /// Number E of extra scalar DOFs (constraints' own, after the 3N point coordinates).
   int extraDofCount() const { return extra_count_; }
+  /// Sizes of q and of v (and of forces and accelerations): 3N + E + the bodies' internal DOFs
+  /// (scene_state.hpp); equal unless a body has more internal positions than velocities.
+  int positionSize() const { return 3 * point_count_ + extra_count_ + internal_position_count_; }
+  int velocitySize() const { return 3 * point_count_ + extra_count_ + internal_velocity_count_; }
+  /// True when some body has internal DOFs (MechanicalState::internalVelocityCount() > 0).
+  bool hasInternalDofs() const { return internal_velocity_count_ > 0 || internal_position_count_ > 0; }
+
+  /// q1 = q0 ⊕ h w: positions moved along the velocity-layout vector w for a time h — q + h w for
+  /// points and extra DOFs, each body's integrateInternal for its internal DOFs (a rotation
+  /// turned by h ω). q1 may be q0. Every integrator advances positions through it.
+  void integratePositions(const VecX& q0, const VecX& w, double h, VecX& q1) const;
 
   const std::vector<MechanicalState*>& bodies() const { return bodies_; }
   const std::vector<ForceField*>& forceFields() const { return force_fields_; }
@@ -228,6 +239,10 @@ class Scene {
   long step_count_ = 0;
   int point_count_ = 0;
   int extra_count_ = 0;  // extra DOFs of constraints (scene_state.hpp)
+  int internal_position_count_ = 0, internal_velocity_count_ = 0;  // bodies' internal DOFs
+  /// Internal blocks after the points and extra DOFs, body by body (scene_state.hpp).
+  void setInternalOffsets();
+  mutable VecX internal_increment_;  // h w of one body's internal block (integratePositions)
   bool initialized_ = false;
 
   std::vector<MechanicalState*> bodies_;
