@@ -1,8 +1,10 @@
 #include "filum/mechanics/register_components.hpp"
 
+#include "filum/mechanics/chain_elasticity.hpp"
 #include "filum/mechanics/curvature_bending.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
 #include "filum/mechanics/explicit_euler.hpp"
+#include "filum/mechanics/framed_chain.hpp"
 #include "filum/mechanics/global_stretching.hpp"
 #include "filum/mechanics/green_lagrange_stretching.hpp"
 #include "filum/mechanics/implicit_euler.hpp"
@@ -19,6 +21,8 @@ namespace filum::mechanics {
 void register_components(Factory& factory) {
   factory.add("DynamicSpline", "dynamic Lagrangian spline: control points as DOFs, banded mass (paper §3)",
               [](const Params& p) { return DynamicSpline::fromParams(p); });
+  factory.add("FramedChain", "a chain of point masses with a rotation per node (a discrete rod's centre line and frames)",
+              [](const Params& p) { return FramedChain::fromParams(p); });
 
   // Energies and dissipation (each with an analytic Jacobian, for the implicit integrators).
   factory.add("SpringForceField", "stretch and bend springs between points sampled on the curve (paper Fig. 1)",
@@ -32,6 +36,8 @@ void register_components(Factory& factory) {
               [](const Params& p) { return ParametricBending::fromParams(p); });
   factory.add("CurvatureBending", "exact bending 1/2 EI int kappa^2 dl",
               [](const Params& p) { return CurvatureBending::fromParams(p); });
+  factory.add("ChainElasticity", "stretching, shear, bending and twist of a FramedChain (discrete Cosserat rod)",
+              [](const Params& p) { return ChainElasticity::fromParams(p); });
   factory.add("ViscousDamping", "mass-proportional viscous drag Q = -gamma M v",
               [](const Params& p) { return ViscousDamping::fromParams(p); });
   factory.add("RayleighDamping", "stiffness-proportional damping Q = beta K(q) v",

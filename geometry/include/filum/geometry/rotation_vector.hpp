@@ -1,0 +1,27 @@
+// Rotations as rotation vectors (the exponential coordinates of SO(3)): what a body with a
+// rotation per node needs to move its frames and to differentiate energies of relative rotations
+// (a Cosserat rod's bending and twist). With φ̂ the cross-product matrix of φ and θ = |φ|:
+//   exp(φ) = the turn by θ about φ/θ  (as a unit quaternion),   log = its inverse (θ <= π),
+//   right Jacobian inverse  J_r⁻¹(φ) = I + ½ φ̂ + c(θ) φ̂²,   left  J_l⁻¹(φ) = J_r⁻¹(−φ),
+//   c(θ) = 1/θ² − (1 + cos θ) / (2 θ sin θ)   (→ 1/12 as θ → 0),
+// so that log(exp(φ) exp(δ)) = φ + J_r⁻¹(φ) δ + O(δ²) and log(exp(δ) exp(φ)) = φ + J_l⁻¹(φ) δ + O(δ²)
+// (Barfoot, State Estimation for Robotics, §7.1.3; Solà et al., A micro Lie theory, 2018).
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include "filum/core/types.hpp"
+
+namespace filum::geometry {
+
+/// The unit quaternion of the rotation vector w (a turn by |w| about w / |w|).
+Eigen::Quaterniond rotationExp(const Vec3& w);
+/// The rotation vector of a unit quaternion, of angle in [0, π].
+Vec3 rotationLog(const Eigen::Quaterniond& q);
+/// J_r⁻¹(φ) and J_l⁻¹(φ) (header).
+Eigen::Matrix3d rightJacobianInverse(const Vec3& phi);
+Eigen::Matrix3d leftJacobianInverse(const Vec3& phi);
+/// The cross-product matrix φ̂ (φ̂ x = φ × x).
+Eigen::Matrix3d skew(const Vec3& phi);
+
+}  // namespace filum::geometry

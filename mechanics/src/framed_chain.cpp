@@ -1,0 +1,165 @@
+#include "filum/mechanics/framed_chain.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "filum/core/scene_error.hpp"
+#include "filum/geometry/nonuniform_bspline.hpp"
+#include "filum/geometry/rotation_vector.hpp"
+#include "filum/mechanics/dynamic_spline.hpp"
+
+namespace filum::mechanics {
+
+namespace {
+
+/// (w, x, y, z) of q's node block.
+Eigen::Quaterniond quaternionAt(Eigen::Ref<const VecX> q, int node) {
+  return Eigen::Quaterniond(q[4 * node], q[4 * node + 1], q[4 * node + 2], q[4 * node + 3]);
+}
+
+void store(const Eigen::Quaterniond& r, Eigen::Ref<VecX> q, int node) {
+  q.segment<4>(4 * node) << r.w(), r.x(), r.y(), r.z();
+}
+
+/// The degree-1 B-spline through the nodes, knots at their rest arc lengths (clamped).
+std::unique_ptr<geometry::SplineBasis> polylineBasis(const std::vector<double>& lengths) {
+  std::vector<double> knots{0.0, 0.0};
+  double arc = 0.0;
+  for (const double l : lengths) knots.push_back(arc += l);
+  knots.push_back(arc);
+  return std::make_unique<geometry::NonUniformBSpline>(1, std::move(knots));
+}
+
+}  // namespace
+
+FramedChain::FramedChain(Points nodes, double radius, double mass)
+    : nodes_(std::move(nodes)), radius_(radius), mass_(mass) {
+  const int n = pointCount();
+  double length = 0.0;
+  for (int i = 0; i + 1 < n; ++i) {
+    rest_lengths_.push_back((nodes_.row(i + 1) - nodes_.row(i)).norm());
+    length += rest_lengths_.back();
+  }
+  basis_ = polylineBasis(rest_lengths_);
+  // ρA = m / L per unit length; ρI = ρA r²/4 (I/A = r²/4 for a disc).
+  const double line_density = mass_ / length, rotary = line_density * radius_ * radius_ / 4.0;
+  for (int i = 0; i < n; ++i) {
+    const double share = 0.5 * ((i > 0 ? rest_lengths_[i - 1] : 0.0) + (i + 1 < n ? rest_lengths_[i] : 0.0));
+    masses_.push_back(line_density * share);
+    inertia_.push_back(Vec3(rotary * share, rotary * share, 2.0 * rotary * share));
+    const int segment = std::min(i, n - 2);
+    const Vec3 tangent = (nodes_.row(segment + 1) - nodes_.row(segment)).transpose().normalized();
+    initial_frames_.push_back(Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), tangent));
+  }
+}
+
+std::unique_ptr<FramedChain> FramedChain::fromParams(const Params& p) {
+  Points nodes;
+  if (p.has("nodes") && p.raw("nodes").is_object()) {
+    const Params line = p.object("nodes");
+    const Vec3 from = line.vec3("from"), to = line.vec3("to");
+    const int n = line.integer("count", 2, kMaxControlPoints, "framed_chain.hpp: as many nodes as a spline's points");
+    if ((to - from).norm() == 0.0) line.fail("to", "a point different from 'from' (a chain of non-zero length)");
+    line.finish();
+    nodes.resize(n, 3);
+    for (int i = 0; i < n; ++i) nodes.row(i) = (from + (to - from) * (double(i) / (n - 1))).transpose();
+  } else {
+    nodes = p.points("nodes", 2, kMaxControlPoints, "framed_chain.hpp: as many nodes as a spline's points");
+  }
+  for (Eigen::Index i = 0; i < nodes.rows(); ++i) {
+    if (nodes.row(i).cwiseAbs().maxCoeff() > kMaxCoordinate)
+      p.fail("nodes", "nodes within ±1e6 m of the origin", "node " + std::to_string(i));
+    if (i > 0 && (nodes.row(i) - nodes.row(i - 1)).norm() == 0.0)
+      p.fail("nodes", "distinct consecutive nodes (segments of non-zero length)", "node " + std::to_string(i) + " repeats node " + std::to_string(i - 1));
+  }
+  const double radius = p.positive("radius", 1e-3);
+  double length = 0.0;
+  for (Eigen::Index i = 1; i < nodes.rows(); ++i) length += (nodes.row(i) - nodes.row(i - 1)).norm();
+  double mass = 0.0;
+  if (p.has("mass") && p.has("density")) p.fail("density", "either 'mass' or 'density', not both");
+  if (p.has("mass"))
+    mass = p.positive("mass");
+  else if (p.has("density"))
+    mass = p.positive("density") * std::numbers::pi * radius * radius * length;
+  else
+    p.fail("mass", "the chain's 'mass' (kg) or its 'density' (kg/m³)");
+  auto chain = std::make_unique<FramedChain>(std::move(nodes), radius, mass);
+  if (p.has("angular_velocities"))
+    chain->initial_angular_velocities_ =
+        p.points("angular_velocities", chain->pointCount(), chain->pointCount(), "framed_chain.hpp: one per node");
+  return chain;
+}
+
+void FramedChain::solveMass(PointsRef B) const {
+  for (int i = 0; i < pointCount(); ++i) B.row(i) /= masses_[i];
+}
+
+void FramedChain::multiplyMass(ConstPointsRef x, PointsRef out) const {
+  for (int i = 0; i < pointCount(); ++i) out.row(i) = masses_[i] * x.row(i);
+}
+
+void FramedChain::addMassMatrix(double factor, JacobianAccumulator& out) const {
+  for (int i = 0; i < pointCount(); ++i) out.addIsotropic(offset() + i, offset() + i, factor * masses_[i]);
+}
+
+void FramedChain::addGravity(const Vec3& g, PointsRef B) const {
+  for (int i = 0; i < pointCount(); ++i) B.row(i) += masses_[i] * g.transpose();
+}
+
+double FramedChain::gravityPotential(const Vec3& g, ConstPointsRef q) const {
+  double v = 0.0;
+  for (int i = 0; i < pointCount(); ++i) v -= masses_[i] * g.dot(q.row(i).transpose());
+  return v;
+}
+
+void FramedChain::initialInternalState(Eigen::Ref<VecX> q, Eigen::Ref<VecX> v) const {
+  for (int i = 0; i < pointCount(); ++i) store(initial_frames_[i], q, i);
+  if (initial_angular_velocities_.rows() == 0)
+    v.setZero();
+  else
+    for (int i = 0; i < pointCount(); ++i) v.segment<3>(3 * i) = initial_angular_velocities_.row(i).transpose();
+}
+
+void FramedChain::integrateInternal(Eigen::Ref<const VecX> q0, Eigen::Ref<const VecX> w, Eigen::Ref<VecX> q1) const {
+  // R ← R exp(w_i) per node, renormalized (one rounding per product).
+  for (int i = 0; i < pointCount(); ++i)
+    store((quaternionAt(q0, i) * geometry::rotationExp(w.segment<3>(3 * i))).normalized(), q1, i);
+}
+
+void FramedChain::differenceInternal(Eigen::Ref<const VecX> q1, Eigen::Ref<const VecX> q0, Eigen::Ref<VecX> w) const {
+  for (int i = 0; i < pointCount(); ++i)
+    w.segment<3>(3 * i) = geometry::rotationLog(quaternionAt(q0, i).conjugate() * quaternionAt(q1, i));
+}
+
+void FramedChain::addInternalForce(const SceneState& s, Eigen::Ref<VecX> B) const {
+  // Euler's equations in the body frame: J ω̇ = τ − ω × J ω.
+  const auto omega = internalVelocities(s.v);
+  for (int i = 0; i < pointCount(); ++i) {
+    const Vec3 w = omega.segment<3>(3 * i);
+    B.segment<3>(3 * i) -= w.cross(inertia_[i].cwiseProduct(w));
+  }
+}
+
+void FramedChain::solveInternalMass(Eigen::Ref<VecX> B) const {
+  for (int i = 0; i < pointCount(); ++i) B.segment<3>(3 * i) = B.segment<3>(3 * i).cwiseQuotient(inertia_[i]);
+}
+
+void FramedChain::multiplyInternalMass(Eigen::Ref<const VecX> x, Eigen::Ref<VecX> out) const {
+  for (int i = 0; i < pointCount(); ++i) out.segment<3>(3 * i) = inertia_[i].cwiseProduct(x.segment<3>(3 * i));
+}
+
+SparseMatrix FramedChain::refine(const std::vector<double>&) {
+  throw SceneError(origin(), "a body whose point count may change (a DynamicSpline) to insert points into",
+                   describe() + ", whose nodes carry frames");
+}
+
+SparseMatrix FramedChain::coarsen(double, ConstPointsRef, double) {
+  throw SceneError(origin(), "a body whose point count may change (a DynamicSpline) to remove points from",
+                   describe() + ", whose nodes carry frames");
+}
+
+Eigen::Quaterniond FramedChain::orientation(const VecX& q, int node) const {
+  return quaternionAt(internalPositions(q), node);
+}
+
+}  // namespace filum::mechanics
