@@ -28,10 +28,11 @@ std::unique_ptr<ClampConstraint> ClampConstraint::fromParams(const Params& p) {
 
 void ClampConstraint::init(const Scene& scene) {
   const CurveBody& spline = requireCurve(body(), *this);
-  spline.basis().evaluate(abscissa_, row_);
+  point_.attach(spline, abscissa_);
+  const geometry::BasisRow& row = point_.row();
   const Points& q0 = spline.initialPositions();
-  target_.init(scene, *this, geometry::curvePoint(row_, q0), body(), abscissa_);
-  const Vec3 d = requested_direction_ ? *requested_direction_ : geometry::curveTangent(row_, q0);
+  target_.init(scene, *this, geometry::curvePoint(row, q0), body(), abscissa_);
+  const Vec3 d = requested_direction_ ? *requested_direction_ : geometry::curveTangent(row, q0);
   if (!(d.norm() > 0.0))
     throw SceneError(origin(), "a 'direction' for " + describe() + " (the initial tangent at the abscissa is zero)",
                      "P'(s) = 0");
@@ -43,30 +44,32 @@ void ClampConstraint::init(const Scene& scene) {
 void ClampConstraint::buildRows(const SceneState& s, ConstraintRows& rows) const {
   const ConstPointsMap q = body().block(s.q);
   const ConstPointsMap v = body().block(s.v);
-  const int offset = body().offset() + row_.first;
+  const geometry::BasisRow& row = point_.row();
+  const int offset = point_.firstPoint();
 
   // Position: g_p = P(s) − X, ġ_p = Ṗ(s) − Ẋ; anchor b_j(s) (and −b_k(s2) if attached).
-  const Vec3 gp = geometry::curvePoint(row_, q) - target_.position(s);
-  const Vec3 dgp = geometry::curvePoint(row_, v) - target_.velocity(s);
+  const Vec3 gp = geometry::curvePoint(row, q) - target_.position(s);
+  const Vec3 dgp = geometry::curvePoint(row, v) - target_.velocity(s);
   const Vec3 rp = target_.knownAcceleration(s) + baumgarte_.term(gp, dgp);
   rows.beginAnchor();
-  for (int j = 0; j < row_.count; ++j) rows.addAnchorPoint(offset + j, row_.value[j]);
+  for (int j = 0; j < row.count; ++j) rows.addAnchorPoint(offset + j, row.value[j]);
   target_.addToAnchor(rows);
   for (int axis = 0; axis < 3; ++axis) rows.addAnchoredRow(Vec3::Unit(axis), rp[axis]);
 
   // Direction: g_d = [u w]ᵀ P'(s), ġ_d = [u w]ᵀ Ṗ'(s); anchor b'_j(s).
-  const Vec3 t = geometry::curveTangent(row_, q);
-  const Vec3 dt = geometry::curveTangent(row_, v);
+  const Vec3 t = geometry::curveTangent(row, q);
+  const Vec3 dt = geometry::curveTangent(row, v);
   rows.beginAnchor();
-  for (int j = 0; j < row_.count; ++j) rows.addAnchorPoint(offset + j, row_.d1[j]);
+  for (int j = 0; j < row.count; ++j) rows.addAnchorPoint(offset + j, row.d1[j]);
   rows.addAnchoredRow(u_, baumgarte_.term(u_.dot(t), u_.dot(dt)));
   rows.addAnchoredRow(w_, baumgarte_.term(w_.dot(t), w_.dot(dt)));
 }
 
 void ClampConstraint::violation(const SceneState& s, VecX& g, int first) const {
   const ConstPointsMap q = body().block(s.q);
-  g.segment<3>(first) = geometry::curvePoint(row_, q) - target_.position(s);
-  const Vec3 t = geometry::curveTangent(row_, q);
+  const geometry::BasisRow& row = point_.row();
+  g.segment<3>(first) = geometry::curvePoint(row, q) - target_.position(s);
+  const Vec3 t = geometry::curveTangent(row, q);
   g[first + 3] = u_.dot(t);
   g[first + 4] = w_.dot(t);
 }

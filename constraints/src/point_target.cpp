@@ -43,12 +43,12 @@ void PointTarget::init(const Scene& scene, const Component& owner, const Vec3& s
                        double own_abscissa) {
   if (kind_ == Kind::kStart) position_ = start;
   if (kind_ != Kind::kAttached) return;
-  body_ = &findCurve(scene, object_, where_, owner);
-  if (body_ == &own_body && abscissa_ == own_abscissa)
+  const CurveBody& body = findCurve(scene, object_, where_, owner);
+  if (&body == &own_body && abscissa_ == own_abscissa)
     throw SceneError(where_, "another point than the constrained one (" + owner.describe() +
                                  " would hold a point to itself: g ≡ 0, a singular system)",
                      "the same body at the same abscissa " + describeJson(abscissa_));
-  body_->basis().evaluate(abscissa_, row_);
+  point_.attach(body, abscissa_);
 }
 
 bool PointTarget::steer(const Vec3& position, const Vec3& velocity, double t0) {
@@ -68,7 +68,7 @@ Vec3 PointTarget::position(const SceneState& s) const {
     case Kind::kSteered:
       return position_ + velocity_ * (s.time - steered_at_);
     case Kind::kAttached:
-      return geometry::curvePoint(row_, body_->block(s.q));
+      return point_.map(s.q);
     default:
       return position_;
   }
@@ -79,7 +79,7 @@ Vec3 PointTarget::velocity(const SceneState& s) const {
     case Kind::kScripted:
       return path_.velocity(s.time);
     case Kind::kAttached:
-      return geometry::curvePoint(row_, body_->block(s.v));
+      return point_.map(s.v);
     case Kind::kSteered:
       return velocity_;
     default:
@@ -93,7 +93,7 @@ Vec3 PointTarget::knownAcceleration(const SceneState& s) const {
 
 Vec3 PointTarget::attachedAcceleration(const VecX& a) const {
   if (kind_ != Kind::kAttached) return Vec3::Zero();
-  return geometry::curvePoint(row_, body_->block(a));
+  return point_.map(a);
 }
 
 Vec3 PointTarget::positionAt(double t) const {
@@ -104,12 +104,12 @@ Vec3 PointTarget::positionAt(double t) const {
 
 void PointTarget::addToAnchor(ConstraintRows& rows, double scale) const {
   if (kind_ != Kind::kAttached) return;
-  for (int k = 0; k < row_.count; ++k) rows.addAnchorPoint(body_->offset() + row_.first + k, -scale * row_.value[k]);
+  point_.forEachWeight([&](int point, double weight) { rows.addAnchorPoint(point, -scale * weight); });
 }
 
 void PointTarget::addReaction(const Vec3& F, VecX& B) const {
   if (kind_ != Kind::kAttached) return;
-  for (int k = 0; k < row_.count; ++k) B.segment<3>(3 * (body_->offset() + row_.first + k)) -= row_.value[k] * F;
+  point_.addForce(F, B, -1.0);
 }
 
 }  // namespace filum::constraints

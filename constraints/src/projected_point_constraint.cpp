@@ -23,23 +23,23 @@ ProjectedPointConstraint::ProjectedPointConstraint(double abscissa, PointTarget 
 
 void ProjectedPointConstraint::init(const Scene& scene) {
   const CurveBody& spline = requireCurve(body(), *this);
-  spline.basis().evaluate(abscissa_, row_);
-  target_.init(scene, *this, geometry::curvePoint(row_, spline.initialPositions()), body(), abscissa_);
+  point_.attach(spline, abscissa_);
+  target_.init(scene, *this, geometry::curvePoint(point_.row(), spline.initialPositions()), body(), abscissa_);
   baumgarte_.init(scene);
 }
 
 Vec3 ProjectedPointConstraint::gap(const SceneState& s) const {
-  return geometry::curvePoint(row_, body().block(s.q)) - target_.position(s);
+  return point_.map(s.q) - target_.position(s);
 }
 
 void ProjectedPointConstraint::buildRows(const SceneState& s, ConstraintRows& rows) const {
   // g = P(s) − X, ġ = Ṗ(s) − Ẋ; the stabilizing acceleration is projected on every d_i.
   const Vec3 g = gap(s);
-  const Vec3 dg = geometry::curvePoint(row_, body().block(s.v)) - target_.velocity(s);
+  const Vec3 dg = point_.map(s.v) - target_.velocity(s);
   const Vec3 rhs = target_.knownAcceleration(s) + baumgarte_.term(g, dg);
   // One anchor: b_j(s) on the body, −b_k(s2) on an attached target.
   rows.beginAnchor();
-  for (int j = 0; j < row_.count; ++j) rows.addAnchorPoint(body().offset() + row_.first + j, row_.value[j]);
+  point_.forEachWeight([&](int point, double weight) { rows.addAnchorPoint(point, weight); });
   target_.addToAnchor(rows);
   for (const Vec3& d : directions_) rows.addAnchoredRow(d, d.dot(rhs));
 }

@@ -32,15 +32,14 @@ SlidingPointConstraint::Local SlidingPointConstraint::evaluate(const SceneState&
   Local l;
   const double s = std::clamp(abscissa(st), 0.0, 1.0);
   const double sdot = abscissaRate(st);
-  spline_->basis().evaluate(s, l.row);
+  l.point.attach(*spline_, s);
   const ConstPointsMap q = body().block(st.q);
-  const ConstPointsMap v = body().block(st.v);
-  const geometry::CurveDerivatives d = geometry::curveDerivatives(l.row, q);
+  const geometry::CurveDerivatives d = geometry::curveDerivatives(l.point.row(), q);
   l.p = d.point;
   l.t = d.first;
   l.pss = d.second;
-  l.pdot = geometry::curvePoint(l.row, v);
-  l.tdot = geometry::curveTangent(l.row, v);
+  l.pdot = l.point.map(st.v);
+  l.tdot = l.point.mapTangent(st.v);
   // g = P(s) − X, ġ = Ṗ(s) + P'(s) ṡ − Ẋ.
   const Vec3 g = l.p - target_.position(st);
   const Vec3 dg = l.pdot + l.t * sdot - target_.velocity(st);
@@ -58,7 +57,7 @@ void SlidingPointConstraint::buildRows(const SceneState& st, ConstraintRows& row
   // Nᵀ (Σ_j b_j A_j − Ẍ) = Nᵀ r: anchor b_j(s) (and −b_k(s2) if the hole is attached).
   const auto [n1, n2] = orthonormalComplement(l.t.normalized());
   rows.beginAnchor();
-  for (int j = 0; j < l.row.count; ++j) rows.addAnchorPoint(body().offset() + l.row.first + j, l.row.value[j]);
+  l.point.forEachWeight([&](int point, double weight) { rows.addAnchorPoint(point, weight); });
   target_.addToAnchor(rows);
   rows.addAnchoredRow(n1, n1.dot(l.r));
   rows.addAnchoredRow(n2, n2.dot(l.r));
@@ -71,7 +70,7 @@ void SlidingPointConstraint::extraAcceleration(const SceneState& st, VecX& a) co
   }
   // Direct relation: s̈ = tᵀ (r − (Σ_j b_j A_j − Ẍ)) / |t|².
   const Local l = evaluate(st);
-  const Vec3 acc = geometry::curvePoint(l.row, body().block(a)) - target_.attachedAcceleration(a);
+  const Vec3 acc = l.point.map(a) - target_.attachedAcceleration(a);
   a[extraIndex()] = l.t.dot(l.r - acc) / l.t.squaredNorm();
 }
 
@@ -83,12 +82,11 @@ void SlidingPointConstraint::addForce(const SceneState& st, VecX& B) const {
   if (friction_ == 0.0) return;
   // F = −η t̂ (t̂·u), u = Ṗ(s) − Ẋ: viscous friction of the hole on the sliding thread.
   const double s = std::clamp(abscissa(st), 0.0, 1.0);
-  geometry::BasisRow row;
-  spline_->basis().evaluate(s, row);
-  const Vec3 that = geometry::curveTangent(row, body().block(st.q)).normalized();
-  const Vec3 u = geometry::curvePoint(row, body().block(st.v)) - target_.velocity(st);
+  const BodyPoint point(*spline_, s);
+  const Vec3 that = point.mapTangent(st.q).normalized();
+  const Vec3 u = point.map(st.v) - target_.velocity(st);
   const Vec3 F = -friction_ * that * that.dot(u);
-  for (int j = 0; j < row.count; ++j) B.segment<3>(3 * (body().offset() + row.first + j)) += row.value[j] * F;
+  point.addForce(F, B);
   target_.addReaction(F, B);
 }
 

@@ -64,14 +64,14 @@ void SplineJunctionConstraint::init(const Scene& scene) {
     throw SceneError(other_where_.empty() ? origin() : other_where_,
                      "two different points to join (" + describe() + " joins a body to itself at one abscissa)",
                      "the same abscissa " + describeJson(abscissa_));
-  own.basis().evaluate(abscissa_, row1_);
-  other_->basis().evaluate(other_abscissa_, row2_);
+  own_point_.attach(own, abscissa_);
+  other_point_.attach(*other_, other_abscissa_);
   if (requested_ratio_) {
     ratio_ = *requested_ratio_;
   } else {
     // ρ = |P1'(s1)| / |P2'(s2)| at t = 0 (only matters from C1 on).
-    const double t1 = geometry::curveTangent(row1_, own.initialPositions()).norm();
-    const double t2 = geometry::curveTangent(row2_, other_->initialPositions()).norm();
+    const double t1 = geometry::curveTangent(own_point_.row(), own.initialPositions()).norm();
+    const double t2 = geometry::curveTangent(other_point_.row(), other_->initialPositions()).norm();
     if (continuity_ >= 1 && !(t1 > 0.0 && t2 > 0.0))
       throw SceneError(origin(), "a 'ratio' for " + describe() + " (an initial tangent at the junction is zero)",
                        "|P1'| = " + describeJson(t1) + ", |P2'| = " + describeJson(t2));
@@ -83,8 +83,9 @@ void SplineJunctionConstraint::init(const Scene& scene) {
 void SplineJunctionConstraint::jump(const SceneState& s, int order, Vec3& g, Vec3& dg) const {
   // g_k = P1^(k)(s1) − ρ^k P2^(k)(s2) and its time derivative (same weights on velocities).
   const double scale = std::pow(ratio_, order);
-  g = combine(row1_, order, body().block(s.q)) - scale * combine(row2_, order, other_->block(s.q));
-  dg = combine(row1_, order, body().block(s.v)) - scale * combine(row2_, order, other_->block(s.v));
+  const geometry::BasisRow &row1 = own_point_.row(), &row2 = other_point_.row();
+  g = combine(row1, order, body().block(s.q)) - scale * combine(row2, order, other_->block(s.q));
+  dg = combine(row1, order, body().block(s.v)) - scale * combine(row2, order, other_->block(s.v));
 }
 
 void SplineJunctionConstraint::buildRows(const SceneState& s, ConstraintRows& rows) const {
@@ -93,11 +94,12 @@ void SplineJunctionConstraint::buildRows(const SceneState& s, ConstraintRows& ro
     jump(s, order, g, dg);
     const Vec3 rhs = baumgarte_.term(g, dg);
     const double scale = std::pow(ratio_, order);
-    const auto& w1 = derivative(row1_, order);
-    const auto& w2 = derivative(row2_, order);
+    const geometry::BasisRow &row1 = own_point_.row(), &row2 = other_point_.row();
+    const auto& w1 = derivative(row1, order);
+    const auto& w2 = derivative(row2, order);
     rows.beginAnchor();
-    for (int j = 0; j < row1_.count; ++j) rows.addAnchorPoint(body().offset() + row1_.first + j, w1[j]);
-    for (int j = 0; j < row2_.count; ++j) rows.addAnchorPoint(other_->offset() + row2_.first + j, -scale * w2[j]);
+    for (int j = 0; j < row1.count; ++j) rows.addAnchorPoint(own_point_.firstPoint() + j, w1[j]);
+    for (int j = 0; j < row2.count; ++j) rows.addAnchorPoint(other_point_.firstPoint() + j, -scale * w2[j]);
     for (int axis = 0; axis < 3; ++axis) rows.addAnchoredRow(Vec3::Unit(axis), rhs[axis]);
   }
 }

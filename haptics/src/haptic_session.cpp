@@ -127,7 +127,7 @@ void HapticSession::attachTool(Scene& scene) {
   }
   scene.init();
   fields_.assign(added.begin(), added.end());
-  if (!grasper_) grasp(*tool_, *scene.bodyAt(attach_object_), attach_abscissa_);
+  if (!grasper_) grasp(*tool_, *scene.bodyAt(attach_object_)->curve(), attach_abscissa_);  // a curve body: readTool
 }
 
 void HapticSession::start() {
@@ -137,6 +137,7 @@ void HapticSession::start() {
 }
 
 void HapticSession::beforeStep(const Scene& scene) {
+  tool_->grasp.refresh();  // the held point's row in its body's current layout
   if (!threaded_) servo_->runLockstepUntil(scene.state().time);
   ServoSample sample;
   if (!servo_->latestSample(sample)) return;  // no tick since the last step: the tool stays

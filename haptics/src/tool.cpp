@@ -31,21 +31,20 @@ bool startGrasp(ToolState& tool, const Scene& scene, double capture) {
     const geometry::ClosestPoint c = geometry::closestPoint(curve->basis(), body->block(scene.state().q), tool.position);
     if (c.distance <= best) {
       best = c.distance;
-      grasp(tool, *body, c.s);
+      grasp(tool, *curve, c.s);
     }
   }
   return tool.grasping;
 }
 
-void grasp(ToolState& tool, const MechanicalState& body, double abscissa) {
+void grasp(ToolState& tool, const CurveBody& body, double abscissa) {
   tool.grasping = true;
-  tool.grasp_body = &body;
-  tool.grasp_abscissa = abscissa;
+  tool.grasp.attach(body, abscissa);
 }
 
 void release(ToolState& tool) {
   tool.grasping = false;
-  tool.grasp_body = nullptr;
+  tool.grasp.detach();
 }
 
 ToolForceField::ToolForceField(std::shared_ptr<const ToolState> tool, int samples)
@@ -64,7 +63,7 @@ void ToolForceField::init(const Scene& scene) {
   for (int k = 0; k < m; ++k) curve->basis().evaluate(static_cast<double>(k) / (m - 1), sample_rows_[k]);
   unit_load_.resize(n, 3);
   response_.resize(n, 3);
-  mass_abscissa_ = grasp_row_abscissa_ = std::numeric_limits<double>::quiet_NaN();  // nothing cached (NaN equals nothing)
+  mass_abscissa_ = std::numeric_limits<double>::quiet_NaN();  // nothing cached (NaN equals nothing)
   sample_mass_ = effectiveMass(0.5);
 }
 
@@ -93,22 +92,18 @@ double ToolForceField::pushStiffness() const {
 }
 
 double ToolForceField::graspStiffness() const {
-  const double m = effectiveMass(tool_->grasp_abscissa);
+  const double m = effectiveMass(tool_->grasp.abscissa());
   return gain(tool_->grasp_stiffness, kGraspOmegaDt * kGraspOmegaDt * m / (dt_ * dt_));
 }
 
 double ToolForceField::graspDamping() const {
   if (tool_->grasp_damping >= 0.0) return tool_->grasp_damping;
-  return 2.0 * std::sqrt(graspStiffness() * effectiveMass(tool_->grasp_abscissa));
+  return 2.0 * std::sqrt(graspStiffness() * effectiveMass(tool_->grasp.abscissa()));
 }
 
 void ToolForceField::graspPoint(const SceneState& s, Vec3& P, Vec3& V) const {
-  if (!(tool_->grasp_abscissa == grasp_row_abscissa_)) {
-    body().curve()->basis().evaluate(tool_->grasp_abscissa, grasp_row_);
-    grasp_row_abscissa_ = tool_->grasp_abscissa;
-  }
-  P = rowPoint(grasp_row_, body().block(s.q));
-  V = rowPoint(grasp_row_, body().block(s.v));
+  P = tool_->grasp.map(s.q);
+  V = tool_->grasp.map(s.v);
 }
 
 Eigen::Matrix3d ToolForceField::Overlap::jacobian() const {
@@ -136,7 +131,7 @@ void ToolForceField::addForce(const SceneState& s, VecX& B) const {
     Vec3 P, V;
     graspPoint(s, P, V);
     const Vec3 F = graspStiffness() * (toolPosition(*tool_, s.time) - P) + graspDamping() * (tool_->velocity - V);
-    for (int j = 0; j < grasp_row_.count; ++j) Q.row(grasp_row_.first + j) += grasp_row_.value[j] * F.transpose();
+    tool_->grasp.addForce(F, B);
     return;
   }
   forEachOverlap(s, [&](const Overlap& o) {
@@ -161,13 +156,12 @@ void ToolForceField::addJacobian(const SceneState& s, double k_factor, double d_
   if (!pushing() && !grasping()) return;
   const int offset = body().offset();
   if (grasping()) {
-    Vec3 P, V;
-    graspPoint(s, P, V);  // (for grasp_row_)
     const double k = graspStiffness(), c = graspDamping();
-    const geometry::BasisRow& row = grasp_row_;
+    const geometry::BasisRow& row = tool_->grasp.row();
+    const int first = tool_->grasp.firstPoint();
     for (int a = 0; a < row.count; ++a)
       for (int b = 0; b < row.count; ++b)
-        out.addBlock(offset + row.first + a, offset + row.first + b,
+        out.addBlock(first + a, first + b,
                      (-(k_factor * k + d_factor * c) * row.value[a] * row.value[b]) * Eigen::Matrix3d::Identity());
     return;
   }

@@ -45,7 +45,7 @@ TEST(HapticSession, TheJawsHoldTheThreadAndTheTautThreadPullsBack) {
     ASSERT_TRUE(scene->step().ok) << "step " << k;
     session->afterStep(*scene);
     const double t = scene->state().time;
-    if (session->tool().grasping) grasp_abscissa = session->tool().grasp_abscissa;
+    if (session->tool().grasping) grasp_abscissa = session->tool().grasp.abscissa();
     if (std::abs(t - 1.15) < 0.5e-3) {  // taut and still (0.8 s to 1.2 s)
       held_stylus = session->tool().position;
       ASSERT_TRUE(session->tool().grasping);

@@ -53,7 +53,7 @@ void expectMouseGrabsAndPulls(const std::string& scene_file, const std::string& 
     }
     if (f.index == 4) {
       grabbed = f.probe.grasping;
-      grab_abscissa = f.probe.grasp_abscissa;
+      grab_abscissa = f.probe.grasp.abscissa();
     }
     if (f.index > 4 && f.index <= 10)  // drag in 6 moves
       f.window.sendToSelf({WindowEvent::Type::kMotion, target_u - 20 * (10 - f.index), target_v + 10 * (10 - f.index), 0, true, ""});

@@ -70,7 +70,7 @@ TEST(InteractionTool, PushAndGrabForcesPassTheGenericForceFieldTest) {
   EXPECT_EQ(test::fieldJacobian(*p.field, s, 0.0, 1.0).norm(), 0.0);
   // Grab: spring–damper at the nearest point.
   ASSERT_TRUE(startGrasp(*p.probe, *p.scene, 0.01));
-  EXPECT_NEAR(p.probe->grasp_abscissa, 0.5, 0.02);
+  EXPECT_NEAR(p.probe->grasp.abscissa(), 0.5, 0.02);
   p.probe->position += Vec3(0.0, 0.0, 0.01);
   for (Eigen::Index i = 0; i < s.v.size(); ++i) s.v[i] = 0.01 * std::cos(0.3 * i);
   check.damping = true;
@@ -86,7 +86,7 @@ TEST(InteractionTool, StiffnessIsCappedForTheExplicitStep) {
   ProbeScene p = makeScene();
   // (ω dt)² m_eff / dt²: 0.3² for the push and 0.5² for the grab.
   EXPECT_NEAR(p.field->pushStiffness(), 0.09 * p.field->effectiveMass(0.5) / 1e-8, 1e-9 * p.field->pushStiffness());
-  p.probe->grasp_abscissa = 0.25;
+  p.probe->grasp.attach(*p.scene->bodies().front()->curve(), 0.25);
   EXPECT_NEAR(p.field->graspStiffness(), 0.25 * p.field->effectiveMass(0.25) / 1e-8, 1e-9 * p.field->graspStiffness());
   p.probe->grasp_stiffness = 1e-3;  // a softer user setting wins
   EXPECT_DOUBLE_EQ(p.field->graspStiffness(), 1e-3);
@@ -104,7 +104,7 @@ TEST(InteractionTool, AGrabbedPointFollowsTheProbe) {
     p.probe->position = start + std::min(1.0, k / 1000.0) * (goal - start);
     ASSERT_TRUE(p.scene->step().ok) << "step " << k;
   }
-  EXPECT_LT((pointAt(*p.scene, p.probe->grasp_abscissa) - goal).norm(), 1e-3);
+  EXPECT_LT((pointAt(*p.scene, p.probe->grasp.abscissa()) - goal).norm(), 1e-3);
   EXPECT_LT(pointAt(*p.scene, 0.0).z(), 0.01);  // the far end lags behind: a pull, not a translation
 }
 

@@ -18,6 +18,7 @@
 
 #include "filum/constraints/baumgarte.hpp"
 #include "filum/constraints/point_target.hpp"
+#include "filum/core/body_point.hpp"
 #include "filum/constraints/target_constraint.hpp"
 #include "filum/core/constraint.hpp"
 #include "filum/core/params.hpp"
@@ -55,7 +56,7 @@ class ClampConstraint final : public Constraint, public TargetConstraint {
   Baumgarte baumgarte_;
   Vec3 direction_ = Vec3::UnitX();  // d
   Vec3 u_ = Vec3::UnitY(), w_ = Vec3::UnitZ();  // ⊥ d
-  geometry::BasisRow row_;
+  BodyPoint point_;  // the clamped point (body, s, its row)
 };
 
 }  // namespace filum::constraints

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "filum/geometry/scripted_path.hpp"
+#include "filum/core/body_point.hpp"
 #include "filum/core/component.hpp"
 #include "filum/core/constraint_rows.hpp"
 #include "filum/core/params.hpp"
@@ -75,9 +76,8 @@ class PointTarget {
   /// Applies the reaction −F at the attached point: B_k −= b_k(s2) F (nothing unless attached).
   void addReaction(const Vec3& F, VecX& B) const;
 
-  /// The attached spline and the basis at its abscissa (attached only).
-  const CurveBody* body() const { return body_; }
-  const geometry::BasisRow& basisRow() const { return row_; }
+  /// The attached point (body and abscissa; attached only).
+  const BodyPoint& attachedPoint() const { return point_; }
   /// "object" and JSON place of an attached target, for messages.
   const std::string& objectPath() const { return object_; }
 
@@ -91,9 +91,8 @@ class PointTarget {
   geometry::ScriptedPath path_;
   std::string object_;     // attached: node path
   std::string where_;      // attached: JSON place of "object" (file: /pointer)
-  double abscissa_ = 0.0;  // attached: s2
-  const CurveBody* body_ = nullptr;
-  geometry::BasisRow row_;  // attached: basis at s2
+  double abscissa_ = 0.0;  // attached: s2, as read (bound to the body by init)
+  BodyPoint point_;        // attached: the point s2 of the target body
 };
 
 }  // namespace filum::constraints

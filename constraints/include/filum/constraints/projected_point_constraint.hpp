@@ -14,6 +14,7 @@
 
 #include "filum/constraints/baumgarte.hpp"
 #include "filum/constraints/point_target.hpp"
+#include "filum/core/body_point.hpp"
 #include "filum/constraints/target_constraint.hpp"
 #include "filum/core/constraint.hpp"
 #include "filum/geometry/spline_basis.hpp"
@@ -50,7 +51,7 @@ class ProjectedPointConstraint : public Constraint, public TargetConstraint {
   PointTarget target_;
   Baumgarte baumgarte_;
   std::vector<Vec3> directions_;
-  geometry::BasisRow row_;  // basis at the abscissa (constant)
+  BodyPoint point_;  // the constrained point (body, s, its row)
 };
 
 /// Two unit vectors that complete the unit vector a into an orthonormal basis (a, u, w).

@@ -34,6 +34,7 @@
 #include <memory>
 
 #include "filum/constraints/baumgarte.hpp"
+#include "filum/core/body_point.hpp"
 #include "filum/constraints/point_target.hpp"
 #include "filum/constraints/target_constraint.hpp"
 #include "filum/core/constraint.hpp"
@@ -80,7 +81,7 @@ class SlidingPointConstraint final : public Constraint, public TargetConstraint 
   void init(const Scene& scene) override;
   /// Curve quantities at the current s of state st.
   struct Local {
-    geometry::BasisRow row;
+    BodyPoint point;  // the point at the current s
     Vec3 p, t, pss;   // P(s), P'(s), P''(s)
     Vec3 pdot, tdot;  // Ṗ(s) = Σ b_j q̇_j, Ṗ'(s) = Σ b'_j q̇_j
     Vec3 r;           // Ẍ_known − 2 Ṗ' ṡ − P'' ṡ² − 2ω ġ − ω² g

@@ -20,6 +20,7 @@
 #include <string>
 
 #include "filum/constraints/baumgarte.hpp"
+#include "filum/core/body_point.hpp"
 #include "filum/core/constraint.hpp"
 #include "filum/core/params.hpp"
 #include "filum/geometry/spline_basis.hpp"
@@ -64,7 +65,7 @@ class SplineJunctionConstraint final : public Constraint {
   Baumgarte baumgarte_;
   double ratio_ = 1.0;
   const CurveBody* other_ = nullptr;
-  geometry::BasisRow row1_, row2_;
+  BodyPoint own_point_, other_point_;  // the joined points (s1 on this body, s2 on the other)
 };
 
 }  // namespace filum::constraints

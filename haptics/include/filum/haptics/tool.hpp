@@ -27,6 +27,7 @@
 #include <memory>
 #include <vector>
 
+#include "filum/core/body_point.hpp"
 #include "filum/core/force_field.hpp"
 #include "filum/core/scene.hpp"
 #include "filum/geometry/spline_basis.hpp"
@@ -41,8 +42,7 @@ struct ToolState {
   double radius = 1e-3;          // m
   bool touching = false;         // the sphere is in the scene and pushes
   bool grasping = false;         // the jaws hold a point
-  const MechanicalState* grasp_body = nullptr;
-  double grasp_abscissa = 0.0;   // s*
+  BodyPoint grasp;               // the held point s* of a curve body (attached while grasping)
   double push_stiffness = std::numeric_limits<double>::infinity();   // N/m (infinite: the cap)
   double grasp_stiffness = std::numeric_limits<double>::infinity();  // k, N/m (infinite: the cap)
   double grasp_damping = -1.0;   // c, N·s/m (negative: critical)
@@ -52,7 +52,7 @@ struct ToolState {
 /// (m) of it, in the scene's current state; returns whether a point is held.
 bool startGrasp(ToolState& tool, const Scene& scene, double capture);
 /// Holds the point at abscissa s of `body` (an attachment: a thread's end to the stylus).
-void grasp(ToolState& tool, const MechanicalState& body, double abscissa);
+void grasp(ToolState& tool, const CurveBody& body, double abscissa);
 void release(ToolState& tool);
 /// X(t) = X + Ẋ (t − t_sample).
 inline Vec3 toolPosition(const ToolState& tool, double t) { return tool.position + tool.velocity * (t - tool.time); }
@@ -92,7 +92,7 @@ class ToolForceField final : public ForceField {
   void init(const Scene& scene) override;
 
  private:
-  bool grasping() const { return tool_->grasping && tool_->grasp_body == &body(); }
+  bool grasping() const { return tool_->grasping && tool_->grasp.body() == body().curve(); }
   bool pushing() const { return tool_->touching && !grasping(); }
   /// The stiffness to use: capped for explicit steps, the cap when unset.
   double gain(double requested, double cap) const;
@@ -117,8 +117,6 @@ class ToolForceField final : public ForceField {
   double dt_ = 1e-4, thread_radius_ = 0.0, sample_mass_ = 0.0;
   bool explicit_step_ = true;
   std::vector<geometry::BasisRow> sample_rows_;  // b(s_k) of the push samples (fixed abscissas)
-  mutable geometry::BasisRow grasp_row_;         // b(s*) of the last grasp abscissa asked
-  mutable double grasp_row_abscissa_ = std::numeric_limits<double>::quiet_NaN();
   mutable Points unit_load_, response_;          // workspace of effectiveMass: b and M⁻¹ b
   mutable double mass_abscissa_ = 0.0, mass_at_abscissa_ = 0.0;  // its last answer
 };

@@ -1,0 +1,78 @@
+// BodyPoint: a material point of a curve body — the body and an abscissa s on it, with the basis
+// row at s kept: P(s) = Σ_j b_j(s) q_{first + j} (CurveBody). The one form in which a point on a
+// body is named by those who hold one: constraints (their own point, an attached target,
+// junctions), the haptic tool's grasp and attachments. A force F at the point maps up as
+// B_{first+j} += b_j(s) F (DESIGN.md "mappings").
+//
+// The row belongs to the body's layout when attached; after the body changes its points
+// (CurveBody::refine, Scene::refine) the holder calls refresh(), which evaluates the row at the
+// same s in the new basis (a refinement keeps the curve, so the point stays where it was).
+// Contacts are not BodyPoints: a contact point lies between two sphere samples and carries the
+// interpolated weights of both (collision/contact.hpp), its abscissa kept for reports.
+#pragma once
+
+#include "filum/core/curve_body.hpp"
+
+namespace filum {
+
+class BodyPoint {
+ public:
+  BodyPoint() = default;
+  BodyPoint(const CurveBody& body, double abscissa) { attach(body, abscissa); }
+
+  /// The point at abscissa s ∈ [0, 1] of `body` (the row evaluated now).
+  void attach(const CurveBody& body, double abscissa) {
+    body_ = &body;
+    moveTo(abscissa);
+  }
+  /// Another abscissa on the same body (a sliding point, a grasp that moves); a detached point
+  /// only keeps the abscissa.
+  void moveTo(double abscissa) {
+    abscissa_ = abscissa;
+    if (!body_) return;
+    body_->row(abscissa_, row_);
+    revision_ = body_->layoutRevision();
+  }
+  /// The row again after the body's layout changed (no-op otherwise).
+  void refresh() {
+    if (body_ && revision_ != body_->layoutRevision()) moveTo(abscissa_);
+  }
+  void detach() { body_ = nullptr; }
+
+  bool attached() const { return body_ != nullptr; }
+  const CurveBody* body() const { return body_; }
+  double abscissa() const { return abscissa_; }
+  const BasisRow& row() const { return row_; }
+  /// Global index (scene numbering) of the row's first point.
+  int firstPoint() const { return body_->offset() + row_.first; }
+
+  /// Σ_j b_j x_{first+j} of a global 3N vector: P(s) for q, Ṗ(s) for v, P̈(s) for accelerations.
+  Vec3 map(const VecX& global) const {
+    Vec3 sum = Vec3::Zero();
+    for (int j = 0; j < row_.count; ++j) sum += row_.value[j] * global.segment<3>(3 * (firstPoint() + j));
+    return sum;
+  }
+  /// P'(s) (m per unit of s) of a global 3N vector.
+  Vec3 mapTangent(const VecX& global) const {
+    Vec3 sum = Vec3::Zero();
+    for (int j = 0; j < row_.count; ++j) sum += row_.d1[j] * global.segment<3>(3 * (firstPoint() + j));
+    return sum;
+  }
+  /// B_{first+j} += scale · b_j F: a force at the point, mapped up.
+  void addForce(const Vec3& F, VecX& B, double scale = 1.0) const {
+    for (int j = 0; j < row_.count; ++j) B.segment<3>(3 * (firstPoint() + j)) += (scale * row_.value[j]) * F;
+  }
+  /// visit(global point, b_j) for the row's points: the point's mapping row.
+  template <class Visit>
+  void forEachWeight(Visit&& visit) const {
+    for (int j = 0; j < row_.count; ++j) visit(firstPoint() + j, row_.value[j]);
+  }
+
+ private:
+  const CurveBody* body_ = nullptr;
+  double abscissa_ = 0.0;
+  BasisRow row_;
+  long revision_ = -1;
+};
+
+}  // namespace filum
