@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <memory>
+#include <string>
 #include <stdexcept>
 
 #include "support/library_components.hpp"
@@ -32,17 +34,26 @@ class NonFiniteField final : public ForceField {
   }
 };
 
+/// tests/core/data/minimal_thread.json with a `Field` added to the thread, after its first two
+/// steps (which must succeed).
+template <class Field>
+std::unique_ptr<Scene> threadWithFieldAfterTwoSteps(const std::string& type) {
+  Factory factory = test::libraryComponents();
+  factory.add(type, "a failing field (test)", [](const Params&) { return std::make_unique<Field>(); });
+  nlohmann::json document = readJsonFile(std::string(FILUM_TEST_DATA_DIR) + "/minimal_thread.json");
+  document["nodes"][0]["components"].push_back({{"type", type}});
+  auto scene = loadScene(document, "in-memory", factory);
+  for (int k = 0; k < 2; ++k) {
+    const StepReport report = scene->step();
+    EXPECT_TRUE(report.ok) << report.message;
+  }
+  return scene;
+}
+
 TEST(StepFailure, ANonFiniteForceNamesItsFieldAndIsRolledBack) {
   // Scene::computeForce checks the sum once per evaluation and, when it is not finite, finds the
   // field again: the report names it, not the gravity or the elastic fields before it.
-  Factory factory = test::libraryComponents();
-  factory.add("NonFiniteField", "a NaN force during a step (test)",
-              [](const Params&) { return std::make_unique<NonFiniteField>(); });
-  nlohmann::json document = readJsonFile(std::string(FILUM_TEST_DATA_DIR) + "/minimal_thread.json");
-  document["nodes"][0]["components"].push_back({{"type", "NonFiniteField"}});
-  auto scene = loadScene(document, "in-memory", factory);
-  ASSERT_TRUE(scene->step().ok);
-  ASSERT_TRUE(scene->step().ok);
+  auto scene = threadWithFieldAfterTwoSteps<NonFiniteField>("NonFiniteField");
   const SceneState before = scene->state();
   const StepReport report = scene->step();
   EXPECT_FALSE(report.ok);
@@ -53,14 +64,7 @@ TEST(StepFailure, ANonFiniteForceNamesItsFieldAndIsRolledBack) {
 }
 
 TEST(StepFailure, AnExceptionInAStepIsReportedAndRolledBack) {
-  Factory factory = test::libraryComponents();
-  factory.add("ThrowingField", "throws during a step (test)",
-              [](const Params&) { return std::make_unique<ThrowingField>(); });
-  nlohmann::json document = readJsonFile(std::string(FILUM_TEST_DATA_DIR) + "/minimal_thread.json");
-  document["nodes"][0]["components"].push_back({{"type", "ThrowingField"}});
-  auto scene = loadScene(document, "in-memory", factory);
-  ASSERT_TRUE(scene->step().ok);
-  ASSERT_TRUE(scene->step().ok);
+  auto scene = threadWithFieldAfterTwoSteps<ThrowingField>("ThrowingField");
   const SceneState before = scene->state();
   const StepReport report = scene->step();
   EXPECT_FALSE(report.ok);
