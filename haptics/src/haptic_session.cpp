@@ -137,7 +137,6 @@ void HapticSession::start() {
 }
 
 void HapticSession::beforeStep(const Scene& scene) {
-  tool_->grasp.refresh();  // the held point's row in its body's current layout
   if (!threaded_) servo_->runLockstepUntil(scene.state().time);
   ServoSample sample;
   if (!servo_->latestSample(sample)) return;  // no tick since the last step: the tool stays

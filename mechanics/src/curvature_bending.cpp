@@ -34,7 +34,7 @@ struct BendingDensity {
 };
 
 /// The density's Hessian at one node as the 30 numbers the piece sums use (rows of
-/// CurvatureBending::addPieceHessian): e_xx (6 entries of the symmetric block: 00 10 20 11 21 22),
+/// CurvatureBending::pieceHessian): e_xx (6 entries of the symmetric block: 00 10 20 11 21 22),
 /// e_xy (9, column-major; rows x, columns y) twice, e_yy (6). From the header's derivatives,
 /// collected on I, x xᵀ, x yᵀ, y xᵀ and y yᵀ (no 3 × 3 products):
 ///   e_xx = β f [(2|y|² − 5C/r) I + (35 C/r² − 20 |y|²/r) x xᵀ + 10 (x·y)/r (x yᵀ + y xᵀ) − 2 y yᵀ],

@@ -93,7 +93,6 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
       force_ = first_force_;
     else
       scene.computeForce(eval_, force_);
-    if (k == 0 && may_reuse) first_force_ = force_;  // for the fresh attempt, should this one be stale
     if (k > 0) {  // a_0 = 0: M a_0 = 0
       for (const MechanicalState* body : scene.bodies()) body->multiplyMass(body->block(a), body->block(ma_));
       force_.head(n3) -= ma_;
@@ -108,6 +107,7 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
       refactor = false;  // a chord step on an earlier factorization; the estimate guards it
       reused = true;
       ++reuses_;
+      first_force_ = force_;  // for the fresh attempt, should this one be stale
     }
     if (refactor && !assembleAt(scene, h, theta, kappa)) return Attempt::kFailed;
 

@@ -8,9 +8,10 @@ void RungeKutta4::step(Scene& scene, SceneState& s, double dt) {
   // k1 = f(y_n), k2 = f(y_n + dt/2 k1), k3 = f(y_n + dt/2 k2), k4 = f(y_n + dt k3),
   // y_{n+1} = y_n + dt/6 (k1 + 2 k2 + 2 k3 + k4), with k = (v, a) for y = (q, v). Positions move
   // by q ⊕ h w (Scene::integratePositions): q + h w for points, the body's own update for internal
-  // DOFs (a rotation turned by the stages' weighted angular velocity: fourth order in the
-  // velocities, second order in the orientation, whose increments do not commute — the first
-  // Magnus term is matched to O(dt⁵), the commutator term O(dt³) is not).
+  // DOFs (a rotation turned by the stages' weighted angular velocity: the first Magnus term is
+  // matched to O(dt⁵), the commutator term O(dt³) is not, so orientations are second order;
+  // velocities stay fourth order only while the forces do not depend on orientations, as for a
+  // free top — with elastic torques and shear, as in a FramedChain, the scheme is second order).
   const double h = 0.5 * dt;
   scene.computeAcceleration(s, a1_);
 

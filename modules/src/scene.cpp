@@ -110,7 +110,7 @@ void Scene::init() {
     body->initialInternalState(body->internalPositions(state_.q), body->internalVelocities(state_.v));
   if (hasInternalDofs() && integrator_->needsJacobians())
     for (const MechanicalState* body : bodies_)
-      if (body->internalVelocityCount() > 0)
+      if (body->internalVelocityCount() > 0 || body->internalPositionCount() > 0)
         throw SceneError(body->origin(),
                          "an explicit integrator for a body with internal DOFs (implicit steps assemble the points' "
                          "matrix only)",
@@ -218,8 +218,14 @@ void Scene::initCollision() {
 }
 
 std::string Scene::findNonFinite(const VecX& v) const {
-  for (const MechanicalState* body : bodies_)
+  // v: a position (q) or velocity-layout vector; the internal blocks by its length.
+  const bool positions = v.size() == positionSize();
+  for (const MechanicalState* body : bodies_) {
     if (!body->block(v).allFinite()) return body->describe();
+    const Eigen::Index first = positions ? body->internalPositionOffset() : body->internalVelocityOffset();
+    const Eigen::Index count = positions ? body->internalPositionCount() : body->internalVelocityCount();
+    if (count > 0 && !v.segment(first, count).allFinite()) return body->describe() + " (its internal DOFs)";
+  }
   for (const Constraint* c : constraints_)
     if (c->extraDofCount() > 0 && !v.segment(c->extraIndex(), c->extraDofCount()).allFinite()) return c->describe();
   return "";
@@ -228,42 +234,37 @@ std::string Scene::findNonFinite(const VecX& v) const {
 void Scene::computeForce(const SceneState& s, VecX& B) {
   // Stage 3a: accumulate generalized forces B (paper eq. 2): gravity and every force field.
   B.setZero(velocitySize());
-  addForces(s, B);
+  addForces(s, B, false);
   // One finiteness check per evaluation; only when it fails are the sources evaluated again one
   // by one, to name the first that produced a non-finite force (the step is rolled back anyway).
-  if (fault_.empty() && !B.allFinite()) fault_ = nonFiniteForceSource(s);
-}
-
-void Scene::addForces(const SceneState& s, VecX& B) const {
-  for (const MechanicalState* body : bodies_) {
-    body->addGravity(settings_.gravity, body->block(B));
-    if (body->internalVelocityCount() > 0) body->addInternalForce(s, body->internalVelocities(B));
+  if (fault_.empty() && !B.allFinite()) {
+    VecX again = VecX::Zero(velocitySize());
+    fault_ = addForces(s, again, true);
   }
-  for (const ForceField* field : force_fields_) field->addForce(s, B);
-  // Contact penalties of the step's contact set (stage 2 detected it).
-  if (collision_) collision_->addForce(s, B);
-  // Known constraint forces (friction along a sliding point's tangent).
-  for (const Constraint* c : constraints_)
-    if (c->active()) c->addForce(s, B);
 }
 
-std::string Scene::nonFiniteForceSource(const SceneState& s) const {
-  VecX B = VecX::Zero(velocitySize());
+std::string Scene::addForces(const SceneState& s, VecX& B, bool name_non_finite) const {
+  // The sources in order; with name_non_finite, the first after which B is not finite is named.
+  const auto failed = [&] { return name_non_finite && !B.allFinite(); };
   for (const MechanicalState* body : bodies_) {
     body->addGravity(settings_.gravity, body->block(B));
-    if (!B.allFinite()) return "gravity produced a non-finite force";
+    if (failed()) return "gravity produced a non-finite force on " + body->describe();
     if (body->internalVelocityCount() > 0) body->addInternalForce(s, body->internalVelocities(B));
-    if (!B.allFinite()) return body->describe() + " produced a non-finite force on its internal DOFs";
+    if (failed()) return body->describe() + " produced a non-finite force on its internal DOFs";
   }
   for (const ForceField* field : force_fields_) {
     field->addForce(s, B);
-    if (!B.allFinite()) return field->describe() + " produced a non-finite force";
+    if (failed()) return field->describe() + " produced a non-finite force";
   }
-  if (collision_) {
-    collision_->addForce(s, B);
-    if (!B.allFinite()) return collision_->describe() + " produced a non-finite contact force";
+  // Contact penalties of the step's contact set (stage 2 detected it).
+  if (collision_) collision_->addForce(s, B);
+  if (failed()) return collision_->describe() + " produced a non-finite contact force";
+  // Known constraint forces (friction along a sliding point's tangent).
+  for (const Constraint* c : constraints_) {
+    if (c->active()) c->addForce(s, B);
+    if (failed()) return c->describe() + " produced a non-finite force";
   }
-  return "a constraint produced a non-finite force";
+  return name_non_finite ? "the forces are not finite, although no source alone made them so" : "";
 }
 
 void Scene::applyConstraints(const SceneState& s, const BlockInverse& inverse, VecX& a) {
@@ -441,7 +442,7 @@ Energy Scene::energy(const SceneState& s) const {
     e.kinetic += body->kineticEnergy(body->block(s.v));
     e.potential += body->gravityPotential(settings_.gravity, body->block(s.q));
     if (body->internalVelocityCount() > 0) {  // ½ vᵀ M v of the internal DOFs
-      VecX mv(body->internalVelocityCount());
+      auto mv = internal_increment_.head(body->internalVelocityCount());  // a workspace sized by init
       body->multiplyInternalMass(body->internalVelocities(s.v), mv);
       e.kinetic += 0.5 * body->internalVelocities(s.v).dot(mv);
     }

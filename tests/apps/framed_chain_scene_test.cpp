@@ -68,7 +68,8 @@ TEST(FramedChainScene, IsHeldRestsOnTheTableAndIsDrawn) {
   for (int i = 0; i + 1 < 21; ++i) length += (x.row(i + 1) - x.row(i)).norm();
   EXPECT_NEAR(length, 0.2, 0.2 * 7.5e-4);
   // It bends under its weight: between pin and table, heights fall monotonically.
-  for (int i = 0; i + 1 < 21; ++i) EXPECT_GE(x(i, 2), x(i + 1, 2) - 1e-9) << "node " << i;
+  // (Two nodes on the table may differ by the contact tolerance, 1e-6 r each.)
+  for (int i = 0; i + 1 < 21; ++i) EXPECT_GE(x(i, 2), x(i + 1, 2) - 2e-6 * r) << "node " << i;
 
   // Drawn: the skin around P(s) spans the rod, one radius around its centre line.
   const geometry::PolygonSoup skin = geometry::readMeshFile((out / "meshes" / "final_rod_GeneralizedCylinder.ply").string());

@@ -11,7 +11,8 @@
 //   from φ at node i + 1: τ = −J_r⁻¹(φ)ᵀ B φ / l,   at node i: τ = +J_l⁻¹(φ)ᵀ B φ / l
 // (geometry/rotation_vector.hpp). The energy is invariant under rigid motions, so momentum and
 // angular momentum are conserved; tests/mechanics/framed_chain_test.cpp checks the torsion
-// frequency, energy conservation at RK4's order and the momenta. No Jacobian: explicit steps.
+// frequency, energy and angular momentum converging at second order (RK4 with its orientation
+// update, runge_kutta4.cpp) and momentum to round-off. No Jacobian: explicit steps.
 #pragma once
 
 #include <memory>

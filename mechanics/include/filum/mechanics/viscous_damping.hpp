@@ -2,7 +2,9 @@
 // f(s) = −γ m Ṗ(s) per unit of parameter, whose generalized force is
 //   Q_i = −γ m ∫ b_i Σ_j b_j q̇_j ds = −γ (M q̇)_i,
 // i.e. mass-proportional damping (the "high viscosity" of the intestine model, talk 002).
-// It only removes energy: dE/dt = −γ q̇ᵀ M q̇ <= 0.
+// It only removes energy: dE/dt = −γ q̇ᵀ M q̇ <= 0. A body's internal DOFs are damped the same
+// way through their own mass operator (a frame's spin: τ = −γ J ω), so that everything the body
+// moves settles at the rate γ.
 #pragma once
 
 #include <memory>
@@ -32,6 +34,7 @@ class ViscousDamping final : public ForceField {
 
   double coefficient_;
   mutable Points mv_;  // workspace M q̇
+  mutable VecX internal_mv_;  // workspace M ω of the internal DOFs
 };
 
 }  // namespace filum::mechanics

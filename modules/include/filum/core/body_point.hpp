@@ -4,9 +4,11 @@
 // junctions), the haptic tool's grasp and attachments. A force F at the point maps up as
 // B_{first+j} += b_j(s) F (DESIGN.md "mappings").
 //
-// The row belongs to the body's layout when attached; after the body changes its points
-// (CurveBody::refine, Scene::refine) the holder calls refresh(), which evaluates the row at the
-// same s in the new basis (a refinement keeps the curve, so the point stays where it was).
+// The row belongs to the body's layout when it was evaluated; after the body changes its points
+// (CurveBody::refine, coarsen, Scene::refine) every accessor evaluates it again at the same s in
+// the new basis, on first use (the body's layoutRevision() tells): a refinement keeps the curve,
+// so the point stays where it was, and no holder can use a row of a layout that is gone. The
+// global index reads the body's offset live, so a point also follows another body's change.
 // Contacts are not BodyPoints: a contact point lies between two sphere samples and carries the
 // interpolated weights of both (collision/contact.hpp), its abscissa kept for reports.
 #pragma once
@@ -33,46 +35,61 @@ class BodyPoint {
     body_->row(abscissa_, row_);
     revision_ = body_->layoutRevision();
   }
-  /// The row again after the body's layout changed (no-op otherwise).
-  void refresh() {
-    if (body_ && revision_ != body_->layoutRevision()) moveTo(abscissa_);
+  /// The row again if the body's layout changed since it was evaluated (no-op otherwise; the
+  /// accessors below do it themselves).
+  void refresh() const {
+    if (body_ && revision_ != body_->layoutRevision()) {
+      body_->row(abscissa_, row_);
+      revision_ = body_->layoutRevision();
+    }
   }
   void detach() { body_ = nullptr; }
 
   bool attached() const { return body_ != nullptr; }
   const CurveBody* body() const { return body_; }
   double abscissa() const { return abscissa_; }
-  const BasisRow& row() const { return row_; }
+  const BasisRow& row() const {
+    refresh();
+    return row_;
+  }
   /// Global index (scene numbering) of the row's first point.
-  int firstPoint() const { return body_->offset() + row_.first; }
+  int firstPoint() const { return body_->offset() + row().first; }
 
   /// Σ_j b_j x_{first+j} of a global 3N vector: P(s) for q, Ṗ(s) for v, P̈(s) for accelerations.
   Vec3 map(const VecX& global) const {
+    const BasisRow& b = row();
+    const int first = body_->offset() + b.first;
     Vec3 sum = Vec3::Zero();
-    for (int j = 0; j < row_.count; ++j) sum += row_.value[j] * global.segment<3>(3 * (firstPoint() + j));
+    for (int j = 0; j < b.count; ++j) sum += b.value[j] * global.segment<3>(3 * (first + j));
     return sum;
   }
   /// P'(s) (m per unit of s) of a global 3N vector.
   Vec3 mapTangent(const VecX& global) const {
+    const BasisRow& b = row();
+    const int first = body_->offset() + b.first;
     Vec3 sum = Vec3::Zero();
-    for (int j = 0; j < row_.count; ++j) sum += row_.d1[j] * global.segment<3>(3 * (firstPoint() + j));
+    for (int j = 0; j < b.count; ++j) sum += b.d1[j] * global.segment<3>(3 * (first + j));
     return sum;
   }
   /// B_{first+j} += scale · b_j F: a force at the point, mapped up.
   void addForce(const Vec3& F, VecX& B, double scale = 1.0) const {
-    for (int j = 0; j < row_.count; ++j) B.segment<3>(3 * (firstPoint() + j)) += (scale * row_.value[j]) * F;
+    const BasisRow& b = row();
+    const int first = body_->offset() + b.first;
+    for (int j = 0; j < b.count; ++j) B.segment<3>(3 * (first + j)) += (scale * b.value[j]) * F;
   }
   /// visit(global point, b_j) for the row's points: the point's mapping row.
   template <class Visit>
   void forEachWeight(Visit&& visit) const {
-    for (int j = 0; j < row_.count; ++j) visit(firstPoint() + j, row_.value[j]);
+    const BasisRow& b = row();
+    const int first = body_->offset() + b.first;
+    for (int j = 0; j < b.count; ++j) visit(first + j, b.value[j]);
   }
 
  private:
   const CurveBody* body_ = nullptr;
   double abscissa_ = 0.0;
-  BasisRow row_;
-  long revision_ = -1;
+  mutable BasisRow row_;     // b(s) in the body's layout of revision_
+  mutable long revision_ = -1;
 };
 
 }  // namespace filum

@@ -73,11 +73,13 @@ class MechanicalState : public Component {
   /// Their values at t = 0 (q: nq, v: nv).
   virtual void initialInternalState(Eigen::Ref<VecX> /*q*/, Eigen::Ref<VecX> /*v*/) const {}
   /// q1 = q0 ⊕ w: the internal positions q0 moved along the velocity-space increment w (nv),
-  /// e.g. a unit quaternion turned by the rotation vector w. q1 may alias q0. Default q0 + w.
+  /// e.g. a unit quaternion turned by the rotation vector w. q1 may alias q0. Default q0 + w,
+  /// valid only when nq = nv (a body with nq ≠ nv must override both).
   virtual void integrateInternal(Eigen::Ref<const VecX> q0, Eigen::Ref<const VecX> w, Eigen::Ref<VecX> q1) const {
     q1 = q0 + w;
   }
-  /// w = q1 ⊖ q0, the increment that integrateInternal maps q0 to q1 by. Default q1 − q0.
+  /// w = q1 ⊖ q0, the increment that integrateInternal maps q0 to q1 by (error estimates and
+  /// tests). Default q1 − q0 (nq = nv only).
   virtual void differenceInternal(Eigen::Ref<const VecX> q1, Eigen::Ref<const VecX> q0, Eigen::Ref<VecX> w) const {
     w = q1 - q0;
   }

@@ -155,7 +155,9 @@ class Scene {
 
   /// q1 = q0 ⊕ h w: positions moved along the velocity-layout vector w for a time h — q + h w for
   /// points and extra DOFs, each body's integrateInternal for its internal DOFs (a rotation
-  /// turned by h ω). q1 may be q0. Every integrator advances positions through it.
+  /// turned by h ω). q1 may be q0. The explicit integrators advance positions through it; the implicit
+  /// ones add h v to q directly, which is the same for points and extra DOFs (they refuse bodies
+  /// with internal DOFs, Scene::init).
   void integratePositions(const VecX& q0, const VecX& w, double h, VecX& q1) const;
 
   const std::vector<MechanicalState*>& bodies() const { return bodies_; }
@@ -174,10 +176,10 @@ class Scene {
   MechanicalState* bodyAt(const std::string& path) const;
 
  private:
-  /// B += gravity, force fields, contact penalties and known constraint forces at s.
-  void addForces(const SceneState& s, VecX& B) const;
-  /// Which of addForces' sources first makes a force non-finite at s (a message naming it).
-  std::string nonFiniteForceSource(const SceneState& s) const;
+  /// B += gravity (and the bodies' own forces on their internal DOFs), force fields, contact
+  /// penalties and known constraint forces at s. With name_non_finite: stops at the first source
+  /// after which B is not finite and returns a message naming it ("" otherwise).
+  std::string addForces(const SceneState& s, VecX& B, bool name_non_finite) const;
 
   void bindBodyComponent(BodyComponent& component);
   /// Names the first non-finite block of v (per body) or returns "".
@@ -242,7 +244,7 @@ class Scene {
   int internal_position_count_ = 0, internal_velocity_count_ = 0;  // bodies' internal DOFs
   /// Internal blocks after the points and extra DOFs, body by body (scene_state.hpp).
   void setInternalOffsets();
-  mutable VecX internal_increment_;  // h w of one body's internal block (integratePositions)
+  mutable VecX internal_increment_;  // h w of one body's internal block (integratePositions, energy)
   bool initialized_ = false;
 
   std::vector<MechanicalState*> bodies_;
