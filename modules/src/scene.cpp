@@ -257,8 +257,10 @@ std::string Scene::addForces(const SceneState& s, VecX& B, bool name_non_finite)
     if (failed()) return field->describe() + " produced a non-finite force";
   }
   // Contact penalties of the step's contact set (stage 2 detected it).
-  if (collision_) collision_->addForce(s, B);
-  if (failed()) return collision_->describe() + " produced a non-finite contact force";
+  if (collision_) {
+    collision_->addForce(s, B);
+    if (failed()) return collision_->describe() + " produced a non-finite contact force";
+  }
   // Known constraint forces (friction along a sliding point's tangent).
   for (const Constraint* c : constraints_) {
     if (c->active()) c->addForce(s, B);
