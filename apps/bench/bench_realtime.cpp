@@ -227,6 +227,14 @@ int main(int argc, char** argv) {
     repetitions = std::min(repetitions, 3);
     duration = 1.0;
   }
+  // --scenes: every name must be a scene file, checked before anything runs.
+  const std::string scene_dir = std::string(FILUM_SOURCE_DIR) + "/apps/scenes";
+  for (const std::string& name : scene_filter)
+    if (!std::filesystem::exists(scene_dir + "/" + name + ".json")) {
+      std::fprintf(stderr, "error: --scenes: expected the stem of a scene file in %s, found \"%s\"\n", scene_dir.c_str(),
+                   name.c_str());
+      return 2;
+    }
   const bool run_rope = !sizes.empty() || scene_filter.empty();
   const bool run_scenes = !scene_filter.empty() || (sizes.empty() && !quick);
   if (sizes.empty()) sizes = quick ? std::vector<int>{30, 165} : std::vector<int>{30, 50, 165, 1000};
@@ -283,14 +291,10 @@ int main(int argc, char** argv) {
   if (run_scenes) {
     std::printf("reference scenes, as they are (their own dt and integrator), %g s or their duration\n", duration);
     std::vector<std::filesystem::path> scenes;
-    for (const auto& entry : std::filesystem::directory_iterator(std::string(FILUM_SOURCE_DIR) + "/apps/scenes"))
+    for (const auto& entry : std::filesystem::directory_iterator(scene_dir))
       if (entry.path().extension() == ".json" &&
           (scene_filter.empty() || std::count(scene_filter.begin(), scene_filter.end(), entry.path().stem().string())))
         scenes.push_back(entry.path());
-    if (scenes.size() < scene_filter.size()) {
-      std::fprintf(stderr, "error: --scenes names a scene that is not in %s/apps/scenes\n", FILUM_SOURCE_DIR);
-      return 2;
-    }
     std::sort(scenes.begin(), scenes.end());
     for (const auto& path : scenes) {
       json document = filum::readJsonFile(path.string());

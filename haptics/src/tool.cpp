@@ -6,6 +6,7 @@
 #include "filum/core/curve_body.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/closest_point.hpp"
+#include "filum/geometry/spline_curve.hpp"
 
 namespace filum::haptics {
 
@@ -13,12 +14,6 @@ namespace {
 
 constexpr double kPushOmegaDt = 0.3;   // ω dt of the push penalty on one sample (explicit steps)
 constexpr double kGraspOmegaDt = 0.5;  // ω dt of the grasp spring (explicit steps)
-
-Vec3 rowPoint(const geometry::BasisRow& row, ConstPointsRef q) {
-  Vec3 x = Vec3::Zero();
-  for (int j = 0; j < row.count; ++j) x += row.value[j] * q.row(row.first + j).transpose();
-  return x;
-}
 
 }  // namespace
 
@@ -117,7 +112,7 @@ void ToolForceField::forEachOverlap(const SceneState& s, Visit visit) const {
   const double k = pushStiffness(), R = tool_->radius + thread_radius_;
   const Vec3 X = toolPosition(*tool_, s.time);
   for (const geometry::BasisRow& row : sample_rows_) {
-    const Vec3 d = rowPoint(row, q) - X;
+    const Vec3 d = geometry::curvePoint(row, q) - X;
     const double distance = d.norm();
     if (distance >= R || distance == 0.0) continue;
     visit(Overlap{row, distance, R, k, d / distance});

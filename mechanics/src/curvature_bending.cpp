@@ -33,17 +33,17 @@ struct BendingDensity {
   }
 };
 
-/// The density's Hessian at one node as the 30 numbers the piece sums use (rows of
-/// CurvatureBending::pieceHessian): e_xx (6 entries of the symmetric block: 00 10 20 11 21 22),
-/// e_xy (9, column-major; rows x, columns y) twice, e_yy (6). From the header's derivatives,
+/// The density's Hessian at one node as 21 numbers (what CurvatureBending::pieceHessian sums):
+/// e_xx (6 entries of the symmetric block: 00 10 20 11 21 22), e_xy (9, column-major; rows x,
+/// columns y), e_yy (6). From the header's derivatives,
 /// collected on I, x xᵀ, x yᵀ, y xᵀ and y yᵀ (no 3 × 3 products):
 ///   e_xx = β f [(2|y|² − 5C/r) I + (35 C/r² − 20 |y|²/r) x xᵀ + 10 (x·y)/r (x yᵀ + y xᵀ) − 2 y yᵀ],
 ///   e_xy = β f [−2 (x·y) I + 10 (x·y)/r x xᵀ − 6 x yᵀ − 2 y xᵀ],
 ///   e_yy = β f [2 r I − 2 x xᵀ].
-void densityHessian(double beta, const Vec3& x, const Vec3& y, Eigen::Matrix<double, 30, 1>& h) {
+void densityHessian(double beta, const Vec3& x, const Vec3& y, std::array<double, 21>& h) {
   const double r = x.squaredNorm();
   if (r == 0.0) {
-    h.setZero();
+    h.fill(0.0);
     return;
   }
   const double xy = x.dot(y), yy = y.squaredNorm();
@@ -58,14 +58,11 @@ void densityHessian(double beta, const Vec3& x, const Vec3& y, Eigen::Matrix<dou
     const int i = kLower[k][0], j = kLower[k][1];
     const double delta = i == j ? 1.0 : 0.0;
     h[k] = i_xx * delta + c_xx * x[i] * x[j] + c_sym * (x[i] * y[j] + y[i] * x[j]) + c_yy * y[i] * y[j];
-    h[24 + k] = i_yy * delta + c_yy * x[i] * x[j];
+    h[15 + k] = i_yy * delta + c_yy * x[i] * x[j];
   }
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i) {
-      const double value =
-          (i == j ? i_xy : 0.0) + c_sym * x[i] * x[j] + c_xy * x[i] * y[j] + c_yx * y[i] * x[j];
-      h[6 + i + 3 * j] = value;
-      h[15 + i + 3 * j] = value;
+      h[6 + i + 3 * j] = (i == j ? i_xy : 0.0) + c_sym * x[i] * x[j] + c_xy * x[i] * y[j] + c_yx * y[i] * x[j];
     }
 }
 
@@ -132,13 +129,13 @@ void CurvatureBending::pieceHessian(const QuadraturePiece& piece, const ConstPoi
   // Hessian is
   //   Σ_g [b'_a b'_b e_xx + b'_a b''_b e_xy + b''_a b'_b e_xyᵀ + b''_a b''_b e_yy]_g,
   // symmetric as a whole (block (b, a) = block (a, b)ᵀ). The piece's nodes share one support: the
-  // four sums are accumulated as rank-one updates over the pairs a >= b — the node's 30 Hessian
+  // four sums are accumulated as rank-one updates over the pairs a >= b — the node's 21 Hessian
   // numbers times the pairs' basis products — and turned into 3 × 3 blocks once per pair.
   constexpr int kMax = geometry::BasisRow::kMaxSupport;
   constexpr int kPairs = Count > 0 ? Count * (Count + 1) / 2 : kMax * (kMax + 1) / 2;
   const int count = Count > 0 ? Count : piece.count, pairs = count * (count + 1) / 2;
   std::array<std::array<double, 30>, kPairs> sums{};  // per pair k: the four sums' 30 rows
-  Eigen::Matrix<double, 30, 1> h;
+  std::array<double, 21> h;  // e_xx, e_xy, e_yy at the node (densityHessian)
   std::array<std::array<double, kPairs>, 4> products;  // b'_a b'_b, b'_a b''_b, b''_a b'_b, b''_a b''_b
   const auto& nodes = quadrature_.nodes();
   for (int g = piece.begin; g < piece.end; ++g) {
@@ -156,9 +153,9 @@ void CurvatureBending::pieceHessian(const QuadraturePiece& piece, const ConstPoi
     for (k = 0; k < pairs; ++k) {
       double* column = sums[k].data();
       for (int r = 0; r < 6; ++r) column[r] += h[r] * products[0][k];
-      for (int r = 6; r < 15; ++r) column[r] += h[r] * products[1][k];
-      for (int r = 15; r < 24; ++r) column[r] += h[r] * products[2][k];
-      for (int r = 24; r < 30; ++r) column[r] += h[r] * products[3][k];
+      for (int r = 6; r < 15; ++r) column[r] += h[r] * products[1][k];       // e_xy, b'_a b''_b
+      for (int r = 6; r < 15; ++r) column[r + 9] += h[r] * products[2][k];   // e_xy, b''_a b'_b (transposed below)
+      for (int r = 15; r < 21; ++r) column[r + 9] += h[r] * products[3][k];  // e_yy
     }
   }
   for (int k = 0; k < pairs; ++k) {

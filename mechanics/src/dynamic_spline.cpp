@@ -254,6 +254,17 @@ Points straightThread(const Params& line) {
 
 }  // namespace
 
+double massFromParams(const Params& p, double radius, double length) {
+  if (p.has("mass") && p.has("density")) p.fail("density", "either 'mass' or 'density', not both");
+  if (p.has("mass")) return p.positive("mass");
+  if (!p.has("density")) p.fail("mass", "the body's 'mass' (kg) or its 'density' (kg/m³)");
+  const double mass = p.positive("density") * std::numbers::pi * radius * radius * length;
+  if (!(mass > 0.0) || !std::isfinite(mass))
+    p.fail("density", "a density giving a positive, finite mass (ρ π r² L)",
+           describeJson(p.raw("density")) + ", mass " + describeJson(mass) + " kg");
+  return mass;
+}
+
 std::unique_ptr<DynamicSpline> DynamicSpline::fromParams(const Params& p) {
   Points q;
   if (p.has("control_points") && p.raw("control_points").is_object()) {
@@ -267,19 +278,7 @@ std::unique_ptr<DynamicSpline> DynamicSpline::fromParams(const Params& p) {
   if (!(length > 0.0) || !std::isfinite(length))
     p.fail("control_points", "control points that span a curve of finite, non-zero length",
            "length " + describeJson(length) + " m");
-  double mass = 0.0;
-  if (p.has("mass") && p.has("density")) p.fail("density", "either 'mass' or 'density', not both");
-  if (p.has("mass")) {
-    mass = p.positive("mass");
-  } else if (p.has("density")) {
-    mass = p.positive("density") * std::numbers::pi * radius * radius * length;
-    if (!(mass > 0.0) || !std::isfinite(mass))
-      p.fail("density", "a density giving a positive, finite mass (ρ π r² L)",
-             describeJson(p.raw("density")) + ", mass " + describeJson(mass) + " kg");
-  } else {
-    p.fail("mass", "the thread's 'mass' (kg) or its 'density' (kg/m³)");
-  }
-  auto spline = build(p, std::move(basis), std::move(q), mass, radius);
+  auto spline = build(p, std::move(basis), std::move(q), massFromParams(p, radius, length), radius);
   if (p.has("velocities")) spline->setInitialVelocities(velocityList(p, spline->pointCount()));
   std::vector<CurveBody::Refinement> refinements = CurveBody::refinementsFromParams(p, "refine");
   std::size_t inserted = 0;

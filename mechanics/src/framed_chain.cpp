@@ -1,7 +1,6 @@
 #include "filum/mechanics/framed_chain.hpp"
 
 #include <cmath>
-#include <numbers>
 
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/nonuniform_bspline.hpp"
@@ -12,14 +11,10 @@ namespace filum::mechanics {
 
 namespace {
 
-/// (w, x, y, z) of q's node block.
-Eigen::Quaterniond quaternionAt(Eigen::Ref<const VecX> q, int node) {
-  return Eigen::Quaterniond(q[4 * node], q[4 * node + 1], q[4 * node + 2], q[4 * node + 3]);
-}
+/// Node i's quaternion in the frames' block of q (4 numbers per node).
+Eigen::Quaterniond quaternionAt(Eigen::Ref<const VecX> q, int node) { return geometry::unpackQuaternion(q.data() + 4 * node); }
 
-void store(const Eigen::Quaterniond& r, Eigen::Ref<VecX> q, int node) {
-  q.segment<4>(4 * node) << r.w(), r.x(), r.y(), r.z();
-}
+void store(const Eigen::Quaterniond& r, Eigen::Ref<VecX> q, int node) { geometry::packQuaternion(r, q.data() + 4 * node); }
 
 /// The degree-1 B-spline through the nodes, knots at their rest arc lengths (clamped).
 std::unique_ptr<geometry::SplineBasis> polylineBasis(const std::vector<double>& lengths) {
@@ -75,15 +70,7 @@ std::unique_ptr<FramedChain> FramedChain::fromParams(const Params& p) {
   const double radius = p.positive("radius", 1e-3);
   double length = 0.0;
   for (Eigen::Index i = 1; i < nodes.rows(); ++i) length += (nodes.row(i) - nodes.row(i - 1)).norm();
-  double mass = 0.0;
-  if (p.has("mass") && p.has("density")) p.fail("density", "either 'mass' or 'density', not both");
-  if (p.has("mass"))
-    mass = p.positive("mass");
-  else if (p.has("density"))
-    mass = p.positive("density") * std::numbers::pi * radius * radius * length;
-  else
-    p.fail("mass", "the chain's 'mass' (kg) or its 'density' (kg/m³)");
-  auto chain = std::make_unique<FramedChain>(std::move(nodes), radius, mass);
+  auto chain = std::make_unique<FramedChain>(std::move(nodes), radius, massFromParams(p, radius, length));
   if (p.has("angular_velocities"))
     chain->initial_angular_velocities_ =
         p.points("angular_velocities", chain->pointCount(), chain->pointCount(), "framed_chain.hpp: one per node");

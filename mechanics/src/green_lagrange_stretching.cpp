@@ -8,6 +8,16 @@
 
 namespace filum::mechanics {
 
+namespace {
+
+/// A pair's Hessian block from its sums m = (xx, xy, xz, yy, yz, zz, isotropic):
+/// Σ p c/a0² x xᵀ + (Σ p c ε) I.
+void pairBlock(const double* m, Eigen::Matrix3d& block) {
+  block << m[0] + m[6], m[1], m[2], m[1], m[3] + m[6], m[4], m[2], m[4], m[5] + m[6];
+}
+
+}  // namespace
+
 std::unique_ptr<GreenLagrangeStretching> GreenLagrangeStretching::fromParams(const Params& p) {
   const std::string jacobian = p.string("jacobian", "exact");
   if (jacobian != "exact" && jacobian != "definite") p.fail("jacobian", "\"exact\" or \"definite\"", "\"" + jacobian + "\"");
@@ -161,10 +171,7 @@ void GreenLagrangeStretching::pieceHessian(const QuadraturePiece& piece, const d
         for (int r = 0; r < 7; ++r) sums[k][r] += p * outer[r];
       }
   }
-  for (int k = 0; k < pairs; ++k) {
-    const auto& m = sums[k];
-    blocks[k] << m[0] + m[6], m[1], m[2], m[1], m[3] + m[6], m[4], m[2], m[4], m[5] + m[6];
-  }
+  for (int k = 0; k < pairs; ++k) pairBlock(sums[k].data(), blocks[k]);
 }
 
 void GreenLagrangeStretching::cubicPieceHessian(const QuadraturePiece& piece, const CubicPiece& cubic, const double* q,
@@ -188,10 +195,7 @@ void GreenLagrangeStretching::cubicPieceHessian(const QuadraturePiece& piece, co
   outer.col(5) = beta.cwiseProduct(x.col(2).cwiseProduct(x.col(2)));
   outer.col(6) = isotropic;
   const Eigen::Matrix<double, 7, 10> sums = outer.transpose() * cubic.pair_products;
-  for (int k = 0; k < 10; ++k) {
-    const auto m = sums.col(k);
-    blocks[k] << m[0] + m[6], m[1], m[2], m[1], m[3] + m[6], m[4], m[2], m[4], m[5] + m[6];
-  }
+  for (int k = 0; k < 10; ++k) pairBlock(sums.col(k).data(), blocks[k]);
 }
 
 void GreenLagrangeStretching::addStiffnessDerivative(const SceneState& s, const VecX& w, double factor,

@@ -33,7 +33,7 @@ namespace {
 using Quaternion = Eigen::Quaterniond;
 
 /// The quaternion block (w, x, y, z) of q as an Eigen quaternion.
-Quaternion quaternionOf(Eigen::Ref<const VecX> q) { return Quaternion(q[0], q[1], q[2], q[3]); }
+Quaternion quaternionOf(Eigen::Ref<const VecX> q) { return geometry::unpackQuaternion(q.data()); }
 
 
 class RigidBody final : public MechanicalState {
@@ -59,8 +59,7 @@ class RigidBody final : public MechanicalState {
   }
   /// q1 = q0 ⊗ exp(w): w is a body-frame rotation vector (ω is in the body frame).
   void integrateInternal(Eigen::Ref<const VecX> q0, Eigen::Ref<const VecX> w, Eigen::Ref<VecX> q1) const override {
-    const Quaternion turned = (quaternionOf(q0) * geometry::rotationExp(w)).normalized();
-    q1 << turned.w(), turned.x(), turned.y(), turned.z();
+    geometry::packQuaternion((quaternionOf(q0) * geometry::rotationExp(w)).normalized(), q1.data());
   }
   void differenceInternal(Eigen::Ref<const VecX> q1, Eigen::Ref<const VecX> q0, Eigen::Ref<VecX> w) const override {
     w = geometry::rotationLog(quaternionOf(q0).conjugate() * quaternionOf(q1));

@@ -24,4 +24,15 @@ Eigen::Matrix3d leftJacobianInverse(const Vec3& phi);
 /// The cross-product matrix φ̂ (φ̂ x = φ × x).
 Eigen::Matrix3d skew(const Vec3& phi);
 
+/// A quaternion as the state stores it, (w, x, y, z) from wxyz[0..3] (Eigen's own order is x y z w).
+inline Eigen::Quaterniond unpackQuaternion(const double* wxyz) {
+  return Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
+}
+inline void packQuaternion(const Eigen::Quaterniond& r, double* wxyz) {
+  wxyz[0] = r.w();
+  wxyz[1] = r.x();
+  wxyz[2] = r.y();
+  wxyz[3] = r.z();
+}
+
 }  // namespace filum::geometry

@@ -98,6 +98,10 @@ class DynamicSpline final : public CurveBody {
 /// Arc length ∫_0^1 |P'(s)| ds by Gauss-Legendre on each polynomial piece.
 double arcLength(const geometry::SplineBasis& basis, ConstPointsRef q, int nodes_per_piece = 8);
 
+/// A body's total mass (kg) from "mass", or from "density" (kg/m³) as ρ π r² L for its radius
+/// and length (m); exactly one of them; SceneError at the faulty key.
+double massFromParams(const Params& p, double radius, double length);
+
 /// A basis by name for n control points; throws SceneError at p.where(key) if unknown or n
 /// is too small for it.
 std::unique_ptr<geometry::SplineBasis> makeBasis(const Params& p, const std::string& key, int control_points);

@@ -56,21 +56,9 @@ class BodyPoint {
   int firstPoint() const { return body_->offset() + row().first; }
 
   /// Σ_j b_j x_{first+j} of a global 3N vector: P(s) for q, Ṗ(s) for v, P̈(s) for accelerations.
-  Vec3 map(const VecX& global) const {
-    const BasisRow& b = row();
-    const int first = body_->offset() + b.first;
-    Vec3 sum = Vec3::Zero();
-    for (int j = 0; j < b.count; ++j) sum += b.value[j] * global.segment<3>(3 * (first + j));
-    return sum;
-  }
+  Vec3 map(const VecX& global) const { return combine(row().value, global); }
   /// P'(s) (m per unit of s) of a global 3N vector.
-  Vec3 mapTangent(const VecX& global) const {
-    const BasisRow& b = row();
-    const int first = body_->offset() + b.first;
-    Vec3 sum = Vec3::Zero();
-    for (int j = 0; j < b.count; ++j) sum += b.d1[j] * global.segment<3>(3 * (first + j));
-    return sum;
-  }
+  Vec3 mapTangent(const VecX& global) const { return combine(row().d1, global); }
   /// B_{first+j} += scale · b_j F: a force at the point, mapped up.
   void addForce(const Vec3& F, VecX& B, double scale = 1.0) const {
     const BasisRow& b = row();
@@ -86,6 +74,14 @@ class BodyPoint {
   }
 
  private:
+  /// Σ_j w_j x_{first+j} over the row's points, for the row's weights w (values or b').
+  Vec3 combine(const std::array<double, BasisRow::kMaxSupport>& weights, const VecX& global) const {
+    const int first = firstPoint(), count = row_.count;  // firstPoint() refreshed the row
+    Vec3 sum = Vec3::Zero();
+    for (int j = 0; j < count; ++j) sum += weights[j] * global.segment<3>(3 * (first + j));
+    return sum;
+  }
+
   const CurveBody* body_ = nullptr;
   double abscissa_ = 0.0;
   mutable BasisRow row_;     // b(s) in the body's layout of revision_
