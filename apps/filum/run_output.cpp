@@ -1,5 +1,6 @@
 #include "filum/run_output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -42,16 +43,25 @@ void RunOutput::writeFrame(const Scene& scene) {
   // Everything of the frame is computed and checked first: a frame is written whole or not at
   // all, and no file ever holds a non-finite value (finite control points near 1e308 can still
   // give infinite curve points or energies).
+  // One polyline per strand of every curve body (one for an uncut curve, CurveBasis::strands),
+  // its samples at equal steps of s, in proportion to its share of [0, 1] (at least 2).
   std::vector<visual::PolyLine> lines;
-  const std::vector<double> abscissas = geometry::uniformAbscissas(curve_samples_);
+  std::vector<const MechanicalState*> line_body;
   for (const MechanicalState* body : scene.bodies()) {
     const auto* spline = body->curve();
     if (!spline) continue;
-    visual::PolyLine line{body->node()->path(), Points(curve_samples_, 3), abscissas};
-    geometry::SplinePointMapping(spline->basis(), abscissas).apply(body->block(s.q), line.points);
-    if (!line.points.allFinite())
-      throw NonFiniteFrame("refusing to write the non-finite curve of " + body->describe() + " at t = " + t + " s");
-    lines.push_back(std::move(line));
+    for (const Strand& strand : strands(spline->basis())) {
+      const int count = std::max(2, static_cast<int>(std::lround(curve_samples_ * (strand.end - strand.begin))));
+      std::vector<double> abscissas = geometry::uniformAbscissas(count);
+      if (strand.begin != 0.0 || strand.end != 1.0)  // a strand of a cut curve: its own range of s
+        for (double& a : abscissas) a = strand.begin + (strand.end - strand.begin) * a;
+      visual::PolyLine line{body->node()->path(), Points(count, 3), abscissas};
+      geometry::SplinePointMapping(spline->basis(), std::move(abscissas), strand).apply(body->block(s.q), line.points);
+      if (!line.points.allFinite())
+        throw NonFiniteFrame("refusing to write the non-finite curve of " + body->describe() + " at t = " + t + " s");
+      lines.push_back(std::move(line));
+      line_body.push_back(body);
+    }
   }
   const Energy e = scene.energy(s);
   const VecX g = scene.constraintViolation(s);
@@ -68,11 +78,14 @@ void RunOutput::writeFrame(const Scene& scene) {
     for (int i = 0; i < q.rows(); ++i)
       control_points_ << t << ',' << name << ',' << i << ',' << exact(q(i, 0)) << ',' << exact(q(i, 1)) << ','
                       << exact(q(i, 2)) << '\n';
-    if (!body->curve()) continue;
-    const Points& points = lines[line_index++].points;
-    for (int k = 0; k < curve_samples_; ++k)
-      curve_ << t << ',' << name << ',' << k << ',' << exact(abscissas[k]) << ',' << exact(points(k, 0)) << ','
-             << exact(points(k, 1)) << ',' << exact(points(k, 2)) << '\n';
+    // The samples of the body's strands in order, numbered on (a cut's abscissa appears twice:
+    // the end of one strand and the start of the next).
+    for (int k = 0; line_index < lines.size() && line_body[line_index] == body; ++line_index) {
+      const visual::PolyLine& line = lines[line_index];
+      for (int j = 0; j < line.points.rows(); ++j, ++k)
+        curve_ << t << ',' << name << ',' << k << ',' << exact(line.scalars[j]) << ',' << exact(line.points(j, 0)) << ','
+               << exact(line.points(j, 1)) << ',' << exact(line.points(j, 2)) << '\n';
+    }
   }
   energy_ << t << ',' << exact(e.kinetic) << ',' << exact(e.potential) << ',' << exact(e.total()) << ','
           << exact(violation) << '\n';

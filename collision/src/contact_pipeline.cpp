@@ -108,6 +108,7 @@ void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double 
     const Points& x = model.centers();
     const Points& v = model.velocities();
     for (int k = 0; k + 1 < model.sphereCount(); ++k) {
+      if (!model.mapping().joinsNext(k)) continue;  // a cut: no chord across it
       const Vec3 a0 = x.row(k).transpose(), a1 = x.row(k + 1).transpose();
       const Vec3 b0 = a0 + sweep * v.row(k).transpose(), b1 = a1 + sweep * v.row(k + 1).transpose();
       chords_.push_back(sweptChordBound(a0, a1, b0, b1, model.radius() + 0.5 * margin_));
@@ -125,8 +126,9 @@ void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double 
       if (ma == mb) {
         const SphereCollisionModel& model = *models_[ma];
         if (!model.selfCollision()) continue;
-        // Every point of chords k and l is closer than (|k − l| + 1) h along the curve.
-        if ((std::abs(k - l) + 1) * model.mapping().spacing() < model.exclusion()) continue;
+        // Every point of chords k and l is closer than (|k − l| + 1) h along the curve (chords
+        // of two strands of a cut thread are not near along it, however close their indices).
+        if (model.mapping().chordDistanceBound(k, l) < model.exclusion()) continue;
       }
       findChordContact(*models_[ma], ma, k, *models_[mb], mb, l, narrow, contacts_);
     }
@@ -277,6 +279,7 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
     model.mapping().apply(model.curve().block(after.q), end);
     const Points& start = model.centers();
     for (int k = 0; k + 1 < model.sphereCount(); ++k) {
+      if (!model.mapping().joinsNext(k)) continue;  // a cut: no chord across it
       const Vec3 a0 = start.row(k).transpose(), a1 = start.row(k + 1).transpose();
       const Vec3 b0 = end.row(k).transpose(), b1 = end.row(k + 1).transpose();
       chords_.push_back(sweptChordBound(a0, a1, b0, b1, depth_test ? keep * model.radius() : 0.0));  // centre lines
@@ -291,7 +294,7 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
     const auto [mb, l] = chord_owner_[pair.second];
     const SphereCollisionModel& a = *models_[ma];
     const SphereCollisionModel& b = *models_[mb];
-    if (ma == mb && (std::abs(k - l) + 1) * a.mapping().spacing() < a.exclusion()) continue;  // as in beginStep
+    if (ma == mb && a.mapping().chordDistanceBound(k, l) < a.exclusion()) continue;  // as in beginStep
     MovingSegment sa{a.centers().row(k).transpose(), a.centers().row(k + 1).transpose(),
                      after_centers_[ma].row(k).transpose(), after_centers_[ma].row(k + 1).transpose()};
     MovingSegment sb{b.centers().row(l).transpose(), b.centers().row(l + 1).transpose(),

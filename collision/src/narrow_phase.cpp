@@ -17,17 +17,16 @@ double speed(const SphereCollisionModel& m, int k) { return m.velocities().row(k
 /// Abscissa of the chord point (1 − t) x_k + t x_{k+1}.
 double chordAbscissa(const SphereCollisionModel& m, int k, double t) {
   const auto& s = m.mapping().abscissas();
-  return k + 1 < static_cast<int>(s.size()) ? (1.0 - t) * s[k] + t * s[k + 1] : s[k];
+  return m.mapping().joinsNext(k) ? (1.0 - t) * s[k] + t * s[k + 1] : s[k];
 }
 
 /// Whether the closest point at parameter u of chord k of m (against the chord [q0, q1]) is
 /// the one that represents it: inside the chord, or at a vertex that is the closest point of
-/// both chords sharing it, reported by the chord that starts there (or at the curve's ends).
+/// both chords sharing it, reported by the chord that starts there (or at a strand's ends).
 bool representsClosestPoint(const SphereCollisionModel& m, int k, double u, const Vec3& q0, const Vec3& q1) {
-  const int last_chord = m.sphereCount() - 2;
   if (u > 0.0 && u < 1.0) return true;
-  if (u >= 1.0) return k == last_chord;  // an inner end vertex belongs to the next chord
-  if (k == 0) return true;               // the curve's first point
+  if (u >= 1.0) return !m.mapping().joinsNext(k + 1);  // an inner end vertex belongs to the next chord
+  if (k == 0 || !m.mapping().joinsNext(k - 1)) return true;  // a strand's first point
   // u = 0: vertex k; keep it if chord k − 1 also has its closest point there (u' = 1).
   return closestPointsOnSegments(center(m, k - 1), center(m, k), q0, q1).s >= 1.0;
 }
@@ -69,7 +68,8 @@ void findObstacleContacts(const SphereCollisionModel& model, int model_index, co
 bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const SphereCollisionModel& b, int model_b,
                       int l, const NarrowPhaseSettings& settings, ContactSet& out) {
   const bool self = model_a == model_b;
-  if (self && std::abs(k - l) <= 1) return false;  // neighbouring chords share a sphere
+  if (self && a.mapping().strandOf(k) == a.mapping().strandOf(l) && std::abs(k - l) <= 1)
+    return false;  // neighbouring chords share a sphere
   const Vec3 p0 = center(a, k), p1 = center(a, k + 1), q0 = center(b, l), q1 = center(b, l + 1);
   const SegmentClosestPoints cp = closestPointsOnSegments(p0, p1, q0, q1);
 
@@ -85,7 +85,7 @@ bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const S
 
   // Self-collision: skip points closer than the exclusion distance along the curve.
   const double s_a = chordAbscissa(a, k, cp.s), s_b = chordAbscissa(b, l, cp.t);
-  if (self && std::abs((k + cp.s) - (l + cp.t)) * a.mapping().spacing() < a.exclusion()) return false;
+  if (self && a.mapping().arcDistance(k, cp.s, l, cp.t) < a.exclusion()) return false;
 
   Contact c;
   c.model_a = model_a;

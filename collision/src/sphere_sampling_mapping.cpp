@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 
@@ -20,36 +21,43 @@ constexpr int kTablePerPiece = 8;  // table entries per polynomial piece of the 
 }  // namespace
 
 SphereSamplingMapping::SphereSamplingMapping(const geometry::SplineBasis& basis, double spacing)
-    : basis_(basis.clone()), spacing_(spacing) {
+    : basis_(basis.clone()), spacing_(spacing), strands_(filum::strands(basis)) {
   if (!(spacing > 0.0) || !std::isfinite(spacing))
     throw std::invalid_argument("SphereSamplingMapping: the spacing must be positive and finite");
-  // The arc-length table's abscissas (kTablePerPiece per polynomial piece) and the basis
-  // derivatives at them and at the Gauss nodes of every table interval: fixed, so that each
-  // resample only forms P'(s) = Σ b'_i(s) q_i.
+  // The arc-length table's abscissas (kTablePerPiece per polynomial piece), strand by strand,
+  // and the basis derivatives at them and at the Gauss nodes of every table interval: fixed, so
+  // that each resample only forms P'(s) = Σ b'_i(s) q_i. A strand's last entry is its own end
+  // (evaluated from the left at a cut), the next strand starts with an entry of its own.
   const std::vector<double> pieces = basis.breakpoints();
-  auto derivative = [&](double s) {
+  auto derivative = [&](double s, bool from_left) {
     geometry::BasisRow row;
-    basis_->evaluate(s, row);
-    Derivative d;
-    d.first = row.first;
-    d.count = row.count;
-    d.d1 = row.d1;
-    return d;
+    from_left ? basis_->evaluateFromLeft(s, row) : basis_->evaluate(s, row);
+    return Derivative{row.first, row.count, row.d1};
   };
-  for (std::size_t piece = 0; piece + 1 < pieces.size(); ++piece) {
-    if (!(pieces[piece + 1] > pieces[piece])) continue;
-    for (int j = (table_s_.empty() ? 0 : 1); j <= kTablePerPiece; ++j) {
-      const double s = pieces[piece] + (pieces[piece + 1] - pieces[piece]) * j / kTablePerPiece;
-      if (!table_s_.empty()) {
-        const double a = table_s_.back();
-        for (int g = 0; g < kGaussNodes; ++g) gauss_.push_back(derivative(a + (s - a) * kGaussX[g]));
+  for (const Strand& strand : strands_) {
+    strand_table_begin_.push_back(static_cast<int>(table_s_.size()));
+    for (std::size_t piece = 0; piece + 1 < pieces.size(); ++piece) {
+      if (!(pieces[piece] >= strand.begin && pieces[piece + 1] <= strand.end && pieces[piece + 1] > pieces[piece]))
+        continue;
+      const bool first = static_cast<int>(table_s_.size()) == strand_table_begin_.back();
+      for (int j = first ? 0 : 1; j <= kTablePerPiece; ++j) {
+        const double s = pieces[piece] + (pieces[piece + 1] - pieces[piece]) * j / kTablePerPiece;
+        const bool strand_end = j == kTablePerPiece && pieces[piece + 1] >= strand.end;
+        if (!first || j > 0) {
+          const double a = table_s_.back();
+          for (int g = 0; g < kGaussNodes; ++g) gauss_.push_back(derivative(a + (s - a) * kGaussX[g], false));
+        } else {
+          gauss_.resize(gauss_.size() + kGaussNodes);  // no interval ends at a strand's first entry
+        }
+        table_s_.push_back(s);
+        table_derivative_.push_back(derivative(strand_end ? strand.end : s, strand_end));
       }
-      table_s_.push_back(s);
-      table_derivative_.push_back(derivative(s));
     }
   }
+  strand_table_begin_.push_back(static_cast<int>(table_s_.size()));
   table_length_.resize(table_s_.size());
   table_speed_.resize(table_s_.size());
+  strand_spacing_.resize(strands_.size());
 }
 
 void SphereSamplingMapping::resample(ConstPointsRef q) {
@@ -61,34 +69,56 @@ void SphereSamplingMapping::resample(ConstPointsRef q) {
   };
   // Arc length L(s_j) = Σ ∫ |P'| over the table intervals, 4-point Gauss–Legendre on each (an
   // interval is 1/8 of a polynomial piece, where |P'| is smooth: relative error far below 1e-8
-  // unless the curve nearly stops, P' ≈ 0, where it falls back towards the chord length).
-  const int entries = static_cast<int>(table_s_.size());
-  table_length_[0] = 0.0;
-  table_speed_[0] = speed(table_derivative_[0]);
-  for (int j = 1; j < entries; ++j) {
-    double integral = 0.0;
-    for (int g = 0; g < kGaussNodes; ++g) integral += kGaussW[g] * speed(gauss_[(j - 1) * kGaussNodes + g]);
-    table_length_[j] = table_length_[j - 1] + integral * (table_s_[j] - table_s_[j - 1]);
-    table_speed_[j] = speed(table_derivative_[j]);
+  // unless the curve nearly stops, P' ≈ 0, where it falls back towards the chord length),
+  // from 0 at the start of each strand.
+  const int strand_count = static_cast<int>(strands_.size());
+  length_ = 0.0;
+  double wanted_total = 0.0;
+  for (int t = 0; t < strand_count; ++t) {
+    const int begin = strand_table_begin_[t], end = strand_table_begin_[t + 1];
+    table_length_[begin] = 0.0;
+    table_speed_[begin] = speed(table_derivative_[begin]);
+    for (int j = begin + 1; j < end; ++j) {
+      double integral = 0.0;
+      for (int g = 0; g < kGaussNodes; ++g) integral += kGaussW[g] * speed(gauss_[j * kGaussNodes + g]);
+      table_length_[j] = table_length_[j - 1] + integral * (table_s_[j] - table_s_[j - 1]);
+      table_speed_[j] = speed(table_derivative_[j]);
+    }
+    length_ += table_length_[end - 1];
+    wanted_total += std::max(2.0, std::ceil(table_length_[end - 1] / spacing_ - 1e-9) + 1.0);
   }
-  length_ = table_length_.back();
-  // K = ⌈L / h⌉ + 1 centres, spacing L / (K − 1) <= h.
-  const double wanted = std::ceil(length_ / spacing_ - 1e-9) + 1.0;
-  if (!(wanted <= 4.0 * kMaxSpheresPerThread))
-    throw std::runtime_error("a thread of length " + std::to_string(length_) + " m would need " + std::to_string(wanted) +
-                             " spheres of spacing " + std::to_string(spacing_) + " m (at most " +
-                             std::to_string(4 * kMaxSpheresPerThread) + ")");
-  const int count = std::max(2, static_cast<int>(wanted));
-  actual_spacing_ = length_ / (count - 1);
+  if (!(wanted_total <= 4.0 * kMaxSpheresPerThread))
+    throw std::runtime_error("a thread of length " + std::to_string(length_) + " m would need " +
+                             std::to_string(wanted_total) + " spheres of spacing " + std::to_string(spacing_) +
+                             " m (at most " + std::to_string(4 * kMaxSpheresPerThread) + ")");
+  const int total = static_cast<int>(wanted_total);
+  abscissas_.resize(total);
+  rows_.resize(total);
+  strand_of_.resize(total);
+  arc_of_.resize(total);
+  actual_spacing_ = 0.0;
+  int k = 0;
+  double base = 0.0;
+  for (int t = 0; t < strand_count; ++t) {
+    const int count = sampleStrand(t, k, base);
+    actual_spacing_ = std::max(actual_spacing_, strand_spacing_[t]);
+    base += table_length_[strand_table_begin_[t + 1] - 1];
+    k += count;
+  }
+}
 
+int SphereSamplingMapping::sampleStrand(int t, int first, double base) {
+  const int begin = strand_table_begin_[t], end = strand_table_begin_[t + 1];
+  const double length = table_length_[end - 1];
+  // K = ⌈L / h⌉ + 1 centres on the strand, spacing L / (K − 1) <= h.
+  const int count = std::max(2, static_cast<int>(std::ceil(length / spacing_ - 1e-9) + 1.0));
+  strand_spacing_[t] = length / (count - 1);
   // ℓ ↦ s by cubic Hermite interpolation of the inverse on each table interval, ds/dℓ = 1/|P'|:
   // error O(Δs⁴), about 1e-7 of the spacing for curves bent to the radius of a piece.
-  abscissas_.resize(count);
-  rows_.resize(count);
-  int j = 0;
-  for (int k = 0; k < count; ++k) {
-    const double target = k * actual_spacing_;
-    while (j + 2 < entries && table_length_[j + 1] < target) ++j;
+  int j = begin;
+  for (int i = 0; i < count; ++i) {
+    const double target = i * strand_spacing_[t];
+    while (j + 2 < end && table_length_[j + 1] < target) ++j;
     const double l0 = table_length_[j], l1 = table_length_[j + 1], dl = l1 - l0;
     const double s0 = table_s_[j], s1 = table_s_[j + 1];
     double s = s0;
@@ -100,11 +130,29 @@ void SphereSamplingMapping::resample(ConstPointsRef q) {
       s = (2 * u3 - 3 * u2 + 1) * s0 + (u3 - 2 * u2 + u) * dl * m0 + (-2 * u3 + 3 * u2) * s1 + (u3 - u2) * dl * m1;
       s = std::clamp(s, s0, s1);
     }
-    abscissas_[k] = s;
+    abscissas_[first + i] = s;
   }
-  abscissas_.front() = 0.0;
-  abscissas_.back() = 1.0;
-  for (int k = 0; k < count; ++k) basis_->evaluate(abscissas_[k], rows_[k]);
+  abscissas_[first] = strands_[t].begin;
+  abscissas_[first + count - 1] = strands_[t].end;
+  for (int i = 0; i < count; ++i) {
+    evaluateOnStrand(*basis_, strands_[t], abscissas_[first + i], rows_[first + i]);
+    strand_of_[first + i] = t;
+    arc_of_[first + i] = base + i * strand_spacing_[t];
+  }
+  return count;
+}
+
+double SphereSamplingMapping::chordDistanceBound(int k, int l) const {
+  // The chords' points are within one spacing after their first centres: (|k − l| + 1) h on
+  // one strand.
+  return std::abs(arc_of_[k] - arc_of_[l]) +
+         std::max(strand_spacing_[strand_of_[k]], strand_spacing_[strand_of_[l]]);
+}
+
+double SphereSamplingMapping::arcDistance(int k, double t, int l, double u) const {
+  const double a = arc_of_[k] + (joinsNext(k) ? t * strand_spacing_[strand_of_[k]] : 0.0);
+  const double b = arc_of_[l] + (joinsNext(l) ? u * strand_spacing_[strand_of_[l]] : 0.0);
+  return std::abs(a - b);
 }
 
 void SphereSamplingMapping::apply(ConstPointsRef in, PointsRef out) const {
@@ -163,7 +211,7 @@ PointWeights SphereSamplingMapping::pointWeights(int k, double t) const {
       w.weight[slot] += scale * r.value[j];
     }
   };
-  if (k + 1 >= outputCount() || t <= 0.0) {
+  if (!joinsNext(k) || t <= 0.0) {
     add(rows_[k], 1.0);
   } else {
     add(rows_[k], 1.0 - t);

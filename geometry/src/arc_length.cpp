@@ -172,12 +172,24 @@ std::vector<double> ArcLengthParameterization::equallySpacedAbscissas(int count)
   return s;
 }
 
-Points ArcLengthParameterization::equallySpacedPoints(int count) const {
-  const std::vector<double> s = equallySpacedAbscissas(count);
+std::vector<double> ArcLengthParameterization::equallySpacedAbscissas(int count, const Strand& strand) const {
+  if (count < 2)
+    throw std::invalid_argument("equallySpacedAbscissas: count must be >= 2, got " + std::to_string(count));
+  std::vector<double> s(count);
+  const double from = lengthAt(strand.begin), to = lengthAt(strand.end);
+  for (int k = 0; k < count; ++k)
+    s[k] = std::clamp(abscissaAtLength(from + (to - from) * k / (count - 1)), strand.begin, strand.end);
+  s.front() = strand.begin;
+  s.back() = strand.end;
+  return s;
+}
+
+Points ArcLengthParameterization::equallySpacedPoints(int count, const Strand& strand) const {
+  const std::vector<double> s = equallySpacedAbscissas(count, strand);
   Points out(count, 3);
   BasisRow row;
   for (int k = 0; k < count; ++k) {
-    basis_->evaluate(s[k], row);
+    evaluateOnStrand(*basis_, strand, s[k], row);
     out.row(k) = curvePoint(row, q_).transpose();
   }
   return out;

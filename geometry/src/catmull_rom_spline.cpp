@@ -17,7 +17,18 @@ void CatmullRomSpline::evaluate(double s, BasisRow& row) const {
   // s > 0 is false for NaN: a NaN abscissa (a diverging stage) evaluates at 0 instead of
   // indexing control point INT_MIN; the scene reports the non-finite state after the step.
   const double u = (s > 0.0 ? std::min(s, 1.0) : 0.0) * segments;
-  const int j = std::min(static_cast<int>(std::floor(u)), segments - 1);
+  evaluateSegment(std::min(static_cast<int>(std::floor(u)), segments - 1), u, row);
+}
+
+void CatmullRomSpline::evaluateFromLeft(double s, BasisRow& row) const {
+  const int segments = n_ - 3;
+  const double u = (s > 0.0 ? std::min(s, 1.0) : 0.0) * segments;
+  // The segment that ends at u (j < u <= j + 1); the first one at u = 0.
+  evaluateSegment(std::max(static_cast<int>(std::ceil(u)) - 1, 0), u, row);
+}
+
+void CatmullRomSpline::evaluateSegment(int j, double u, BasisRow& row) const {
+  const int segments = n_ - 3;
   const double t = u - j, t2 = t * t, t3 = t2 * t;
   const double du = segments;  // du/ds
   row.first = j;
@@ -40,6 +51,8 @@ void CatmullRomSpline::evaluate(double s, BasisRow& row) const {
   row.d2[3] = (3.0 * t - 1.0) * du2;
   for (int k = 4; k < BasisRow::kMaxSupport; ++k) row.value[k] = row.d1[k] = row.d2[k] = 0.0;
 }
+
+std::vector<double> CatmullRomSpline::cuts() const { return {}; }  // C² (C¹ for Catmull-Rom) everywhere
 
 std::vector<double> CatmullRomSpline::breakpoints() const {
   const int segments = n_ - 3;

@@ -1,6 +1,8 @@
 #include "filum/geometry/nonuniform_bspline.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -39,6 +41,9 @@ NonUniformBSpline::NonUniformBSpline(int degree, std::vector<double> knots)
   for (std::size_t k = 1; k + 1 < distinct.size(); ++k)
     lowest = std::min(lowest, d_ - knotMultiplicity(knots_, distinct[k]));
   if (distinct.size() > 2) continuity_ = lowest;
+  // Cuts: interior knots of multiplicity d + 1 (no basis function straddles them).
+  for (std::size_t k = 1; k + 1 < distinct.size(); ++k)
+    if (knotMultiplicity(knots_, distinct[k]) == d_ + 1) cuts_.push_back(breakpoints_[k]);
 }
 
 double NonUniformBSpline::parameterAt(double s) const {
@@ -49,8 +54,20 @@ double NonUniformBSpline::parameterAt(double s) const {
 
 double NonUniformBSpline::abscissaAt(double u) const { return (u - knots_[d_]) / (knots_[n_] - knots_[d_]); }
 
-void NonUniformBSpline::evaluate(double s, BasisRow& row) const {
-  evaluateAtParameter(parameterAt(s), row);
+void NonUniformBSpline::evaluate(double s, BasisRow& row) const { evaluateOnSide(s, false, row); }
+
+void NonUniformBSpline::evaluateFromLeft(double s, BasisRow& row) const { evaluateOnSide(s, true, row); }
+
+void NonUniformBSpline::evaluateOnSide(double s, bool from_left, BasisRow& row) const {
+  // u(s) within a few ulps of a knot is that knot: a cut's abscissa (cuts(), s = (u − t_d)/range
+  // rounded) maps back onto its knot, so that evaluate and evaluateFromLeft pick the strands
+  // after and before it. Elsewhere the basis is continuous and the snap changes round-off only.
+  double u = parameterAt(s);
+  const int k = findKnotSpan(d_, n_, knots_, u);
+  const double snap = 8.0 * std::numeric_limits<double>::epsilon() * (std::abs(knots_[d_]) + std::abs(knots_[n_]));
+  if (k + 1 <= n_ && knots_[k + 1] - u <= snap) u = knots_[k + 1];
+  if (u - knots_[k] <= snap) u = knots_[k];
+  evaluateAtParameter(u, row, from_left);
   // Chain rule: d/ds = (t_n − t_d) d/du.
   const double scale = knots_[n_] - knots_[d_];
   const double scale2 = scale * scale;
@@ -112,10 +129,14 @@ void evaluateSpan(const double* t, int k, double u, BasisRow& row) {
 
 }  // namespace
 
-void NonUniformBSpline::evaluateAtParameter(double u, BasisRow& row) const {
+void NonUniformBSpline::evaluateAtParameter(double u, BasisRow& row, bool from_left) const {
   const double* t = knots_.data();
   u = std::clamp(u, t[d_], t[n_]);
-  const int k = findKnotSpan(d_, n_, knots_, u);
+  int k = findKnotSpan(d_, n_, knots_, u);
+  // From the left: the last non-empty span that ends at u (t_k < u <= t_{k+1}); the recurrence
+  // holds on the closed span, so its functions at its right end are the left-hand limits.
+  if (from_left)
+    while (k > d_ && !(t[k] < u)) --k;
   row.first = k - d_;
   row.count = d_ + 1;
   switch (d_) {

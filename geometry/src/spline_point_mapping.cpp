@@ -2,12 +2,12 @@
 
 namespace filum::geometry {
 
-SplinePointMapping::SplinePointMapping(const geometry::SplineBasis& basis, std::vector<double> abscissas)
-    : abscissas_(std::move(abscissas)) {
+SplinePointMapping::SplinePointMapping(const geometry::SplineBasis& basis, std::vector<double> abscissas, Strand strand)
+    : abscissas_(std::move(abscissas)), strand_(strand) {
   std::vector<Eigen::Triplet<double>> entries;
   geometry::BasisRow row;
   for (std::size_t k = 0; k < abscissas_.size(); ++k) {
-    basis.evaluate(abscissas_[k], row);
+    evaluateOnStrand(basis, strand_, abscissas_[k], row);
     for (int j = 0; j < row.count; ++j) entries.emplace_back(static_cast<int>(k), row.first + j, row.value[j]);
   }
   weights_.resize(static_cast<Eigen::Index>(abscissas_.size()), basis.controlPointCount());

@@ -18,7 +18,18 @@ void UniformCubicBSpline::evaluate(double s, BasisRow& row) const {
   // s > 0 is false for NaN: a NaN abscissa (a diverging stage) evaluates at 0 instead of
   // indexing control point INT_MIN; the scene reports the non-finite state after the step.
   const double u = (s > 0.0 ? std::min(s, 1.0) : 0.0) * segments;
-  const int j = std::min(static_cast<int>(std::floor(u)), segments - 1);
+  evaluateSegment(std::min(static_cast<int>(std::floor(u)), segments - 1), u, row);
+}
+
+void UniformCubicBSpline::evaluateFromLeft(double s, BasisRow& row) const {
+  const int segments = n_ - 3;
+  const double u = (s > 0.0 ? std::min(s, 1.0) : 0.0) * segments;
+  // The segment that ends at u (j < u <= j + 1); the first one at u = 0.
+  evaluateSegment(std::max(static_cast<int>(std::ceil(u)) - 1, 0), u, row);
+}
+
+void UniformCubicBSpline::evaluateSegment(int j, double u, BasisRow& row) const {
+  const int segments = n_ - 3;
   const double t = u - j, t2 = t * t, t3 = t2 * t, mt = 1.0 - t;
   const double du = segments;  // du/ds
   row.first = j;
@@ -37,6 +48,8 @@ void UniformCubicBSpline::evaluate(double s, BasisRow& row) const {
   row.d2[2] = (-3.0 * t + 1.0) * du * du;
   row.d2[3] = t * du * du;
 }
+
+std::vector<double> UniformCubicBSpline::cuts() const { return {}; }  // C² (C¹ for Catmull-Rom) everywhere
 
 std::vector<double> UniformCubicBSpline::breakpoints() const {
   const int segments = n_ - 3;

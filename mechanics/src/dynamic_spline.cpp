@@ -6,6 +6,7 @@
 
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/bspline_curve.hpp"
+#include "filum/geometry/curve_splitting.hpp"
 #include "filum/geometry/gauss_legendre.hpp"
 #include "filum/geometry/knot_insertion.hpp"
 #include "filum/geometry/knot_removal.hpp"
@@ -53,7 +54,7 @@ geometry::BSplineCurve DynamicSpline::knotForm() const {
     if (basis_->name() == "catmull_rom") throw std::invalid_argument("");
     return geometry::toBSplineCurve(*basis_, initial_);
   } catch (const std::invalid_argument&) {
-    throw SceneError(origin(), "a B-spline basis (uniform_cubic_bspline or a NUBS) to insert or remove control points",
+    throw SceneError(origin(), "a B-spline basis (uniform_cubic_bspline or a NUBS) to insert, remove or cut control points",
                      "the " + basis_->name() + " basis of " + describe());
   }
 }
@@ -102,11 +103,36 @@ SparseMatrix DynamicSpline::refine(const std::vector<double>& abscissas) {
   try {
     refined = geometry::refinedKnotVector(curve.degree, curve.knots, new_knots);
   } catch (const std::invalid_argument& e) {
-    throw SceneError(origin(), "knots that keep the curve valid (multiplicity <= degree)", e.what());
+    throw SceneError(origin(), "knots that keep the curve valid (multiplicity <= degree + 1: a cut at most)", e.what());
   }
   SparseMatrix A = geometry::knotInsertionMatrix(curve.degree, curve.knots, refined);
   adopt(curve.degree, std::move(refined), A);
   return A;
+}
+
+SparseMatrix DynamicSpline::cut(double abscissa) {
+  if (!(abscissa > 0.0 && abscissa < 1.0))
+    throw SceneError(origin(), "an abscissa strictly inside (0, 1) to cut " + describe() + " at", std::to_string(abscissa));
+  // Snapped as splitCurve snaps (8 ulps of the domain): a cut already there is refused.
+  for (const double c : basis_->cuts())
+    if (std::abs(c - abscissa) <= 8.0 * std::numeric_limits<double>::epsilon())
+      throw SceneError(origin(), "an abscissa where " + describe() + " is not cut yet", std::to_string(abscissa));
+  const int d = basis_->degree();
+  if (const InsertionLimit limit = insertionLimit(pointCount(), static_cast<std::size_t>(d + 1)); !limit.expected.empty())
+    throw SceneError(origin(), limit.expected, limit.found);
+  // The knot raised to multiplicity d + 1 (geometry/curve_splitting.hpp, exact): the knot
+  // vector of the whole body is the first strand's followed by the second's after its d + 1
+  // copies of u, and A is the Oslo refinement onto it.
+  geometry::SplitCurve split;
+  try {
+    split = geometry::splitCurve(knotForm(), abscissa);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(origin(), "a cut that leaves a valid curve on either side", e.what());
+  }
+  std::vector<double> knots = split.before.knots;
+  knots.insert(knots.end(), split.after.knots.begin() + d + 1, split.after.knots.end());
+  adopt(d, std::move(knots), split.refinement);
+  return split.refinement;
 }
 
 SparseMatrix DynamicSpline::coarsen(double abscissa, ConstPointsRef q, double tolerance) {
@@ -280,12 +306,14 @@ std::unique_ptr<DynamicSpline> DynamicSpline::fromParams(const Params& p) {
            "length " + describeJson(length) + " m");
   auto spline = build(p, std::move(basis), std::move(q), massFromParams(p, radius, length), radius);
   if (p.has("velocities")) spline->setInitialVelocities(velocityList(p, spline->pointCount()));
-  std::vector<CurveBody::Refinement> refinements = CurveBody::refinementsFromParams(p, "refine");
+  std::vector<CurveBody::LayoutChange> changes = CurveBody::layoutChangesFromParams(p);
+  // Checked before anything is inserted: a cut adds at most degree + 1 points.
   std::size_t inserted = 0;
-  for (const CurveBody::Refinement& r : refinements) inserted += r.abscissas.size();
+  for (const CurveBody::LayoutChange& c : changes)
+    inserted += c.kind == CurveBody::LayoutChange::Kind::kCut ? spline->basis().degree() + 1 : c.abscissas.size();
   if (const InsertionLimit limit = insertionLimit(spline->pointCount(), inserted); !limit.expected.empty())
-    p.fail("refine", limit.expected, limit.found);
-  spline->setRefinements(std::move(refinements));
+    p.fail(p.has("cuts") ? "cuts" : "refine", limit.expected, limit.found);
+  spline->setLayoutChanges(std::move(changes));
   return spline;
 }
 

@@ -145,6 +145,11 @@ SparseMatrix FramedChain::coarsen(double, ConstPointsRef, double) {
                    describe() + ", whose nodes carry frames");
 }
 
+SparseMatrix FramedChain::cut(double) {
+  throw SceneError(origin(), "a body whose point count may change (a DynamicSpline) to cut",
+                   describe() + ", whose nodes carry frames");
+}
+
 Eigen::Quaterniond FramedChain::orientation(const VecX& q, int node) const {
   return quaternionAt(internalPositions(q), node);
 }

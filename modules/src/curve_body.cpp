@@ -1,5 +1,7 @@
 #include "filum/core/curve_body.hpp"
 
+#include <algorithm>
+
 namespace filum {
 
 namespace {
@@ -12,25 +14,52 @@ Vec3 combine(const BasisRow& row, const Weights& w, ConstPointsMap q) {
 }
 }  // namespace
 
-std::vector<CurveBody::Refinement> CurveBody::refinementsFromParams(const Params& p, const std::string& key) {
-  std::vector<Refinement> out;
-  if (!p.has(key)) return out;
-  for (const Params& item : p.objects(key)) {
-    Refinement r;
-    r.time = item.number("time");
-    if (!(r.time >= 0.0)) item.fail("time", "a time >= 0 (s)");
-    if (!out.empty() && !(r.time > out.back().time))
-      item.fail("time", "a time later than the previous refinement's (" + describeJson(out.back().time) + " s)");
-    const nlohmann::json& list = item.raw("abscissas");
-    if (!list.is_array() || list.empty()) item.fail("abscissas", "a non-empty array of abscissas in (0, 1)");
-    for (std::size_t k = 0; k < list.size(); ++k) {
-      if (!list[k].is_number() || !(list[k].get<double>() > 0.0 && list[k].get<double>() < 1.0))
-        item.fail("abscissas", "abscissas strictly inside (0, 1)", "entry " + std::to_string(k) + ": " + list[k].dump());
-      r.abscissas.push_back(list[k].get<double>());
+namespace {
+
+/// Times of one list of scheduled changes: >= 0 and increasing (entry `item` of `what`).
+double scheduledTime(const Params& item, const std::vector<double>& earlier, const char* what) {
+  const double time = item.number("time");
+  if (!(time >= 0.0)) item.fail("time", "a time >= 0 (s)");
+  if (!earlier.empty() && !(time > earlier.back()))
+    item.fail("time", std::string("a time later than the previous ") + what + "'s (" + describeJson(earlier.back()) + " s)");
+  return time;
+}
+
+}  // namespace
+
+std::vector<CurveBody::LayoutChange> CurveBody::layoutChangesFromParams(const Params& p) {
+  std::vector<LayoutChange> out;
+  std::vector<double> times;
+  if (p.has("refine"))
+    for (const Params& item : p.objects("refine")) {
+      LayoutChange r;
+      r.time = scheduledTime(item, times, "refinement");
+      times.push_back(r.time);
+      const nlohmann::json& list = item.raw("abscissas");
+      if (!list.is_array() || list.empty()) item.fail("abscissas", "a non-empty array of abscissas in (0, 1)");
+      for (std::size_t k = 0; k < list.size(); ++k) {
+        if (!list[k].is_number() || !(list[k].get<double>() > 0.0 && list[k].get<double>() < 1.0))
+          item.fail("abscissas", "abscissas strictly inside (0, 1)", "entry " + std::to_string(k) + ": " + list[k].dump());
+        r.abscissas.push_back(list[k].get<double>());
+      }
+      item.finish();
+      out.push_back(std::move(r));
     }
-    item.finish();
-    out.push_back(std::move(r));
-  }
+  times.clear();
+  if (p.has("cuts"))
+    for (const Params& item : p.objects("cuts")) {
+      LayoutChange c;
+      c.kind = LayoutChange::Kind::kCut;
+      c.time = scheduledTime(item, times, "cut");
+      times.push_back(c.time);
+      const double s = item.number("abscissa");
+      if (!(s > 0.0 && s < 1.0)) item.fail("abscissa", "an abscissa strictly inside (0, 1) to cut at");
+      c.abscissas.push_back(s);
+      item.finish();
+      out.push_back(std::move(c));
+    }
+  // One schedule: by time, insertions before cuts at equal times (stable: refine came first).
+  std::stable_sort(out.begin(), out.end(), [](const LayoutChange& a, const LayoutChange& b) { return a.time < b.time; });
   return out;
 }
 

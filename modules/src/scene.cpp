@@ -339,27 +339,34 @@ StepReport Scene::step() {
 
 void Scene::beginStep() {
   fault_.clear();
-  try {
-    applyScheduledRefinements();
-  } catch (const std::exception& e) {
-    // CurveBody::refine throws before it changes anything: the state is still the last good one.
-    fault_ = settings_.source + ": a scheduled refinement failed: " + e.what();
-  }
+  applyScheduledLayoutChanges();
   // endStep needs the last good state: copied into preallocated storage (no allocation).
   last_good_ = state_;
   // Scheduled releases (cuts) take effect at the first step that starts at or after their time.
   for (Constraint* c : constraints_) c->updateRelease(state_);
 }
 
-void Scene::applyScheduledRefinements() {
-  // Control points scheduled for insertion at the step that starts nearest their time (half a
-  // step of slack absorbs the round-off of t = steps · dt); a layout change may allocate.
+void Scene::applyScheduledLayoutChanges() {
+  // Control points scheduled for insertion, and cuts, at the step that starts nearest their
+  // time (half a step of slack absorbs the round-off of t = steps · dt); a layout change may
+  // allocate.
   for (MechanicalState* body : bodies_)
     if (CurveBody* curve = body->curve())
-      while (const CurveBody::Refinement* due = curve->refinementDue(state_.time + 0.5 * settings_.dt)) {
-        const std::vector<double> abscissas = due->abscissas;
-        curve->markRefinementApplied();
-        refine(*curve, abscissas);
+      while (const CurveBody::LayoutChange* due = curve->layoutChangeDue(state_.time + 0.5 * settings_.dt)) {
+        const CurveBody::LayoutChange change = *due;
+        curve->markLayoutChangeApplied();
+        const bool cutting = change.kind == CurveBody::LayoutChange::Kind::kCut;
+        try {
+          if (cutting)
+            cut(*curve, change.abscissas.front());
+          else
+            refine(*curve, change.abscissas);
+        } catch (const std::exception& e) {
+          // CurveBody::refine and cut throw before they change anything: the state is still the
+          // last good one, and the step reports the fault.
+          noteFault(settings_.source + ": a scheduled " + (cutting ? "cut" : "refinement") + " failed: " + e.what());
+          return;
+        }
       }
 }
 
@@ -480,6 +487,13 @@ void Scene::refine(CurveBody& body, const std::vector<double>& abscissas) {
   if (!initialized_) init();
   requirePointsOnly(body, "insert control points into");
   const SparseMatrix A = body.refine(abscissas);  // throws before changing anything
+  relayout(body, A);
+}
+
+void Scene::cut(CurveBody& body, double abscissa) {
+  if (!initialized_) init();
+  requirePointsOnly(body, "cut");
+  const SparseMatrix A = body.cut(abscissa);  // throws before changing anything
   relayout(body, A);
 }
 

@@ -1,5 +1,8 @@
 #include "filum/visual/convolution_surface_model.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/spline_curve.hpp"
 #include "filum/core/curve_body.hpp"
@@ -36,18 +39,30 @@ void ConvolutionSurfaceModel::init(const Scene&) {
 }
 
 void ConvolutionSurfaceModel::update(const SceneState& s) {
-  if (updates_++ % options_.every != 0 && !mesh_.empty()) return;
   const auto& spline = *body().curve();
+  const std::vector<Strand> pieces = strands(spline.basis());
+  if (updates_++ % options_.every != 0 && meshes_.size() == pieces.size()) return;
   const ConstPointsMap q = body().block(s.q);
-  geometry::ConvolutionSurface surface(radius_, options_.sharpness);
-  surface.addCurve(spline.basis(), q, segments_);
-  // Start inside, at the middle of the curve; the bounding ball holds the whole skeleton plus a
-  // margin of four radii (blends reach a little further than one radius).
-  const Vec3 inside = geometry::curvePoint(spline.basis(), q, 0.5);
-  double reach = 0.0;
-  for (int k = 0; k <= 64; ++k)
-    reach = std::max(reach, (geometry::curvePoint(spline.basis(), q, k / 64.0) - inside).norm());
-  mesh_ = meshConvolutionSurface(surface, inside, reach + 4.0 * radius_ + criteria_.facet_size, criteria_);
+  // One surface per strand: a cut tube shows two closed ends, not a blend across the gap (each
+  // strand takes the segments in proportion to its share of the parameter range, at least one).
+  meshes_.resize(pieces.size());
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    const Strand& strand = pieces[k];
+    const int segments = std::max(1, static_cast<int>(std::lround(segments_ * (strand.end - strand.begin))));
+    geometry::ConvolutionSurface surface(radius_, options_.sharpness);
+    surface.addCurve(spline.basis(), q, segments, strand);
+    // Start inside, at the middle of the strand; the bounding ball holds the whole skeleton plus
+    // a margin of four radii (blends reach a little further than one radius).
+    const double middle = 0.5 * (strand.begin + strand.end);
+    const Vec3 inside = geometry::curvePoint(spline.basis(), q, middle);
+    double reach = 0.0;
+    for (int j = 0; j <= 64; ++j) {
+      BasisRow row;
+      evaluateOnStrand(spline.basis(), strand, strand.begin + (strand.end - strand.begin) * j / 64.0, row);
+      reach = std::max(reach, (geometry::curvePoint(row, q) - inside).norm());
+    }
+    meshes_[k] = meshConvolutionSurface(surface, inside, reach + 4.0 * radius_ + criteria_.facet_size, criteria_);
+  }
 }
 
 }  // namespace filum::visual

@@ -1,6 +1,7 @@
 #include "filum/visual/generalized_cylinder_model.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "filum/core/mechanical_state.hpp"
 #include "filum/core/scene_error.hpp"
@@ -41,60 +42,93 @@ void GeneralizedCylinderModel::init(const Scene&) {
     throw SceneError(origin(), "a GeneralizedCylinder skins a curve body (e.g. a DynamicSpline), but its body " + body().describe() +
                                    " is not one");
   const geometry::SplineBasis& basis = spline->basis();
+  const std::vector<Strand> pieces_of_thread = strands(basis);
   const int pieces = static_cast<int>(basis.breakpoints().size()) - 1;
   const int rings = options_.samples.value_or(std::max(16, 6 * pieces));
-  // The default rings follow the control points: checked here, before the mesh is allocated.
-  if (static_cast<long>(rings) * options_.sides > kMaxSkinVertices)
+  // The default rings follow the control points: checked here, before the mesh is allocated
+  // (each strand of a cut curve takes at least 2 rings).
+  const long all_rings = std::max<long>(rings, 2L * static_cast<long>(pieces_of_thread.size()));
+  if (all_rings * options_.sides > kMaxSkinVertices)
     throw SceneError(origin(), "a skin of at most " + std::to_string(kMaxSkinVertices) +
                                    " vertices (rings × sides; give fewer \"samples\" or \"sides\")",
-                     std::to_string(rings) + " rings × " + std::to_string(options_.sides) + " sides on " +
+                     std::to_string(all_rings) + " rings × " + std::to_string(options_.sides) + " sides on " +
                          body().describe());
   if (!options_.profile) options_.profile = RadiusProfile(spline->radius());
 
-  // Rings at equal arc length on the rest curve: u_k = k / (m − 1) of the rest length.
+  // Rings at equal arc length on the rest curve: u_k = ℓ_k / L of the rest length.
   const geometry::ArcLengthParameterization rest(basis, spline->initialPositions());
-  mapping_ = std::make_unique<SplineAxisMapping>(basis, rest.equallySpacedAbscissas(rings));
-  cylinder_ = std::make_unique<GeneralizedCylinder>(rings, options_.sides, options_.caps, options_.cap_rings);
-  axis_.resize(rings, 3);
-  tangents_.resize(rings, 3);
-  curvatures_.resize(rings, 3);
-  radii_.resize(rings);
-  slopes_.resize(rings);
   const double length = rest.totalLength();
-  for (int k = 0; k < rings; ++k) {
-    const double u = static_cast<double>(k) / (rings - 1);
-    radii_[k] = options_.profile->radius(u);
-    slopes_[k] = length > 0.0 ? options_.profile->slope(u) / length : 0.0;  // dr/dℓ = (dr/du) / L
+  strands_.clear();
+  if (pieces_of_thread.size() == 1) {
+    const std::vector<double> s = rest.equallySpacedAbscissas(rings);
+    std::vector<double> fractions(rings);
+    for (int k = 0; k < rings; ++k) fractions[k] = static_cast<double>(k) / (rings - 1);
+    addStrand(basis, pieces_of_thread.front(), s, fractions, length);
+    return;
   }
+  // A cut curve: the rings shared out by the strands' rest lengths, at least 2 each.
+  for (const Strand& strand : pieces_of_thread) {
+    const double from = rest.lengthAt(strand.begin), to = rest.lengthAt(strand.end);
+    const int count = std::max(2, static_cast<int>(std::lround(rings * (to - from) / length)));
+    std::vector<double> fractions(count);
+    for (int k = 0; k < count; ++k) fractions[k] = length > 0.0 ? (from + (to - from) * k / (count - 1)) / length : 0.0;
+    addStrand(basis, strand, rest.equallySpacedAbscissas(count, strand), fractions, length);
+  }
+}
+
+void GeneralizedCylinderModel::addStrand(const geometry::SplineBasis& basis, const Strand& strand,
+                                         const std::vector<double>& s, const std::vector<double>& fractions,
+                                         double total_length) {
+  const int rings = static_cast<int>(s.size());
+  StrandSkin skin;
+  skin.mapping = std::make_unique<SplineAxisMapping>(basis, s, strand);
+  skin.cylinder = std::make_unique<GeneralizedCylinder>(rings, options_.sides, options_.caps, options_.cap_rings);
+  skin.axis.resize(rings, 3);
+  skin.tangents.resize(rings, 3);
+  skin.curvatures.resize(rings, 3);
+  skin.radii.resize(rings);
+  skin.slopes.resize(rings);
+  for (int k = 0; k < rings; ++k) {
+    const double u = fractions[k];
+    skin.radii[k] = options_.profile->radius(u);
+    skin.slopes[k] = total_length > 0.0 ? options_.profile->slope(u) / total_length : 0.0;  // dr/dℓ = (dr/du) / L
+  }
+  strands_.push_back(std::move(skin));
 }
 
 void GeneralizedCylinderModel::update(const SceneState& s) {
   const ConstPointsMap q = body().block(s.q);
+  for (StrandSkin& skin : strands_) updateStrand(skin, q);
+}
+
+void GeneralizedCylinderModel::updateStrand(StrandSkin& skin, ConstPointsRef q) {
   // Positions down: axis points and derivatives (O(rings)).
-  mapping_->apply(q, axis_);
-  mapping_->applyDerivative(q, tangents_);
-  mapping_->applySecondDerivative(q, curvatures_);
+  skin.mapping->apply(q, skin.axis);
+  skin.mapping->applyDerivative(q, skin.tangents);
+  skin.mapping->applySecondDerivative(q, skin.curvatures);
   // Unit tangents T = P'/|P'| and curvature vectors κ = (P'' − (P''·T) T) / |P'|²; where P' = 0
   // (a cusp) borrow the neighbour's direction and take κ = 0.
-  const int rings = static_cast<int>(axis_.rows());
+  Points& tangents = skin.tangents;
+  Points& curvatures = skin.curvatures;
+  const int rings = static_cast<int>(skin.axis.rows());
   int last_good = -1;
   for (int k = 0; k < rings; ++k) {
-    const double norm = tangents_.row(k).norm();
+    const double norm = tangents.row(k).norm();
     if (norm > 0.0 && std::isfinite(norm)) {
-      tangents_.row(k) /= norm;
-      const Vec3 t = tangents_.row(k).transpose(), a = curvatures_.row(k).transpose();
-      curvatures_.row(k) = ((a - a.dot(t) * t) / (norm * norm)).transpose();
+      tangents.row(k) /= norm;
+      const Vec3 t = tangents.row(k).transpose(), a = curvatures.row(k).transpose();
+      curvatures.row(k) = ((a - a.dot(t) * t) / (norm * norm)).transpose();
       if (last_good < 0)
-        for (int b = 0; b < k; ++b) tangents_.row(b) = tangents_.row(k);
+        for (int b = 0; b < k; ++b) tangents.row(b) = tangents.row(k);
       last_good = k;
     } else {
-      curvatures_.row(k).setZero();
-      if (last_good >= 0) tangents_.row(k) = tangents_.row(last_good);
+      curvatures.row(k).setZero();
+      if (last_good >= 0) tangents.row(k) = tangents.row(last_good);
     }
   }
-  if (last_good < 0) tangents_.rowwise() = Vec3::UnitX().transpose();  // a curve collapsed to a point
-  cylinder_->update(axis_, tangents_, curvatures_, radii_, slopes_, normal_);
-  normal_ = cylinder_->frames().front().normal;
+  if (last_good < 0) tangents.rowwise() = Vec3::UnitX().transpose();  // a curve collapsed to a point
+  skin.cylinder->update(skin.axis, tangents, curvatures, skin.radii, skin.slopes, skin.normal);
+  skin.normal = skin.cylinder->frames().front().normal;
 }
 
 }  // namespace filum::visual

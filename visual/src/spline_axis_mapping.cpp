@@ -2,12 +2,12 @@
 
 namespace filum::visual {
 
-SplineAxisMapping::SplineAxisMapping(const geometry::SplineBasis& basis, std::vector<double> abscissas)
-    : geometry::SplinePointMapping(basis, std::move(abscissas)) {
+SplineAxisMapping::SplineAxisMapping(const geometry::SplineBasis& basis, std::vector<double> abscissas, Strand strand)
+    : geometry::SplinePointMapping(basis, std::move(abscissas), strand) {
   std::vector<Eigen::Triplet<double>> derivatives, seconds;
   geometry::BasisRow row;
   for (std::size_t k = 0; k < this->abscissas().size(); ++k) {
-    basis.evaluate(this->abscissas()[k], row);
+    evaluateOnStrand(basis, this->strand(), this->abscissas()[k], row);
     for (int j = 0; j < row.count; ++j) {
       derivatives.emplace_back(static_cast<int>(k), row.first + j, row.d1[j]);
       seconds.emplace_back(static_cast<int>(k), row.first + j, row.d2[j]);

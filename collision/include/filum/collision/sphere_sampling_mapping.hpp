@@ -12,6 +12,10 @@
 // and a force at a point of the chord between centres k and k+1, x = (1 − t) x_k + t x_{k+1},
 // goes up through (1 − t) W_k + t W_{k+1} (pointWeights).
 //
+// A cut curve (CurveBasis::cuts) is sampled strand by strand: each strand has its own centres,
+// from its first end to its last, at its own spacing L_t / (K_t − 1) <= h, and no chord joins the
+// last centre of a strand to the first of the next (joinsNext).
+//
 // Resampling runs at every step, so it is built for speed from fixed tables: L(s) on 8 table
 // intervals per polynomial piece of the basis by 4-point Gauss–Legendre with the basis
 // derivatives at the nodes precomputed (each step only forms P'(s) = Σ b'_i q_i there), and
@@ -67,6 +71,8 @@ class SphereSamplingMapping final : public Mapping {
   void reserve(int count) {
     abscissas_.reserve(count);
     rows_.reserve(count);
+    strand_of_.reserve(count);
+    arc_of_.reserve(count);
   }
 
   void apply(ConstPointsRef in, PointsRef out) const override;
@@ -74,13 +80,29 @@ class SphereSamplingMapping final : public Mapping {
   void applyJT(ConstPointsRef in, ConstPointsRef f_out, PointsRef f_in) const override;
   SparseMatrix jacobian(ConstPointsRef in) const override;
 
-  /// s_k of every centre (sorted, s_0 = 0, s_{K−1} = 1).
+  /// s_k of every centre (sorted, s_0 = 0, s_{K−1} = 1; a cut's abscissa twice, the end of the
+  /// strand before it and the start of the next).
   const std::vector<double>& abscissas() const { return abscissas_; }
   /// Basis row of centre k.
   const geometry::BasisRow& row(int k) const { return rows_[k]; }
-  /// Weights of the chord point (1 − t) x_k + t x_{k+1} (t ∈ [0, 1], k + 1 < K; t = 0 for k = K − 1).
+  /// Weights of the chord point (1 − t) x_k + t x_{k+1} (t ∈ [0, 1] when joinsNext(k); else
+  /// centre k alone).
   PointWeights pointWeights(int k, double t) const;
-  /// Arc length L of the curve at the last resample (m) and the actual spacing L / (K − 1).
+  /// Whether centres k and k + 1 are joined by a chord (the same strand).
+  bool joinsNext(int k) const { return k + 1 < outputCount() && strand_of_[k] == strand_of_[k + 1]; }
+  /// The strand of centre k (0 for an uncut curve) and the strands of the curve.
+  int strandOf(int k) const { return strand_of_[k]; }
+  const std::vector<Strand>& strands() const { return strands_; }
+  /// An upper bound on the material length between any points of chords k and l: (|k − l| + 1)
+  /// times the spacing on one strand. Lengths run along the thread as it was before any cut
+  /// (the strands end to end), so that the two ends of a fresh cut, which start at one place, are
+  /// as near as they were: self-collision excludes them as it excludes neighbours.
+  double chordDistanceBound(int k, int l) const;
+  /// The material length between the chord points k + t and l + u (t, u ∈ [0, 1]), measured as
+  /// chordDistanceBound measures it.
+  double arcDistance(int k, double t, int l, double u) const;
+  /// Arc length L of the curve at the last resample (m, the sum over strands) and the largest
+  /// actual spacing L_t / (K_t − 1) of its strands.
   double length() const { return length_; }
   double spacing() const { return actual_spacing_; }
   double targetSpacing() const { return spacing_; }
@@ -90,11 +112,20 @@ class SphereSamplingMapping final : public Mapping {
   double spacing_;
   double length_ = 0.0;
   double actual_spacing_ = 0.0;
+  std::vector<Strand> strands_;
   std::vector<double> abscissas_;
   std::vector<geometry::BasisRow> rows_;
+  std::vector<int> strand_of_;          // strand of every centre
+  std::vector<double> strand_spacing_;  // L_t / (K_t − 1) of every strand at the last resample
+  std::vector<double> arc_of_;          // arc length from s = 0 to every centre, strands end to end
+  /// Places the centres of strand t from index `first` on, at arc lengths from `base` (table
+  /// lengths computed); returns K_t.
+  int sampleStrand(int t, int first, double base);
 
   // Arc-length table (model data, from the basis only): abscissas, basis derivatives there and
-  // at the 4 Gauss nodes of every table interval; lengths and speeds filled by resample.
+  // at the 4 Gauss nodes of every table interval (those of the interval ending at entry j at
+  // 4 j..4 j + 3); lengths (from 0 at each strand's start) and speeds filled by resample.
+  // Strand t has the entries strand_table_begin_[t] .. strand_table_begin_[t + 1] − 1.
   struct Derivative {
     int first = 0;
     int count = 0;
@@ -103,6 +134,7 @@ class SphereSamplingMapping final : public Mapping {
   std::vector<double> table_s_;
   std::vector<Derivative> table_derivative_, gauss_;
   std::vector<double> table_length_, table_speed_;
+  std::vector<int> strand_table_begin_;
 };
 
 }  // namespace filum::collision

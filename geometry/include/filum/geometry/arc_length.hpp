@@ -39,8 +39,12 @@ class ArcLengthParameterization {
   double abscissaAtLength(double length) const;
   /// count >= 2 abscissas with L(s_k) = k L(1)/(count − 1); s_0 = 0, s_{count−1} = 1.
   std::vector<double> equallySpacedAbscissas(int count) const;
-  /// The points P(s_k) at those abscissas (count × 3).
-  Points equallySpacedPoints(int count) const;
+  /// count >= 2 abscissas at equal arc length on one strand of a cut curve (CurveBasis::strands),
+  /// from strand.begin to strand.end.
+  std::vector<double> equallySpacedAbscissas(int count, const Strand& strand) const;
+  /// The points P(s_k) at the equally spaced abscissas of `strand` (count × 3; the whole curve
+  /// by default); the strand's end is its own end point (evaluateOnStrand).
+  Points equallySpacedPoints(int count, const Strand& strand = {}) const;
   /// Number of accepted quadrature intervals (a measure of the work done).
   int intervalCount() const { return static_cast<int>(boundaries_.size()) - 1; }
 

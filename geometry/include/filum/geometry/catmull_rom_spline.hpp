@@ -35,7 +35,9 @@ class CatmullRomSpline final : public SplineBasis {
   int degree() const override { return 3; }
   int continuity() const override { return 1; }
   void evaluate(double s, BasisRow& row) const override;
+  void evaluateFromLeft(double s, BasisRow& row) const override;
   std::vector<double> breakpoints() const override;
+  std::vector<double> cuts() const override;
   std::unique_ptr<SplineBasis> clone() const override { return std::make_unique<CatmullRomSpline>(n_); }
 
   int segmentCount() const { return n_ - 3; }
@@ -43,6 +45,8 @@ class CatmullRomSpline final : public SplineBasis {
   double abscissaOfControlPoint(int i) const;
 
  private:
+  /// The row of segment j (its functions at u = s · segments, t = u − j ∈ [0, 1]).
+  void evaluateSegment(int j, double u, BasisRow& row) const;
   int n_;
 };
 

@@ -34,8 +34,9 @@ class ConvolutionSurface {
   void addSegment(const Vec3& a, const Vec3& b);
   /// Consecutive points joined by segments (m >= 2 points, m − 1 segments).
   void addPolyline(ConstPointsRef points);
-  /// The curve (basis, q) as a polyline of `segments` >= 1 chords at equal arc-length spacing.
-  void addCurve(const SplineBasis& basis, ConstPointsRef q, int segments);
+  /// The curve (basis, q) as a polyline of `segments` >= 1 chords at equal arc-length spacing;
+  /// one strand of a cut curve (CurveBasis::strands), the whole curve by default.
+  void addCurve(const SplineBasis& basis, ConstPointsRef q, int segments, const Strand& strand = {});
   void clear() { segments_.clear(); }
 
   /// F(x) (units of length).

@@ -36,8 +36,11 @@ class NonUniformBSpline final : public SplineBasis {
   /// d − 1 when the domain has no interior knot (one polynomial piece).
   int continuity() const override { return continuity_; }
   void evaluate(double s, BasisRow& row) const override;
+  void evaluateFromLeft(double s, BasisRow& row) const override;
   /// The distinct knots of [t_d, t_n] mapped to [0, 1].
   std::vector<double> breakpoints() const override { return breakpoints_; }
+  /// The interior knots of multiplicity d + 1, mapped to [0, 1].
+  std::vector<double> cuts() const override { return cuts_; }
   std::unique_ptr<SplineBasis> clone() const override { return std::make_unique<NonUniformBSpline>(*this); }
 
   const std::vector<double>& knots() const { return knots_; }
@@ -47,8 +50,9 @@ class NonUniformBSpline final : public SplineBasis {
   double parameterAt(double s) const;
   /// s(u) = (u − t_d)/(t_n − t_d), the inverse of parameterAt.
   double abscissaAt(double u) const;
-  /// Values and derivatives with respect to the knot parameter u (not s), u clamped to the domain.
-  void evaluateAtParameter(double u, BasisRow& row) const;
+  /// Values and derivatives with respect to the knot parameter u (not s), u clamped to the
+  /// domain; right-hand limits at a knot, or left-hand ones with from_left.
+  void evaluateAtParameter(double u, BasisRow& row, bool from_left = false) const;
 
  private:
   int d_;
@@ -56,6 +60,8 @@ class NonUniformBSpline final : public SplineBasis {
   std::vector<double> knots_;
   std::vector<double> breakpoints_;
   int continuity_;
+  std::vector<double> cuts_;
+  void evaluateOnSide(double s, bool from_left, BasisRow& row) const;
 };
 
 }  // namespace filum::geometry

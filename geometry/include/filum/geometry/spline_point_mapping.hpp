@@ -13,7 +13,10 @@ namespace filum::geometry {
 
 class SplinePointMapping : public Mapping {
  public:
-  SplinePointMapping(const geometry::SplineBasis& basis, std::vector<double> abscissas);
+  /// The points at `abscissas` on `strand` (all inside it; the whole curve by default): at its
+  /// end the strand's own end point, which differs from the next strand's start at a cut
+  /// (CurveBasis::strands).
+  SplinePointMapping(const geometry::SplineBasis& basis, std::vector<double> abscissas, Strand strand = {});
 
   std::string typeName() const override { return "SplinePointMapping"; }
   int inputCount() const override { return static_cast<int>(weights_.cols()); }
@@ -28,11 +31,13 @@ class SplinePointMapping : public Mapping {
   SparseMatrix jacobian(ConstPointsRef in) const override;
 
   const std::vector<double>& abscissas() const { return abscissas_; }
+  const Strand& strand() const { return strand_; }
   /// W (outputs × inputs): the basis values b_i(s_k).
   const SparseMatrix& weights() const { return weights_; }
 
  private:
   std::vector<double> abscissas_;
+  Strand strand_;
   SparseMatrix weights_;
 };
 

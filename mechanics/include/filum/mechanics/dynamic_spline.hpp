@@ -43,7 +43,9 @@ class DynamicSpline final : public CurveBody {
   ///   "velocities": [[vx,vy,vz], ...] one per control point (m/s), the velocities at t = 0
   ///      (default: at rest),
   ///   "refine": [{"time": s, "abscissas": [...]}, ...] control points to insert during the run
-  ///      (CurveBody::refine, the curve unchanged; a uniform cubic B-spline becomes a NUBS).
+  ///      (CurveBody::refine, the curve unchanged; a uniform cubic B-spline becomes a NUBS),
+  ///   "cuts": [{"time": s, "abscissa": s}, ...] cuts during the run (CurveBody::cut: the thread
+  ///      parts in two strands there).
   static std::unique_ptr<DynamicSpline> fromParams(const Params& p);
 
   std::string typeName() const override { return "DynamicSpline"; }
@@ -72,6 +74,9 @@ class DynamicSpline final : public CurveBody {
   /// Knot removal (geometry::removeKnot, least squares on the d − 1 points around the knot) of
   /// the knot at s; R is linear in the points, built column by column from removeKnot.
   SparseMatrix coarsen(double abscissa, ConstPointsRef q, double tolerance) override;
+  /// The knot at s raised to multiplicity d + 1 (geometry::splitCurve's refinement): two
+  /// strands, each with its own end point at the cut; the mass matrix has no entry across it.
+  SparseMatrix cut(double abscissa) override;
 
   /// Arc length of the initial curve (m).
   double restLength() const { return rest_length_; }

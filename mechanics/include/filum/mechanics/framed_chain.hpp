@@ -15,7 +15,7 @@
 //   m_i = ρ A ℓ_i,   J_i = ρ ℓ_i diag(I, I, 2I),   A = π r², I = π r⁴ / 4,
 // and the frames' own force, Euler's gyroscopic torque −ω_i × J_i ω_i (body frame). Elasticity
 // is a force field, ChainElasticity. Explicit integrators only (internal DOFs); the point count is
-// fixed (refine and coarsen are refused).
+// fixed (refine, coarsen and cut are refused).
 #pragma once
 
 #include <memory>
@@ -69,6 +69,7 @@ class FramedChain final : public CurveBody {
   double mass() const override { return mass_; }
   SparseMatrix refine(const std::vector<double>& abscissas) override;
   SparseMatrix coarsen(double abscissa, ConstPointsRef q, double tolerance) override;
+  SparseMatrix cut(double abscissa) override;
 
   /// Node i's orientation in the state's q (the internal block), as a unit quaternion.
   Eigen::Quaterniond orientation(const VecX& q, int node) const;

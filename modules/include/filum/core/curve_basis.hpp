@@ -36,14 +36,53 @@ class CurveBasis {
   /// Parametric continuity C^k of the curve at interior knots.
   virtual int continuity() const = 0;
 
-  /// Values and derivatives at s ∈ [0, 1] (clamped to it).
+  /// Values and derivatives at s ∈ [0, 1] (clamped to it). At a knot they are the right-hand
+  /// limits (the span that starts there); at s = 1 the left-hand limits of the last span.
   virtual void evaluate(double s, BasisRow& row) const = 0;
+  /// The left-hand limits at s (the span that ends there; at s = 0 the first span's values).
+  /// Equal to evaluate except at knots where the curve is less smooth than C²: at a cut
+  /// (cuts()) the values differ too — the end of the strand before the cut.
+  virtual void evaluateFromLeft(double s, BasisRow& row) const = 0;
 
   /// Abscissas in [0, 1], sorted, 0 and 1 included, between which every basis function is a
   /// polynomial (so that Gauss-Legendre quadrature per piece is exact).
   virtual std::vector<double> breakpoints() const = 0;
+  /// Abscissas in (0, 1), sorted, where the curve is cut: C⁻¹, no basis function straddles them
+  /// (a knot of multiplicity degree + 1: talk 002, "local C-1 continuity => cut"). Between two
+  /// consecutive cuts the curve is one strand (strands()); empty for an uncut curve.
+  virtual std::vector<double> cuts() const = 0;
 
   virtual std::unique_ptr<CurveBasis> clone() const = 0;
 };
+
+/// One strand of a curve: the abscissas [begin, end] between two cuts (or the curve's ends).
+/// P(begin) is evaluate(begin), P(end) is evaluateFromLeft(end): at a cut the two strands
+/// that meet there have their own end points.
+struct Strand {
+  double begin = 0.0;
+  double end = 1.0;
+};
+
+/// The strands of the curve in order: [0, c_1], [c_1, c_2], ..., [c_k, 1] for its cuts c_j
+/// (one strand, [0, 1], for an uncut curve).
+inline std::vector<Strand> strands(const CurveBasis& basis) {
+  std::vector<Strand> out;
+  double begin = 0.0;
+  for (const double cut : basis.cuts()) {
+    out.push_back({begin, cut});
+    begin = cut;
+  }
+  out.push_back({begin, 1.0});
+  return out;
+}
+
+/// The row of the strand's point at s ∈ [strand.begin, strand.end]: its end is evaluated from
+/// the left (the strand's own end point at a cut), any other abscissa as evaluate does.
+inline void evaluateOnStrand(const CurveBasis& basis, const Strand& strand, double s, BasisRow& row) {
+  if (s >= strand.end)
+    basis.evaluateFromLeft(strand.end, row);
+  else
+    basis.evaluate(s, row);
+}
 
 }  // namespace filum

@@ -8,7 +8,8 @@
 // point and the weights b_j(s), b'_j(s), b''_j(s)): the position, tangent and second derivative,
 // and the mapping row of a point on the body — a force F at s adds b_j(s) F to point first + j
 // (DESIGN.md "mappings"). The parameter range is [0, 1]; pointCount() is the number of control
-// points, which changes only through refine (between steps, with Scene::refine).
+// points, which changes only between steps (Scene::refine, coarsen and cut). A cut curve is a
+// sequence of strands (CurveBasis::strands), each a curve of its own between its two ends.
 #pragma once
 
 #include "filum/core/curve_basis.hpp"
@@ -49,25 +50,40 @@ class CurveBody : public MechanicalState {
   /// the model, or an empty matrix and changes nothing when the bound exceeds the tolerance.
   /// Use Scene::coarsen. Throws SceneError when s is not at a knot of the body.
   virtual SparseMatrix coarsen(double abscissa, ConstPointsRef q, double tolerance) = 0;
-  /// Insertions a scene file schedules ("refine": [{"time": t, "abscissas": [s, ...]}, ...] in the
-  /// body's parameters, times increasing): Scene::step applies each at the first step that starts
-  /// at or after its time.
-  struct Refinement {
+  /// Cuts the curve at s ∈ (0, 1) (talk 002: "multiple insertion at the same parametric
+  /// abscissa decreases the local continuity; local C-1 continuity => cut"): the knot at s raised
+  /// to multiplicity degree + 1, so that the body becomes two strands (CurveBasis::strands) that
+  /// share no control point, each with its own end at s. The curve is unchanged at that instant;
+  /// from then on the strands move apart and no energy, mass or contact chord joins them.
+  /// Abscissas keep their meaning (a point at s keeps its place on the thread). Returns A as
+  /// refine does (q̃ = A q). Use Scene::cut. Throws SceneError when the body cannot be cut there
+  /// (s outside (0, 1), a cut already at s, a basis or body kind that cannot be cut).
+  virtual SparseMatrix cut(double abscissa) = 0;
+
+  /// Layout changes a scene file schedules in the body's parameters: "refine": [{"time": t,
+  /// "abscissas": [s, ...]}, ...] inserts control points (refine), "cuts": [{"time": t,
+  /// "abscissa": s}, ...] cuts the body (cut); times increase within each list. Scene::step
+  /// applies each at the first step that starts at or after its time (insertions before cuts
+  /// at equal times).
+  struct LayoutChange {
+    enum class Kind { kRefine, kCut };
+    Kind kind = Kind::kRefine;
     double time = 0.0;
-    std::vector<double> abscissas;
+    std::vector<double> abscissas;  // refine: the new knots' abscissas; cut: the one abscissa
   };
-  /// Reads p[key] (absent: none); throws SceneError at the faulty entry.
-  static std::vector<Refinement> refinementsFromParams(const Params& p, const std::string& key);
-  void setRefinements(std::vector<Refinement> refinements) { refinements_ = std::move(refinements); }
-  /// The first scheduled refinement not applied yet if it is due at time t, else null.
-  const Refinement* refinementDue(double t) const {
-    return next_refinement_ < refinements_.size() && refinements_[next_refinement_].time <= t
-               ? &refinements_[next_refinement_]
+  /// Reads p["refine"] and p["cuts"] (absent: none), merged by time; throws SceneError at the
+  /// faulty entry.
+  static std::vector<LayoutChange> layoutChangesFromParams(const Params& p);
+  void setLayoutChanges(std::vector<LayoutChange> changes) { layout_changes_ = std::move(changes); }
+  /// The first scheduled change not applied yet if it is due at time t, else null.
+  const LayoutChange* layoutChangeDue(double t) const {
+    return next_layout_change_ < layout_changes_.size() && layout_changes_[next_layout_change_].time <= t
+               ? &layout_changes_[next_layout_change_]
                : nullptr;
   }
-  void markRefinementApplied() { ++next_refinement_; }
+  void markLayoutChangeApplied() { ++next_layout_change_; }
 
-  /// Counts the layout changes of this body (refine): whoever keeps indices into its points
+  /// Counts the layout changes of this body (refine, coarsen, cut): whoever keeps indices into its points
   /// or rows of its basis (mappings, visuals) compares it with the count it was built for.
   long layoutRevision() const { return layout_revision_; }
 
@@ -83,8 +99,8 @@ class CurveBody : public MechanicalState {
 
  private:
   long layout_revision_ = 0;
-  std::vector<Refinement> refinements_;
-  std::size_t next_refinement_ = 0;
+  std::vector<LayoutChange> layout_changes_;
+  std::size_t next_layout_change_ = 0;
 };
 
 }  // namespace filum

@@ -138,7 +138,12 @@ class Scene {
   /// at most `tolerance` (m; CurveBody::coarsen), and lays the scene out anew as refine does.
   /// Returns false, with nothing changed, when the removal would move the curve further.
   bool coarsen(CurveBody& body, double abscissa, double tolerance);
-  /// Counts layout changes (refine, coarsen): 0 for a scene that never changed its points.
+  /// Cuts `body` at the abscissa (CurveBody::cut: two strands that move apart from now on) and
+  /// lays the scene out anew as refine does: constraints and contacts keep their abscissas, so a
+  /// point held on either side stays held. Throws SceneError when the body cannot be cut there
+  /// (nothing changed then).
+  void cut(CurveBody& body, double abscissa);
+  /// Counts layout changes (refine, coarsen, cut): 0 for a scene that never changed its points.
   long layoutRevision() const { return layout_revision_; }
   /// Steps redone in halves because the contact set of their start missed a contact
   /// (CollisionPipeline::missedContact: a pass-through, a deep overlap or a fast slide; since init).
@@ -204,12 +209,12 @@ class Scene {
   // The step pipeline (DESIGN.md "One time step"), one function per stage; step() runs
   // beginStep, advance (detectCollisions, integrate, again in halves for missed contacts) and
   // endStep.
-  /// Applies the events due at the step's start (scheduled refinements, then releases: cuts)
-  /// and keeps the last good state. A refinement that fails is the step's fault (reported,
-  /// nothing advanced).
+  /// Applies the events due at the step's start (scheduled refinements and cuts of bodies, then
+  /// releases of constraints) and keeps the last good state. A layout change that fails is the
+  /// step's fault (reported, nothing advanced).
   void beginStep();
-  /// Control points scheduled for insertion (CurveBody::refinementDue) at this step.
-  void applyScheduledRefinements();
+  /// Control points scheduled for insertion, and cuts (CurveBody::layoutChangeDue), at this step.
+  void applyScheduledLayoutChanges();
   /// Advances state_ by h (detection at its start, then the integrator); redone as two halves,
   /// recursively, while the collision pipeline finds a contact the step's contact set missed.
   void advance(double h, int depth);

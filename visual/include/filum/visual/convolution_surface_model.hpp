@@ -36,7 +36,9 @@ class ConvolutionSurfaceModel final : public VisualModel {
   std::string typeName() const override { return "ConvolutionSurfaceModel"; }
   bool drawsBody() const override { return true; }
   void update(const SceneState& s) override;
-  const TriangleMesh& mesh(int = 0) const override { return mesh_; }
+  /// One surface per strand of the body (one for an uncut curve: CurveBasis::strands).
+  int meshCount() const override { return static_cast<int>(meshes_.size()); }
+  const TriangleMesh& mesh(int strand = 0) const override { return meshes_.at(strand); }
 
  protected:
   void init(const Scene& scene) override;
@@ -47,7 +49,7 @@ class ConvolutionSurfaceModel final : public VisualModel {
   int segments_ = 0;
   SurfaceMeshingCriteria criteria_;
   long updates_ = 0;
-  TriangleMesh mesh_;
+  std::vector<TriangleMesh> meshes_;
 };
 
 }  // namespace filum::visual

@@ -7,6 +7,11 @@
 // same material point of the thread; u_k = k / (m − 1) is then exactly the fraction of the rest
 // length that the radius profile is written in.
 //
+// A cut curve (CurveBody::cut) is skinned strand by strand: one closed tube per strand
+// (CurveBasis::strands), its rings shared out by rest length, capped at both ends (the cut ends
+// too), so that no triangle spans the gap between the strands. meshCount() is the number of
+// strands; u stays the fraction of the whole rest length.
+//
 // Scene parameters: "samples" (rings, default 6 per polynomial piece, at least 16), "sides"
 // (default 16), "radius" (m, default the spline's radius) or "radius_profile" ([[u, r], ...]),
 // "caps" ("round" or "flat"), "cap_rings", "color", "opacity".
@@ -41,25 +46,38 @@ class GeneralizedCylinderModel final : public VisualModel {
   std::string typeName() const override { return "GeneralizedCylinder"; }
   bool drawsBody() const override { return true; }
   void update(const SceneState& s) override;
-  const TriangleMesh& mesh(int = 0) const override { return cylinder_->mesh(); }
+  int meshCount() const override { return static_cast<int>(strands_.size()); }
+  const TriangleMesh& mesh(int strand = 0) const override { return strands_.at(strand).cylinder->mesh(); }
 
-  const GeneralizedCylinder& cylinder() const { return *cylinder_; }
-  const SplineAxisMapping& mapping() const { return *mapping_; }
+  /// One tube per strand of the body (one for an uncut curve).
+  int strandCount() const { return static_cast<int>(strands_.size()); }
+  const GeneralizedCylinder& cylinder(int strand = 0) const { return *strands_.at(strand).cylinder; }
+  const SplineAxisMapping& mapping(int strand = 0) const { return *strands_.at(strand).mapping; }
   const RadiusProfile& profile() const { return *options_.profile; }
-  /// Axis samples and radii of the last update (rings × 3, rings).
-  const Points& axis() const { return axis_; }
-  const VecX& radii() const { return radii_; }
+  /// Axis samples and radii of the strand's tube at the last update (rings × 3, rings).
+  const Points& axis(int strand = 0) const { return strands_.at(strand).axis; }
+  const VecX& radii(int strand = 0) const { return strands_.at(strand).radii; }
 
  protected:
   void init(const Scene& scene) override;
 
  private:
+  /// The tube of one strand.
+  struct StrandSkin {
+    std::unique_ptr<SplineAxisMapping> mapping;
+    std::unique_ptr<GeneralizedCylinder> cylinder;
+    Points axis, tangents, curvatures;  // rings × 3: x_k, T_k, κ_k (1/m)
+    VecX radii, slopes;                 // r_k (m), dr/dℓ_k
+    Vec3 normal = Vec3::UnitZ();        // first frame's normal, carried from frame to frame
+  };
+  /// Builds the tube of `strand` with rings at the abscissas s, at the fractions u_k of the rest
+  /// length L (the radius profile's argument).
+  void addStrand(const geometry::SplineBasis& basis, const Strand& strand, const std::vector<double>& s,
+                 const std::vector<double>& fractions, double total_length);
+  static void updateStrand(StrandSkin& skin, ConstPointsRef q);
+
   Options options_;
-  std::unique_ptr<SplineAxisMapping> mapping_;
-  std::unique_ptr<GeneralizedCylinder> cylinder_;
-  Points axis_, tangents_, curvatures_;  // rings × 3: x_k, T_k, κ_k (1/m)
-  VecX radii_, slopes_;     // r_k (m), dr/dℓ_k
-  Vec3 normal_ = Vec3::UnitZ();  // first frame's normal, carried from frame to frame
+  std::vector<StrandSkin> strands_;
 };
 
 }  // namespace filum::visual
