@@ -46,17 +46,23 @@ RunVisual::RunVisual(Scene& scene, const nlohmann::json& document, const std::st
 
 RunVisual::~RunVisual() = default;
 
+std::string RunVisual::meshName(std::size_t model, int mesh) const {
+  // A model's first mesh carries its name; the others (the strands of a cut thread) a suffix.
+  return visuals_.modelName(model) + (mesh > 0 ? "_" + std::to_string(mesh + 1) : "");
+}
+
 void RunVisual::writeMeshes(const Scene& scene) {
   if (!options_.meshes) return;
   visuals_.update(scene.state());
   std::vector<std::string> files;
-  for (std::size_t i = 0; i < visuals_.models().size(); ++i) {
-    char suffix[32];
-    std::snprintf(suffix, sizeof suffix, "_%06d.vtp", mesh_frames_);
-    const std::string file = "meshes/" + visuals_.modelName(i) + suffix;
-    visual::writeMeshVtp(directory_ + "/" + file, visuals_.models()[i]->mesh());
-    files.push_back(file);
-  }
+  for (std::size_t i = 0; i < visuals_.models().size(); ++i)
+    for (int k = 0; k < visuals_.models()[i]->meshCount(); ++k) {
+      char suffix[32];
+      std::snprintf(suffix, sizeof suffix, "_%06d.vtp", mesh_frames_);
+      const std::string file = "meshes/" + meshName(i, k) + suffix;
+      visual::writeMeshVtp(directory_ + "/" + file, visuals_.models()[i]->mesh(k));
+      files.push_back(file);
+    }
   series_->addStep(scene.state().time, files);
   ++mesh_frames_;
 }
@@ -83,11 +89,12 @@ void RunVisual::finish(const Scene& scene) {
   if (options_.meshes) {
     visuals_.update(scene.state());
     std::vector<visual::NamedMesh> named;
-    for (std::size_t i = 0; i < visuals_.models().size(); ++i) {
-      named.push_back({visuals_.modelName(i), &visuals_.models()[i]->mesh()});
-      if (visuals_.models()[i]->mesh().triangleCount() > 0)
-        visual::writePly(directory_ + "/meshes/final_" + visuals_.modelName(i) + ".ply", visuals_.models()[i]->mesh());
-    }
+    for (std::size_t i = 0; i < visuals_.models().size(); ++i)
+      for (int k = 0; k < visuals_.models()[i]->meshCount(); ++k) {
+        const visual::TriangleMesh& mesh = visuals_.models()[i]->mesh(k);
+        named.push_back({meshName(i, k), &mesh});
+        if (mesh.triangleCount() > 0) visual::writePly(directory_ + "/meshes/final_" + meshName(i, k) + ".ply", mesh);
+      }
     visual::writeObj(directory_ + "/meshes/final.obj", named);
   }
   if (recorder_) recorder_->finish();

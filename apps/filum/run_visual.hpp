@@ -55,6 +55,9 @@ class RunVisual {
   std::string summary() const;
 
  private:
+  /// The file name of mesh `mesh` of visual model `model`: its name, then _2, _3... for the
+  /// meshes after the first (the strands of a cut thread).
+  std::string meshName(std::size_t model, int mesh) const;
   RunVisualOptions options_;
   std::string directory_;
   std::string scene_name_;

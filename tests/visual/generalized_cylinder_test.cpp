@@ -68,6 +68,31 @@ TEST(GeneralizedCylinder, FlatCapsAreClosedOnceTheirRimIsWelded) {
   expectClosedOrientedManifold(mesh, 1e-12);
 }
 
+TEST(GeneralizedCylinder, ACutThreadIsSkinnedAsOneClosedTubePerStrand) {
+  // A thread cut in two (Scene::cut): two tubes, each a closed oriented manifold capped at the
+  // cut, and no triangle between them — once strand 2 is lifted by 1 m, every vertex of tube 1
+  // stays with strand 1 (below 0.5 m) and every vertex of tube 2 with strand 2.
+  Loaded l = load(test::splineScene(test::planarWave(), json::array({{{"type", "GeneralizedCylinder"}, {"sides", 12}}})));
+  CurveBody& thread = *l.scene->bodies()[0]->curve();
+  l.scene->cut(thread, 0.4);
+  l.visuals->update(l.scene->state());
+  const GeneralizedCylinderModel& skin = skinOf(l);
+  ASSERT_EQ(skin.meshCount(), 2);
+  for (int k = 0; k < 2; ++k) expectClosedOrientedManifold(skin.mesh(k));
+  // Rings follow the rest length: the strands share them in proportion (at least 2 each).
+  EXPECT_GE(skin.axis(0).rows(), 2);
+  EXPECT_GE(skin.axis(1).rows(), 2);
+  BasisRow right;
+  thread.basis().evaluate(thread.basis().cuts().at(0), right);
+  SceneState s = l.scene->state();
+  auto q = thread.block(s.q);
+  for (int i = right.first; i < thread.pointCount(); ++i) q(i, 2) += 1.0;
+  l.visuals->update(s);
+  // Planar wave: |z| <= its amplitude plus the skin radius, well below 0.5 m.
+  EXPECT_LT(skin.mesh(0).vertices.col(2).maxCoeff(), 0.5);
+  EXPECT_GT(skin.mesh(1).vertices.col(2).minCoeff(), 0.5);
+}
+
 TEST(GeneralizedCylinder, VerticesLieAtTheRequestedRadiusFromTheAxis) {
   // A varying radius profile (a bulge) on a helix: each ring's vertices at r(u_k) from x_k,
   // each cap vertex at the end radius from the end point.

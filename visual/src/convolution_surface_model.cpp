@@ -36,12 +36,15 @@ void ConvolutionSurfaceModel::init(const Scene&) {
   criteria_.angle_degrees = options_.angle_degrees;
   criteria_.facet_size = options_.facet_size.value_or(0.5 * radius_);
   criteria_.approximation = options_.approximation.value_or(0.05 * radius_);
+  // One mesh per strand, empty until the first update (which meshes: updates_ starts at 0).
+  meshes_.assign(strands(spline->basis()).size(), TriangleMesh{});
+  updates_ = 0;
 }
 
 void ConvolutionSurfaceModel::update(const SceneState& s) {
   const auto& spline = *body().curve();
+  if (updates_++ % options_.every != 0) return;
   const std::vector<Strand> pieces = strands(spline.basis());
-  if (updates_++ % options_.every != 0 && meshes_.size() == pieces.size()) return;
   const ConstPointsMap q = body().block(s.q);
   // One surface per strand: a cut tube shows two closed ends, not a blend across the gap (each
   // strand takes the segments in proportion to its share of the parameter range, at least one).
