@@ -63,11 +63,15 @@ void NonUniformBSpline::evaluateOnSide(double s, bool from_left, BasisRow& row) 
   // rounded) maps back onto its knot, so that evaluate and evaluateFromLeft pick the strands
   // after and before it. Elsewhere the basis is continuous and the snap changes round-off only.
   double u = parameterAt(s);
-  const int k = findKnotSpan(d_, n_, knots_, u);
+  int k = findKnotSpan(d_, n_, knots_, u);
   const double snap = 8.0 * std::numeric_limits<double>::epsilon() * (std::abs(knots_[d_]) + std::abs(knots_[n_]));
-  if (k + 1 <= n_ && knots_[k + 1] - u <= snap) u = knots_[k + 1];
-  if (u - knots_[k] <= snap) u = knots_[k];
-  evaluateAtParameter(u, row, from_left);
+  if (k + 1 < n_ && u != knots_[k + 1] && knots_[k + 1] - u <= snap) {
+    u = knots_[k + 1];
+    k = findKnotSpan(d_, n_, knots_, u);  // the span that starts there (rare: only when snapped)
+  } else if (u - knots_[k] <= snap) {
+    u = knots_[k];
+  }
+  evaluateInSpan(from_left ? leftSpan(k, u) : k, u, row);
   // Chain rule: d/ds = (t_n − t_d) d/du.
   const double scale = knots_[n_] - knots_[d_];
   const double scale2 = scale * scale;
@@ -75,6 +79,13 @@ void NonUniformBSpline::evaluateOnSide(double s, bool from_left, BasisRow& row) 
     row.d1[j] *= scale;
     row.d2[j] *= scale2;
   }
+}
+
+int NonUniformBSpline::leftSpan(int k, double u) const {
+  // The last non-empty span that ends at u (t_k < u <= t_{k+1}); the recurrence holds on the
+  // closed span, so its functions at its right end are the left-hand limits.
+  while (k > d_ && !(knots_[k] < u)) --k;
+  return k;
 }
 
 namespace {
@@ -130,13 +141,13 @@ void evaluateSpan(const double* t, int k, double u, BasisRow& row) {
 }  // namespace
 
 void NonUniformBSpline::evaluateAtParameter(double u, BasisRow& row, bool from_left) const {
+  u = std::clamp(u, knots_[d_], knots_[n_]);
+  const int k = findKnotSpan(d_, n_, knots_, u);
+  evaluateInSpan(from_left ? leftSpan(k, u) : k, u, row);
+}
+
+void NonUniformBSpline::evaluateInSpan(int k, double u, BasisRow& row) const {
   const double* t = knots_.data();
-  u = std::clamp(u, t[d_], t[n_]);
-  int k = findKnotSpan(d_, n_, knots_, u);
-  // From the left: the last non-empty span that ends at u (t_k < u <= t_{k+1}); the recurrence
-  // holds on the closed span, so its functions at its right end are the left-hand limits.
-  if (from_left)
-    while (k > d_ && !(t[k] < u)) --k;
   row.first = k - d_;
   row.count = d_ + 1;
   switch (d_) {

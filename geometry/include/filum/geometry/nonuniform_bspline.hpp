@@ -62,6 +62,10 @@ class NonUniformBSpline final : public SplineBasis {
   int continuity_;
   std::vector<double> cuts_;
   void evaluateOnSide(double s, bool from_left, BasisRow& row) const;
+  /// The span whose closed interval ends at u, from span k (the one that holds u).
+  int leftSpan(int k, double u) const;
+  /// The d + 1 functions of span k at u and their u-derivatives.
+  void evaluateInSpan(int k, double u, BasisRow& row) const;
 };
 
 }  // namespace filum::geometry
