@@ -1,5 +1,7 @@
 #include "filum/mechanics/spring_force_field.hpp"
 
+#include <algorithm>
+
 #include "filum/core/scene.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
@@ -23,12 +25,19 @@ void SpringForceField::init(const Scene&) {
   v_.resize(samples_, 3);
   f_.resize(samples_, 3);
   mapping_->apply(spline->initialPositions(), x_);
+  // A cut curve (CurveBasis::cuts): no spring joins samples of two strands (a sample at a cut
+  // belongs to the strand after it, as evaluate does).
+  const std::vector<double> cuts = spline->basis().cuts();
+  auto strand = [&](int k) {
+    const double s = mapping_->abscissas()[k];
+    return static_cast<int>(std::upper_bound(cuts.begin(), cuts.end(), s) - cuts.begin());
+  };
   springs_.clear();
   for (int gap = 1; gap <= 2; ++gap) {
     const double k = gap == 1 ? stretch_stiffness_ : bend_stiffness_;
     if (k == 0.0) continue;
     for (int a = 0; a + gap < samples_; ++a)
-      springs_.push_back({a, a + gap, k, (x_.row(a + gap) - x_.row(a)).norm()});
+      if (strand(a) == strand(a + gap)) springs_.push_back({a, a + gap, k, (x_.row(a + gap) - x_.row(a)).norm()});
   }
 }
 

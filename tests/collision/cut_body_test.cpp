@@ -89,10 +89,10 @@ TEST(CutBody, NothingMovesAtTheInstantOfTheCut) {
   EXPECT_LE(std::abs(e1.potential - e0.potential), 5e-12 * scale + 1e-12);
 }
 
-TEST(CutBody, NoMassForceOrStiffnessJoinsTheTwoStrands) {
-  auto scene = uncutThread(60);
-  CurveBody& thread = threadOf(*scene);
-  scene->cut(thread, 0.5);
+/// After `scene` is cut at s: no mass, force or stiffness entry joins the two strands.
+void expectStrandsUncoupled(Scene& scene, double s_cut) {
+  CurveBody& thread = threadOf(scene);
+  scene.cut(thread, s_cut);
   const int a = secondStrandStart(thread), n = thread.pointCount();
   ASSERT_GT(a, 0);
   ASSERT_LT(a, n);
@@ -100,33 +100,51 @@ TEST(CutBody, NoMassForceOrStiffnessJoinsTheTwoStrands) {
   // Mass: M_ij = m ∫ b_i b_j ds is zero when no span holds both functions (exactly: no term).
   Triplets mass;
   TripletAccumulator mass_accumulator(mass);
-  scene->bodies()[0]->addMassMatrix(1.0, mass_accumulator);
+  scene.bodies()[0]->addMassMatrix(1.0, mass_accumulator);
   ASSERT_FALSE(mass.empty());
   for (const auto& e : mass)
     if ((e.row() < 3 * a) != (e.col() < 3 * a)) EXPECT_EQ(e.value(), 0.0) << "M(" << e.row() << ", " << e.col() << ")";
 
   // Forces on strand 1 do not depend on strand 2: moving strand 2's points anywhere (and their
   // velocities) leaves them bit for bit the same (each span's integrand holds its own d + 1
-  // points only, and the spans of zero length at the cut hold no quadrature point).
-  SceneState s = scene->state();
-  VecX f0(scene->velocitySize());
-  scene->computeForce(s, f0);
+  // points only, the spans of zero length at the cut hold no quadrature point, and no spring
+  // joins samples of two strands).
+  SceneState s = scene.state();
+  VecX f0(scene.velocitySize());
+  scene.computeForce(s, f0);
   std::mt19937 random(7);
   std::uniform_real_distribution<double> uniform(-0.01, 0.01);
   for (int i = 3 * a; i < 3 * n; ++i) {
     s.q[i] += uniform(random);
     s.v[i] += 100 * uniform(random);
   }
-  VecX f1(scene->velocitySize());
-  scene->computeForce(s, f1);
+  VecX f1(scene.velocitySize());
+  scene.computeForce(s, f1);
   for (int i = 0; i < 3 * a; ++i) EXPECT_EQ(f0[i], f1[i]) << "coordinate " << i;
 
   // Stiffness and damping: no entry of K or D couples the strands.
   Triplets entries;
   TripletAccumulator accumulator(entries);
-  scene->addForceJacobian(scene->state(), 1.0, 1.0, accumulator);
+  scene.addForceJacobian(scene.state(), 1.0, 1.0, accumulator);
+  ASSERT_FALSE(entries.empty());
   for (const auto& e : entries)
     if ((e.row() < 3 * a) != (e.col() < 3 * a)) EXPECT_EQ(e.value(), 0.0) << "(" << e.row() << ", " << e.col() << ")";
+}
+
+TEST(CutBody, NoMassForceOrStiffnessJoinsTheTwoStrands) {
+  // Real material: Green–Lagrange stretching, curvature bending, Rayleigh and viscous damping.
+  auto scene = uncutThread(60);
+  expectStrandsUncoupled(*scene, 0.5);
+}
+
+TEST(CutBody, NoSpringOfThePapersEnergyJoinsTheTwoStrands) {
+  // The paper's springs between samples of the curve (SpringForceField), with a dashpot.
+  test::CollisionThread thread;
+  thread.control_points = {{"from", {0, 0, 0}}, {"to", {0.1, 0, 0}}, {"count", 20}};
+  thread.constraints = nlohmann::json::array({{{"type", "FixedPointConstraint"}, {"abscissa", 0.0}}});
+  auto scene = test::loadCollisionScene(test::collisionScene({thread}, {{"type", "ContactPipeline"}}));
+  for (int k = 0; k < 100; ++k) ASSERT_TRUE(scene->step().ok);
+  expectStrandsUncoupled(*scene, 0.43);
 }
 
 TEST(CutBody, ABodyIsCutOnceAtAnAbscissaInsideIt) {

@@ -10,6 +10,7 @@
 // and ∂F_a/∂x_b = G, ∂F_a/∂x_a = −G, ∂F_b/∂x_a = G, ∂F_b/∂x_b = −G (same with G_v for
 // velocities), mapped to control points as ∂Q_i/∂q_j = Σ_{k,m} b_i(s_k) b_j(s_m) ∂F_k/∂x_m.
 // The dashpot's position term c u Δvᵀ P / l is not symmetric (a dissipative force).
+// On a cut curve (CurveBody::cut) only samples of one strand are joined by springs.
 #pragma once
 
 #include <memory>

@@ -40,8 +40,9 @@ class CurveBasis {
   /// limits (the span that starts there); at s = 1 the left-hand limits of the last span.
   virtual void evaluate(double s, BasisRow& row) const = 0;
   /// The left-hand limits at s (the span that ends there; at s = 0 the first span's values).
-  /// Equal to evaluate except at knots where the curve is less smooth than C²: at a cut
-  /// (cuts()) the values differ too — the end of the strand before the cut.
+  /// Inside a span the row is evaluate's; at a knot it is the previous span's, which gives the
+  /// same P, P′ and P″ wherever the curve is C² there, and at a cut (cuts()) another point: the
+  /// end of the strand before the cut.
   virtual void evaluateFromLeft(double s, BasisRow& row) const = 0;
 
   /// Abscissas in [0, 1], sorted, 0 and 1 included, between which every basis function is a
