@@ -522,6 +522,28 @@ struct LagrangeMultiplierSolver::AssembledDelassus {
   }
 };
 
+/// W through its dense columns (the dense path, c <= sparse_above): (W λ)_r = W_{:,r} · λ, one
+/// contiguous dot product per row — the rows of one thread all couple, so W is dense in fact
+/// and a gather through adjacency_ would cost as many terms, without vector instructions.
+struct LagrangeMultiplierSolver::DenseDelassus {
+  LagrangeMultiplierSolver& solver;
+  void begin() {
+    // The lower triangle mirrored into the upper one: column r is then all of row r.
+    const int c = solver.c_;
+    for (int k = 0; k < c; ++k) solver.w_.col(k).segment(0, k) = solver.w_.row(k).segment(0, k).transpose();
+  }
+  double product(int r) const { return solver.w_.col(r).head(solver.c_).dot(solver.lambda_.head(solver.c_)); }
+  void changed(int /*r*/, double /*delta*/) {}
+  /// W_BB of the equality rows (sorted).
+  void equalityBlock(const ConstraintRows& /*rows*/, MatX& block) const {
+    const auto& eq = solver.equality_rows_;
+    const int nb = static_cast<int>(eq.size());
+    block.resize(nb, nb);
+    for (int i = 0; i < nb; ++i)
+      for (int j = 0; j < nb; ++j) block(i, j) = solver.w_(eq[i], eq[j]);
+  }
+};
+
 /// W = L A⁻¹ Lᵀ never assembled: u = A⁻¹ Lᵀ λ = Σ_r λ_r y_r is kept up to date, (W λ)_r = L_r·u
 /// costs the row's terms, a change of λ_r adds Δ y_r on the row's bodies — per row O(terms + the
 /// points of its bodies) instead of O(rows it couples to), and no O(c²) assembly.
@@ -747,6 +769,10 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   // 4. λ = W⁻¹ (E − L A_t), or with contact rows the projected Gauss–Seidel solution.
   if (factored_form) {
     FactoredDelassus w{*this, scene, rows, u_};
+    solveWithContacts(rows, w);
+    factored_last_call_ = false;
+  } else if (stats_.inequalities > 0 && !stats_.sparse) {
+    DenseDelassus w{*this};  // diagonal_ holds W_rr since W's assembly (this call or an identical last one)
     solveWithContacts(rows, w);
     factored_last_call_ = false;
   } else if (stats_.inequalities > 0) {

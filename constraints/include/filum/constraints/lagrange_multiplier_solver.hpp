@@ -158,6 +158,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// λ with contact rows by projected Gauss–Seidel (see above) on a Delassus operator: W
   /// assembled (AssembledDelassus) or in factored form (FactoredDelassus).
   struct AssembledDelassus;
+  struct DenseDelassus;
   struct FactoredDelassus;
   template <class Delassus>
   void solveWithContacts(const ConstraintRows& rows, Delassus& w);
@@ -199,7 +200,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   long last_nonzeros_ = 0;
 
   MatX g_;  // G_ab = w_aᵀ M⁻¹ w_b for anchors a, b (mass operator)
-  MatX w_;  // W (dense path, lower triangle used)
+  MatX w_;  // W (dense path: the lower triangle, mirrored into the upper one for contact sweeps)
   VecX diagonal_;
   std::vector<int> bucket_, bucket_start_, cursor_;  // columns to solve, grouped by body
   std::vector<char> body_touched_;
