@@ -18,7 +18,7 @@
 // --quick: n = 30 and 165 only, 1 s, 3 repetitions, no explicit schemes nor reference scenes.
 // --sizes, --schemes (labels containing one of the texts), --scenes (file stems): run only those;
 // --scenes alone skips the rope, --sizes alone the reference scenes (to profile one of them).
-// --step-kinds: the implicit steps by kind (reused, fresh, refreshed, corrected), mean wall each.
+// --step-kinds: the implicit steps by kind (reused, fresh, refreshed, corrected, reused+chord), mean wall each.
 // Built with -DFILUM_WITH_PEERS=ON it also runs the same rope in Bullet at 4 and 64 solver
 // iterations and in MuJoCo (n <= 165) — apps/bench/peers/ — and adds their rows to the CSV and
 // the plot.
@@ -57,11 +57,13 @@ struct Scheme {
 
 /// Steps of an implicit solver by what they did, with their wall time: reused an earlier matrix
 /// (and its estimate passed), assembled a fresh one, reused and were taken again (refreshed), went
-/// on to Newton after the estimate (corrected). Printed with --step-kinds.
+/// on to Newton after the estimate (corrected), reused and passed on a second chord iteration
+/// (reused+chord). Printed with --step-kinds.
 struct StepKinds {
-  static constexpr const char* kNames[4] = {"reused", "fresh", "refreshed", "corrected"};
-  double wall[4] = {0, 0, 0, 0};  // s
-  long count[4] = {0, 0, 0, 0};
+  static constexpr int kKinds = 5;
+  static constexpr const char* kNames[kKinds] = {"reused", "fresh", "refreshed", "corrected", "reused+chord"};
+  double wall[kKinds] = {0, 0, 0, 0, 0};  // s
+  long count[kKinds] = {0, 0, 0, 0, 0};
 };
 
 struct Figures {
@@ -139,7 +141,7 @@ Figures measure(const json& document, const std::string& name, int repetitions) 
     const auto* solver = implicitSolver(*scene);
     for (long k = 0; k < steps; ++k) {
       const long reuses = solver ? solver->reuses() : 0, refreshes = solver ? solver->refreshes() : 0,
-                 corrections = solver ? solver->corrections() : 0;
+                 corrections = solver ? solver->corrections() : 0, chords = solver ? solver->secondChords() : 0;
       const auto start = std::chrono::steady_clock::now();
       const filum::StepReport report = scene->step();
       const double step_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -147,6 +149,7 @@ Figures measure(const json& document, const std::string& name, int repetitions) 
       if (solver) {
         const int kind = solver->corrections() > corrections ? 3
                          : solver->refreshes() > refreshes   ? 2
+                         : solver->secondChords() > chords   ? 4
                          : solver->reuses() > reuses         ? 0
                                                              : 1;
         kinds.wall[kind] += step_wall;
@@ -192,7 +195,7 @@ void printRow(std::FILE* csv, const std::string& problem, int n, const std::stri
   std::printf("\n");
   if (print_step_kinds && f.estimates >= 0) {
     std::printf("%-22s %5s  steps by kind (first run): ", "", "");
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < StepKinds::kKinds; ++k)
       if (f.kinds.count[k] > 0)
         std::printf(" %s %ld x %.1f us", StepKinds::kNames[k], f.kinds.count[k], 1e6 * f.kinds.wall[k] / f.kinds.count[k]);
     std::printf("\n");
@@ -220,7 +223,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> scheme_filter, scene_filter;
   cli.add_option("--sizes", sizes, "rope sizes (default 30 50 165 1000; --quick: 30 165)")->check(CLI::Range(4, 100000));
   cli.add_option("--schemes", scheme_filter, "rope schemes whose label contains one of these texts");
-  cli.add_flag("--step-kinds", print_step_kinds, "also print the implicit steps by kind (reused, fresh, refreshed, corrected) with their mean wall time");
+  cli.add_flag("--step-kinds", print_step_kinds, "also print the implicit steps by kind (reused, fresh, refreshed, corrected, reused+chord) with their mean wall time");
   cli.add_option("--scenes", scene_filter, "reference scenes (file stems in apps/scenes) to run; alone, no rope");
   CLI11_PARSE(cli, argc, argv);
   if (quick) {

@@ -38,9 +38,13 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
   // reuse wastes a force evaluation and two solves, a reuse that passes saves an assembly and a
   // factorization, so reuse pays only while most reuses pass. An isolated failure (a matrix that
   // has aged) costs no forced assembly: on the benchmark rope every failure was isolated, and
-  // forcing one more fresh step after each cost 5 µs per step on average.
-  const bool may_reuse =
-      settings_.linearized && settings_.reuse_factorization && settings_.max_iterations > 1 && reuse_skip_ == 0;
+  // forcing one more fresh step after each cost 5 µs per step on average. A reuse that passes
+  // only on its second chord iteration (a matrix at the limit of its age) makes the next step
+  // assemble afresh (fresh_next_): a step cheaper than a refresh, which keeping the aged matrix
+  // would soon cost.
+  const bool may_reuse = settings_.linearized && settings_.reuse_factorization && settings_.max_iterations > 1 &&
+                         reuse_skip_ == 0 && !fresh_next_;
+  fresh_next_ = false;
   if (reuse_skip_ > 0) --reuse_skip_;
   Attempt attempt = iterate(scene, s0, h, theta, kappa, a, may_reuse);
   if (attempt == Attempt::kStale) {
@@ -83,19 +87,14 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
 
   bool reused = false;  // the first iteration solved with an earlier step's matrix
   for (int k = 0; k < settings_.max_iterations; ++k) {
-    // The iterate's state: q = q0 + θh v0 + κh² a, v = v0 + θh a.
-    eval_.q = s0.q + (theta * h) * s0.v + (kappa * h * h) * a;
-    eval_.v = s0.v + (theta * h) * a;
-
-    // Residual r = Q(q, v) − M a. At a_0 = 0 after a stale attempt: Q(q0 + θh v0, v0), which
-    // that attempt evaluated and kept.
-    if (k == 0 && first_force_known)
+    // Residual r = Q(q, v) − M a at the iterate. At a_0 = 0 (M a_0 = 0) after a stale attempt:
+    // Q(q0 + θh v0, v0), which that attempt evaluated and kept.
+    if (k == 0 && first_force_known) {
+      eval_.q = s0.q + (theta * h) * s0.v;
+      eval_.v = s0.v;
       force_ = first_force_;
-    else
-      scene.computeForce(eval_, force_);
-    if (k > 0) {  // a_0 = 0: M a_0 = 0
-      for (const MechanicalState* body : scene.bodies()) body->multiplyMass(body->block(a), body->block(ma_));
-      force_.head(n3) -= ma_;
+    } else {
+      residualAt(scene, s0, h, theta, kappa, a, /*a_is_zero=*/k == 0);
     }
 
     // A = M − θh D − κh² K at the iterate, factored: at every Newton iterate, at the first only
@@ -128,7 +127,21 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
         a.swap(next_);  // a_2 = a_1 + Δa: the chord iterate the estimate computed, closer still
         return Attempt::kConverged;
       }
-      if (reused) return Attempt::kStale;  // taken again from a fresh matrix (see the header)
+      if (reused) {
+        // A stale matrix's estimate failed: one more chord iteration on it, from a_2 = a_1 + Δa
+        // (one force evaluation and one solve), under the same test; a_3 is accepted when it
+        // passes, and the next step assembles afresh (see the header). Else the step is taken
+        // again from a fresh matrix.
+        ++second_chords_;
+        a.swap(next_);  // a_2
+        residualAt(scene, s0, h, theta, kappa, a, false);
+        if (!update(scene, s0, a, k)) return Attempt::kFailed;
+        change = (next_ - a).head(n3).lpNorm<Eigen::Infinity>();
+        if (kappa * h * h * change > settings_.linearization_tolerance * linearized_displacement) return Attempt::kStale;
+        a.swap(next_);  // a_3 = a_2 + Δa_2
+        fresh_next_ = true;
+        return Attempt::kConverged;
+      }
       ++corrections_;
       if (!assembleAt(scene, h, theta, kappa)) return Attempt::kFailed;
       force_ = residual_;
@@ -175,6 +188,18 @@ bool ImplicitStepSolver::assembleAt(const Scene& scene, double h, double theta, 
   matrix_key_[1] = theta;
   matrix_key_[2] = kappa;
   return matrix_valid_;
+}
+
+void ImplicitStepSolver::residualAt(Scene& scene, const SceneState& s0, double h, double theta, double kappa,
+                                    const VecX& a, bool a_is_zero) {
+  // The iterate's state: q = q0 + θh v0 + κh² a, v = v0 + θh a; r = Q(q, v) − M a.
+  const Eigen::Index n3 = 3 * scene.dofPointCount();
+  eval_.q = s0.q + (theta * h) * s0.v + (kappa * h * h) * a;
+  eval_.v = s0.v + (theta * h) * a;
+  scene.computeForce(eval_, force_);
+  if (a_is_zero) return;  // M a_0 = 0
+  for (const MechanicalState* body : scene.bodies()) body->multiplyMass(body->block(a), body->block(ma_));
+  force_.head(n3) -= ma_;
 }
 
 bool ImplicitStepSolver::update(Scene& scene, const SceneState& s0, const VecX& a, int k) {
