@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "filum/core/collision_pipeline.hpp"
 #include "filum/core/scene.hpp"
 
 namespace filum::mechanics {
@@ -127,7 +128,7 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
         a.swap(next_);  // a_2 = a_1 + Δa: the chord iterate the estimate computed, closer still
         return Attempt::kConverged;
       }
-      if (reused) {
+      if (reused && !inContact(scene)) {
         // A stale matrix's estimate failed: one more chord iteration on it, from a_2 = a_1 + Δa
         // (one force evaluation and one solve), under the same test; a_3 is accepted when it
         // passes, and the next step assembles afresh (see the header). Else the step is taken
@@ -142,6 +143,7 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
         fresh_next_ = true;
         return Attempt::kConverged;
       }
+      if (reused) return Attempt::kStale;  // in contact: taken again from a fresh matrix
       ++corrections_;
       if (!assembleAt(scene, h, theta, kappa)) return Attempt::kFailed;
       force_ = residual_;
@@ -188,6 +190,11 @@ bool ImplicitStepSolver::assembleAt(const Scene& scene, double h, double theta, 
   matrix_key_[1] = theta;
   matrix_key_[2] = kappa;
   return matrix_valid_;
+}
+
+bool ImplicitStepSolver::inContact(const Scene& scene) {
+  const CollisionPipeline* collision = scene.collisionPipeline();
+  return collision && collision->contactCount() > 0;
 }
 
 void ImplicitStepSolver::residualAt(Scene& scene, const SceneState& s0, double h, double theta, double kappa,

@@ -65,6 +65,8 @@ class CollisionPipeline : public Component {
   virtual int addContactRows(const SceneState& /*s*/, ConstraintRows& /*rows*/) { return 0; }
   /// The multipliers of the rows it added, starting at row `first` of the solve's λ.
   virtual void takeMultipliers(Eigen::Ref<const VecX> /*lambda*/, int /*first*/) {}
+  /// The contacts of the current step's contact set (0: none found at its start).
+  virtual int contactCount() const { return 0; }
   /// True when the pipeline adds contact rows: the scene then needs a ConstraintSolver, and uses
   /// defaultConstraintSolver() when it declares none.
   virtual bool addsContactRows() const { return false; }
