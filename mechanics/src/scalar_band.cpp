@@ -22,9 +22,41 @@ ScalarBand::ScalarBand(const SparseMatrix& matrix, int range)
     }
 }
 
+namespace {
+
+/// Rows [r, n − r) of out (±)= A x for a band of half width R known at compile time: each row is
+/// the fixed-size product of its 2R + 1 values with the 2R + 1 rows of x around it (unrolled and
+/// vectorized; the cubic spline's band is R = 3).
+template <int R, bool kSubtract>
+void applyInterior(const double* values, int n, ConstPointsRef x, PointsRef out) {
+  constexpr int kWidth = 2 * R + 1;
+  for (int i = R; i < n - R; ++i) {
+    const Eigen::Map<const Eigen::Matrix<double, 1, kWidth>> row(values + static_cast<std::size_t>(i) * kWidth);
+    const Eigen::Matrix<double, 1, 3> sum = row * x.middleRows<kWidth>(i - R);
+    if (kSubtract)
+      out.row(i) -= sum;
+    else
+      out.row(i) = sum;
+  }
+}
+
+}  // namespace
+
 template <bool kSubtract>
 void ScalarBand::apply(ConstPointsRef x, PointsRef out) const {
-  for (int i = 0; i < n_; ++i) {
+  if (r_ == 3 && n_ > 2 * r_) {
+    // Interior rows at full width (fixed size), then the r rows at each end below.
+    applyInterior<3, kSubtract>(values_.data(), n_, x, out);
+    applyRows<kSubtract>(0, r_, x, out);
+    applyRows<kSubtract>(n_ - r_, n_, x, out);
+    return;
+  }
+  applyRows<kSubtract>(0, n_, x, out);
+}
+
+template <bool kSubtract>
+void ScalarBand::applyRows(int begin, int end, ConstPointsRef x, PointsRef out) const {
+  for (int i = begin; i < end; ++i) {
     const int first = std::max(0, i - r_), last = std::min(n_ - 1, i + r_);
     const double* row = values_.data() + static_cast<std::size_t>(i) * width_ + (first - i + r_);
     double sum[3] = {0.0, 0.0, 0.0};

@@ -32,6 +32,9 @@ class ScalarBand {
  private:
   template <bool kSubtract>
   void apply(ConstPointsRef x, PointsRef out) const;
+  /// Rows [begin, end) of apply, row by row at their own width.
+  template <bool kSubtract>
+  void applyRows(int begin, int end, ConstPointsRef x, PointsRef out) const;
 
   int n_ = 0, r_ = 0, width_ = 1;
   std::vector<double> values_;  // row i: A_{i, i − r} .. A_{i, i + r} (zeros outside the matrix)
