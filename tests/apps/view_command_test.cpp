@@ -41,7 +41,7 @@ void expectMouseGrabsAndPulls(const std::string& scene_file, const std::string& 
   Vec3 target = Vec3::Zero(), reached = Vec3::Zero();
   int target_u = 0, target_v = 0;
   options.on_frame = [&](const ViewFrame& f) {
-    const auto& spline = static_cast<const mechanics::DynamicSpline&>(*f.scene.bodies().front());
+    const auto& spline = *f.scene.bodies().front()->curve();
     const ConstPointsMap q = spline.block(f.scene.state().q);
     if (f.index == 0) mapped = f.window.mapped();
     if (f.index == 3) {

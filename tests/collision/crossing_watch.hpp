@@ -46,7 +46,7 @@ struct CrossingWatch {
     const int bodies = static_cast<int>(scene.bodies().size());
     Points all(bodies * samples, 3);
     for (int b = 0; b < bodies; ++b) {
-      const auto& spline = dynamic_cast<const mechanics::DynamicSpline&>(*scene.bodies()[b]);
+      const auto& spline = *scene.bodies()[b]->curve();
       all.middleRows(b * samples, samples) = geometry::sampleCurve(spline.basis(), spline.block(s.q), samples);
     }
     return all;

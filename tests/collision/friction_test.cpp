@@ -34,7 +34,7 @@ struct SlopeRun {
 
 /// Centre of the thread (mean of 100 curve points) projected on the downhill direction.
 double downhill(const Scene& scene, const Vec3& down) {
-  const auto& spline = dynamic_cast<const mechanics::DynamicSpline&>(*scene.bodies()[0]);
+  const auto& spline = *scene.bodies()[0]->curve();
   return geometry::sampleCurve(spline.basis(), spline.block(scene.state().q), 100).colwise().mean().dot(down.transpose());
 }
 

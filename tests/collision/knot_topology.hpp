@@ -17,7 +17,7 @@ namespace filum::test {
 
 /// The curve of body `body` at state s, sampled at `count` equal parametric steps.
 inline Points sampledCurve(const Scene& scene, int body, const SceneState& s, int count = 400) {
-  const auto& spline = dynamic_cast<const mechanics::DynamicSpline&>(*scene.bodies()[body]);
+  const auto& spline = *scene.bodies()[body]->curve();
   return geometry::sampleCurve(spline.basis(), spline.block(s.q), count);
 }
 
@@ -41,7 +41,7 @@ inline std::pair<double, double> knotContactRange(const Scene& scene, int body) 
 
 /// Length of thread (m) between abscissas lo and hi at state s.
 inline double threadLength(const Scene& scene, int body, const SceneState& s, double lo, double hi) {
-  const auto& spline = dynamic_cast<const mechanics::DynamicSpline&>(*scene.bodies()[body]);
+  const auto& spline = *scene.bodies()[body]->curve();
   const geometry::ArcLengthParameterization arc(spline.basis(), spline.block(s.q), 1e-8);
   return arc.lengthAt(hi) - arc.lengthAt(lo);
 }
@@ -49,7 +49,7 @@ inline double threadLength(const Scene& scene, int body, const SceneState& s, do
 /// Diameter (m) of the piece of thread between abscissas lo and hi at state s: the largest
 /// distance between two of its points (200 samples).
 inline double pieceDiameter(const Scene& scene, int body, const SceneState& s, double lo, double hi) {
-  const auto& spline = dynamic_cast<const mechanics::DynamicSpline&>(*scene.bodies()[body]);
+  const auto& spline = *scene.bodies()[body]->curve();
   const int n = 200;
   Points x(n, 3);
   for (int k = 0; k < n; ++k)

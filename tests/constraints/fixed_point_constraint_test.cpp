@@ -69,7 +69,7 @@ TEST(FixedPointConstraint, HoldsAnyAbscissaNotOnlyControlPoints) {
   auto document = test::threadScene(o);
   document["nodes"][0]["components"].push_back({{"type", "FixedPointConstraint"}, {"abscissa", 0.37}});
   auto scene = loadScene(document, "mid-thread hold", app::makeFactory());
-  const auto& spline = dynamic_cast<const mechanics::DynamicSpline&>(*scene->bodies().front());
+  const auto& spline = *scene->bodies().front()->curve();
   const Vec3 start = geometry::curvePoint(spline.basis(), spline.initialPositions(), 0.37);
   for (int k = 0; k < 5000; ++k) ASSERT_TRUE(scene->step().ok);
   const Vec3 now = geometry::curvePoint(spline.basis(), spline.block(scene->state().q), 0.37);

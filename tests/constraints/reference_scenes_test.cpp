@@ -66,8 +66,8 @@ TEST(ReferenceScenes, FallopianTubeSeparatesAfterTheCut) {
   auto scene = load("fallopian.json");
   ASSERT_EQ(scene->bodies().size(), 3u);
   const double worst = runToTheEnd(*scene);
-  const auto& middle = dynamic_cast<const mechanics::DynamicSpline&>(*scene->bodies()[1]);
-  const auto& right = dynamic_cast<const mechanics::DynamicSpline&>(*scene->bodies()[2]);
+  const auto& middle = *scene->bodies()[1]->curve();
+  const auto& right = *scene->bodies()[2]->curve();
   const double gap = (geometry::curvePoint(middle.basis(), middle.block(scene->state().q), 1.0) -
                       geometry::curvePoint(right.basis(), right.block(scene->state().q), 0.0))
                          .norm();

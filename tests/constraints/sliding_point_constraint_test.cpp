@@ -49,7 +49,7 @@ json pulledThroughHole(double s0, double pull, double friction, int control_poin
 
 /// Sum of the chord lengths between the spring samples: the length the spring energy sees
 /// (SpringForceField samples 2n points evenly in s).
-double chordLength(const mechanics::DynamicSpline& spline, const SceneState& s) {
+double chordLength(const CurveBody& spline, const SceneState& s) {
   const int samples = 2 * spline.pointCount();
   const Points x = geometry::sampleCurve(spline.basis(), spline.block(s.q), samples);
   double length = 0.0;
@@ -94,7 +94,7 @@ TEST(SlidingPoint, LengthIsConservedAsTheSpringsAllow) {
   const int n = 10;
   const double k = 1.0, weight = 2.86e-6 * 3.0;  // N (gravity 3 m/s² along −x)
   auto scene = test::loadConstraintScene(pulledThroughHole(0.5, 0.025, 1e-4, n));
-  const auto& spline = dynamic_cast<const mechanics::DynamicSpline&>(*scene->bodies().front());
+  const auto& spline = *scene->bodies().front()->curve();
   const auto& solver = dynamic_cast<const constraints::LagrangeMultiplierSolver&>(*scene->constraintSolver());
   const double l0 = chordLength(spline, scene->state());
   double worst = 0.0, tension = 0.0, arc_worst = 0.0;

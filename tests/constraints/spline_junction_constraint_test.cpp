@@ -41,8 +41,8 @@ json threeParts(int continuity, double cut, int control_points = 7) {
   return test::constraintScene(parts);
 }
 
-const mechanics::DynamicSpline& part(const Scene& scene, int k) {
-  return dynamic_cast<const mechanics::DynamicSpline&>(*scene.bodies()[k]);
+const CurveBody& part(const Scene& scene, int k) {
+  return *scene.bodies()[k]->curve();
 }
 
 /// Geometric jumps across the junction from part a (at s = 1) to part b (at s = 0): position

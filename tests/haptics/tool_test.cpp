@@ -48,7 +48,7 @@ ProbeScene makeScene(const std::string& integrator = "RungeKutta4") {
 }
 
 Vec3 pointAt(const Scene& scene, double s) {
-  const auto& spline = static_cast<const mechanics::DynamicSpline&>(*scene.bodies().front());
+  const auto& spline = *scene.bodies().front()->curve();
   return geometry::curvePoint(spline.basis(), spline.block(scene.state().q), s);
 }
 
@@ -116,7 +116,7 @@ TEST(InteractionTool, APushedThreadLeavesTheSphere) {
     p.probe->position.y() = 1e-3;              // slightly off to one side: it pushes towards −y
     p.probe->touching = true;
     for (int k = 0; k < 1000; ++k) ASSERT_TRUE(p.scene->step().ok) << integrator << " step " << k;
-    const double R = p.probe->radius + static_cast<const mechanics::DynamicSpline&>(*p.scene->bodies().front()).radius();
+    const double R = p.probe->radius + (*p.scene->bodies().front()->curve()).radius();
     double deepest = 0.0;
     for (int k = 0; k <= 100; ++k) deepest = std::max(deepest, R - (pointAt(*p.scene, k / 100.0) - p.probe->position).norm());
     EXPECT_LT(deepest, 0.15 * R) << integrator << ": penetration left by the penalty";

@@ -226,8 +226,8 @@ class CouplingSpring final : public ForceField {
   void init(const Scene& scene) override {
     b_ = const_cast<Scene&>(scene).bodyAt("other");
     if (!b_) throw SceneError(origin(), "a node named 'other'");
-    dynamic_cast<const mechanics::DynamicSpline&>(body()).basis().evaluate(1.0, row_a_);
-    dynamic_cast<const mechanics::DynamicSpline&>(*b_).basis().evaluate(0.0, row_b_);
+    body().curve()->basis().evaluate(1.0, row_a_);
+    b_->curve()->basis().evaluate(0.0, row_b_);
   }
   static Vec3 end(const SceneState& s, const MechanicalState& m, double, const geometry::BasisRow& row) {
     return geometry::curvePoint(row, m.block(s.q));
@@ -289,7 +289,7 @@ TEST(StepMatrix, CoupledBodiesGoToOneSparseFactorizationAndKeepTheirConstraints)
   // their length, so the spring (k = 50 N/m) carries the sagging string's tension, ~5e-4 N: a
   // gap of ~1e-5 m.
   const auto end = [&](int body, double s) {
-    const auto& spline = dynamic_cast<const mechanics::DynamicSpline&>(*scene->bodies()[body]);
+    const auto& spline = *scene->bodies()[body]->curve();
     return geometry::curvePoint(spline.basis(), spline.block(scene->state().q), s);
   };
   EXPECT_LT(end(0, 1.0).z(), -1e-3);

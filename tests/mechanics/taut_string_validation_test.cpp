@@ -40,7 +40,7 @@ StringAnalysis analyseString(const validation::TautString& problem, int n) {
   validation::RunSettings settings;
   settings.control_points = n;
   auto scene = validation::loadProblem(problem, settings);
-  const auto& spline = dynamic_cast<const mechanics::DynamicSpline&>(*scene->bodies().front());
+  const auto& spline = *scene->bodies().front()->curve();
   // The straight equilibrium (the problem's prepare() displaced it in mode 1: undo it).
   SceneState s = scene->state();
   for (int i = 0; i < n; ++i) s.q[3 * i + 1] = 0.0;
@@ -111,7 +111,7 @@ TEST(TautStringValidation, ImplicitMidpointRunVibratesAtTheFirstFrequency) {
   settings.dt = period / 200.0;
   settings.integrator = {{"type", "ImplicitMidpoint"}};
   auto scene = validation::loadProblem(problem, settings);
-  const auto& spline = dynamic_cast<const mechanics::DynamicSpline&>(*scene->bodies().front());
+  const auto& spline = *scene->bodies().front()->curve();
   auto middle = [&] { return geometry::curvePoint(spline.basis(), spline.block(scene->state().q), 0.5).y(); };
   // Zero crossings of y(S/2, t), located by linear interpolation between steps.
   std::vector<double> crossings;

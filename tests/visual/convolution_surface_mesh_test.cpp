@@ -64,7 +64,7 @@ TEST(ConvolutionSurfaceModel, WrapsASplineOrIsRefusedWithTheOption) {
   EXPECT_TRUE(r.closed && r.consistently_oriented) << r.first_problem;
   EXPECT_GT(mesh.triangleCount(), 200);
   // Every vertex is within a few radii of the axis.
-  const auto& spline = static_cast<const mechanics::DynamicSpline&>(*scene->bodies().front());
+  const auto& spline = *scene->bodies().front()->curve();
   for (int v = 0; v < mesh.vertexCount(); v += 7) {
     double nearest = 1e9;
     for (int k = 0; k <= 400; ++k)

@@ -126,7 +126,7 @@ TEST(GeneralizedCylinder, VerticesLieAtTheRequestedRadiusFromTheAxis) {
 TEST(GeneralizedCylinder, RingsSitAtEqualArcLengthOnTheRestCurve) {
   const Loaded l = load(test::splineScene(test::planarWave(), json::array({{{"type", "GeneralizedCylinder"}, {"samples", 40}}})));
   const GeneralizedCylinderModel& skin = skinOf(l);
-  const auto& spline = static_cast<const mechanics::DynamicSpline&>(*l.scene->bodies().front());
+  const auto& spline = *l.scene->bodies().front()->curve();
   const geometry::ArcLengthParameterization arc(spline.basis(), spline.initialPositions());
   const std::vector<double>& s = skin.mapping().abscissas();
   for (std::size_t k = 0; k < s.size(); ++k)

@@ -158,7 +158,7 @@ TEST(SphereModel, SpheresFollowTheCurveAConstraintTargetOrStayFixed) {
   const auto* target = dynamic_cast<const SphereModel*>(visuals.models()[2]);
   ASSERT_TRUE(evenly && fixed && target);
   EXPECT_EQ(evenly->centers().rows(), 5);
-  const auto& spline = static_cast<const mechanics::DynamicSpline&>(*loaded->bodies().front());
+  const auto& spline = *loaded->bodies().front()->curve();
   const ConstPointsMap q = spline.block(loaded->state().q);
   EXPECT_LE((evenly->centers().row(0).transpose() - geometry::curvePoint(spline.basis(), q, 0.0)).norm(), 1e-15);
   EXPECT_LE((evenly->centers().row(4).transpose() - geometry::curvePoint(spline.basis(), q, 1.0)).norm(), 1e-15);
@@ -193,7 +193,7 @@ TEST(SphereModel, MarksASlidingHoleAndFollowsAScriptedPath) {
   const auto* hole = dynamic_cast<const SphereModel*>(visuals.models()[0]);
   const auto* probe = dynamic_cast<const SphereModel*>(visuals.models()[1]);
   ASSERT_TRUE(hole && probe);
-  const auto& spline = static_cast<const mechanics::DynamicSpline&>(*loaded->bodies().front());
+  const auto& spline = *loaded->bodies().front()->curve();
   const Vec3 hole_point = geometry::curvePoint(spline.basis(), spline.block(loaded->state().q), 0.5);
   ASSERT_EQ(hole->centers().rows(), 1);
   EXPECT_LE((hole->centers().row(0).transpose() - hole_point).norm(), 1e-15);
