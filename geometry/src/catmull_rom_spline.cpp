@@ -52,7 +52,7 @@ void CatmullRomSpline::evaluateSegment(int j, double u, BasisRow& row) const {
   for (int k = 4; k < BasisRow::kMaxSupport; ++k) row.value[k] = row.d1[k] = row.d2[k] = 0.0;
 }
 
-std::vector<double> CatmullRomSpline::cuts() const { return {}; }  // C² (C¹ for Catmull-Rom) everywhere
+std::vector<double> CatmullRomSpline::cuts() const { return {}; }  // C¹ everywhere: never cut
 
 std::vector<double> CatmullRomSpline::breakpoints() const {
   const int segments = n_ - 3;

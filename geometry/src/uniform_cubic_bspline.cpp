@@ -49,7 +49,7 @@ void UniformCubicBSpline::evaluateSegment(int j, double u, BasisRow& row) const 
   row.d2[3] = t * du * du;
 }
 
-std::vector<double> UniformCubicBSpline::cuts() const { return {}; }  // C² (C¹ for Catmull-Rom) everywhere
+std::vector<double> UniformCubicBSpline::cuts() const { return {}; }  // C² everywhere: never cut
 
 std::vector<double> UniformCubicBSpline::breakpoints() const {
   const int segments = n_ - 3;
