@@ -140,10 +140,9 @@ void evaluateSpan(const double* t, int k, double u, BasisRow& row) {
 
 }  // namespace
 
-void NonUniformBSpline::evaluateAtParameter(double u, BasisRow& row, bool from_left) const {
+void NonUniformBSpline::evaluateAtParameter(double u, BasisRow& row) const {
   u = std::clamp(u, knots_[d_], knots_[n_]);
-  const int k = findKnotSpan(d_, n_, knots_, u);
-  evaluateInSpan(from_left ? leftSpan(k, u) : k, u, row);
+  evaluateInSpan(findKnotSpan(d_, n_, knots_, u), u, row);
 }
 
 void NonUniformBSpline::evaluateInSpan(int k, double u, BasisRow& row) const {

@@ -90,9 +90,8 @@ class SphereSamplingMapping final : public Mapping {
   PointWeights pointWeights(int k, double t) const;
   /// Whether centres k and k + 1 are joined by a chord (the same strand).
   bool joinsNext(int k) const { return k + 1 < outputCount() && strand_of_[k] == strand_of_[k + 1]; }
-  /// The strand of centre k (0 for an uncut curve) and the strands of the curve.
+  /// The strand of centre k (0 for an uncut curve).
   int strandOf(int k) const { return strand_of_[k]; }
-  const std::vector<Strand>& strands() const { return strands_; }
   /// An upper bound on the material length between any points of chords k and l: (|k − l| + 1)
   /// times the spacing on one strand. Lengths run along the thread as it was before any cut
   /// (the strands end to end), so that the two ends of a fresh cut, which start at one place, are

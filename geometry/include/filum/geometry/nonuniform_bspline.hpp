@@ -51,8 +51,8 @@ class NonUniformBSpline final : public SplineBasis {
   /// s(u) = (u − t_d)/(t_n − t_d), the inverse of parameterAt.
   double abscissaAt(double u) const;
   /// Values and derivatives with respect to the knot parameter u (not s), u clamped to the
-  /// domain; right-hand limits at a knot, or left-hand ones with from_left.
-  void evaluateAtParameter(double u, BasisRow& row, bool from_left = false) const;
+  /// domain; right-hand limits at a knot.
+  void evaluateAtParameter(double u, BasisRow& row) const;
 
  private:
   int d_;

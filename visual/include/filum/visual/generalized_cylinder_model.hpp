@@ -46,11 +46,10 @@ class GeneralizedCylinderModel final : public VisualModel {
   std::string typeName() const override { return "GeneralizedCylinder"; }
   bool drawsBody() const override { return true; }
   void update(const SceneState& s) override;
+  /// One tube per strand of the body (one for an uncut curve).
   int meshCount() const override { return static_cast<int>(strands_.size()); }
   const TriangleMesh& mesh(int strand = 0) const override { return strands_.at(strand).cylinder->mesh(); }
 
-  /// One tube per strand of the body (one for an uncut curve).
-  int strandCount() const { return static_cast<int>(strands_.size()); }
   const GeneralizedCylinder& cylinder(int strand = 0) const { return *strands_.at(strand).cylinder; }
   const SplineAxisMapping& mapping(int strand = 0) const { return *strands_.at(strand).mapping; }
   const RadiusProfile& profile() const { return *options_.profile; }
