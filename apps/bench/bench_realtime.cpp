@@ -35,6 +35,7 @@
 #include <CLI/CLI.hpp>
 
 #include "filum/all_components.hpp"
+#include "filum/core/constraint_solver.hpp"
 #include "filum/core/scene.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/geometry/spline_curve.hpp"
@@ -74,6 +75,7 @@ struct Figures {
   double simulated = 0.0;
   long corrections = -1, estimates = -1, halvings = -1, reuses = -1, refreshes = -1;  // implicit solvers only
   StepKinds kinds;  // implicit solvers, first run
+  filum::ContactSolveTally contact;  // the constraint solver's contact solves, first run
   std::string failure;
 };
 
@@ -163,6 +165,7 @@ Figures measure(const json& document, const std::string& name, int repetitions) 
     }
     walls.push_back(1e3 * wall / (1e3 * steps * dt));
     if (solver && r == 0) figures.kinds = kinds;
+    if (r == 0 && scene->constraintSolver()) figures.contact = scene->constraintSolver()->contactTally();
     if (r == 0) {
       figures.max_strain = std::max(strain, maxStrain(*scene));
       figures.energy_drift = (scene->energy(scene->state()).total() - e0) / scale;
@@ -192,6 +195,10 @@ void printRow(std::FILE* csv, const std::string& problem, int n, const std::stri
               f.wall_ms_per_sim_ms, f.max_strain, f.energy_drift);
   if (f.estimates >= 0) std::printf("  corrected %ld/%ld halved %ld", f.corrections, f.estimates, f.halvings);
   if (f.reuses > 0) std::printf(" reused %ld refreshed %ld", f.reuses, f.refreshes);
+  if (f.contact.solves > 0)
+    std::printf("  contact solves %ld: converged %.1f %%, fell back %ld, %.2g iterations each, worst residual %.2g x tol",
+                f.contact.solves, 100.0 * f.contact.converged / f.contact.solves, f.contact.fell_back,
+                static_cast<double>(f.contact.iterations) / f.contact.solves, f.contact.worst_ratio);
   std::printf("\n");
   if (print_step_kinds && f.estimates >= 0) {
     std::printf("%-22s %5s  steps by kind (first run): ", "", "");

@@ -132,6 +132,12 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
       << scene->integrator().typeName() << ", dt = " << dt << " s, " << steps << " steps -> " << directory << '\n';
 
   std::unique_ptr<RunOutput> output_files;
+  // Timing of the steps so far, with what the contact solves did.
+  auto summary = [&]() {
+    TimingSummary timing = TimingSummary::fromStepTimes(step_seconds, dt, seconds(Clock::now() - start));
+    if (const ConstraintSolver* solver = scene->constraintSolver()) timing.contact = solver->contactTally();
+    return timing;
+  };
   // The run stops: what happened, the frames kept, the summary (exit 3).
   auto diverged = [&](const std::string& message) {
     if (haptic) finishHaptics(*haptic, directory, log);
@@ -139,7 +145,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
         << "the " << (output_files ? output_files->frames() : 0) << " frames written so far in " << directory
         << " are intact\n";
     if (visuals) visuals->finish(*scene);
-    writeSummary(directory, TimingSummary::fromStepTimes(step_seconds, dt, seconds(Clock::now() - start)), log);
+    writeSummary(directory, summary(), log);
     return kRunDiverged;
   };
   try {
@@ -171,7 +177,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
           finishHaptics(*haptic, directory, log);
           log << "interrupted (Ctrl-C) at t = " << scene->state().time << " s: forces off\n";
           if (visuals) visuals->finish(*scene);
-          writeSummary(directory, TimingSummary::fromStepTimes(step_seconds, dt, seconds(Clock::now() - start)), log);
+          writeSummary(directory, summary(), log);
           return kRunInterrupted;
         }
       }
@@ -200,7 +206,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     log << "wrote " << out.frames() << " frames to " << directory
         << " (control_points.csv, curve.csv, energy.csv, curve.pvd, timing.json" << (visuals ? visuals->summary() : "")
         << ")\n";
-    writeSummary(directory, TimingSummary::fromStepTimes(step_seconds, dt, seconds(Clock::now() - start)), log);
+    writeSummary(directory, summary(), log);
   } catch (const NonFiniteFrame& e) {
     // A finite state whose curve or energy overflows: nothing of the frame was written.
     try {

@@ -1,6 +1,7 @@
 #include "filum/timing_summary.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <numeric>
 
@@ -35,17 +36,28 @@ std::string TimingSummary::text() const {
                 "(real time needs <= 1)\n",
                 steps, dt, simulated, wall, step_wall, per_sim_ms_median, per_sim_ms_min, per_sim_ms_max,
                 per_sim_ms_mean);
-  return buffer;
+  std::string text = buffer;
+  if (contact.solves > 0) {
+    std::snprintf(buffer, sizeof buffer,
+                  "contact solves: %ld, %.4g %% converged (residual below tolerance), %ld fell back to Gauss-Seidel, "
+                  "%.3g iterations each on average, worst residual %.3g x the tolerance\n",
+                  contact.solves, 100.0 * contact.converged / contact.solves, contact.fell_back,
+                  static_cast<double>(contact.iterations) / contact.solves, contact.worst_ratio);
+    text += buffer;
+  }
+  return text;
 }
 
 std::string TimingSummary::json() const {
-  char buffer[512];
+  char buffer[768];
   std::snprintf(buffer, sizeof buffer,
                 "{\n  \"steps\": %ld,\n  \"dt_s\": %.17g,\n  \"simulated_s\": %.17g,\n  \"wall_s\": %.6f,\n"
                 "  \"step_wall_s\": %.6f,\n  \"wall_ms_per_simulated_ms\": {\"median\": %.6g, \"min\": %.6g, "
-                "\"max\": %.6g, \"mean\": %.6g}\n}\n",
+                "\"max\": %.6g, \"mean\": %.6g},\n  \"contact_solves\": {\"solves\": %ld, \"converged\": %ld, "
+                "\"fell_back\": %ld, \"iterations\": %ld, \"worst_residual_over_tolerance\": %.6g}\n}\n",
                 steps, dt, simulated, wall, step_wall, per_sim_ms_median, per_sim_ms_min, per_sim_ms_max,
-                per_sim_ms_mean);
+                per_sim_ms_mean, contact.solves, contact.converged, contact.fell_back, contact.iterations,
+                std::isfinite(contact.worst_ratio) ? contact.worst_ratio : -1.0);
   return buffer;
 }
 

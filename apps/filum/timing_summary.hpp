@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "filum/core/constraint_solver.hpp"
+
 namespace filum::app {
 
 struct TimingSummary {
@@ -17,6 +19,7 @@ struct TimingSummary {
   double per_sim_ms_median = 0.0;
   double per_sim_ms_max = 0.0;
   double per_sim_ms_mean = 0.0;
+  ContactSolveTally contact;       // the constraint solver's contact solves (none: solves = 0)
 
   /// From per-step wall times (s). Sorts a copy.
   static TimingSummary fromStepTimes(const std::vector<double>& step_seconds, double dt, double wall);

@@ -142,6 +142,22 @@ std::unique_ptr<LagrangeMultiplierSolver> LagrangeMultiplierSolver::fromParams(c
     p.fail("drop_tolerance", "a relative tolerance in [0, 1e-6] (entries of W below round-off, see "
                              "lagrange_multiplier_solver.hpp; larger values change the solution)");
   o.reuse = p.boolean("reuse", o.reuse);
+  const std::string method = p.string("contact_method", "newton");
+  if (method == "gauss_seidel")
+    o.contact_method = ContactMethod::kGaussSeidel;
+  else if (method != "newton")
+    p.fail("contact_method", "\"newton\" or \"gauss_seidel\"", "\"" + method + "\"");
+  o.newton_iterations = p.integer("newton_iterations", 1, o.newton_iterations);
+  o.newton_damping = p.nonNegative("newton_damping", o.newton_damping);
+  if (o.newton_damping > 1e-3)
+    p.fail("newton_damping", "a proximal shift in [0, 1e-3] (relative to J's unit diagonal; larger ones slow Newton to "
+                             "Gauss-Seidel's pace)");
+  o.newton_rows = p.integer("newton_rows", 0, o.newton_rows);
+  o.contact_compliance = p.nonNegative("contact_compliance", o.contact_compliance);
+  o.friction_compliance = p.nonNegative("friction_compliance", o.friction_compliance);
+  if (o.contact_compliance > 1.0 || o.friction_compliance > 1.0)
+    p.fail(o.contact_compliance > 1.0 ? "contact_compliance" : "friction_compliance",
+           "a compliance in [0, 1], relative to W's diagonal (see lagrange_multiplier_solver.hpp)");
   o.contact_iterations = p.integer("contact_iterations", 1, o.contact_iterations);
   o.contact_tolerance = p.positive("contact_tolerance", o.contact_tolerance);
   const std::string form = p.string("contact_form", "auto");
@@ -578,20 +594,60 @@ struct LagrangeMultiplierSolver::FactoredDelassus {
   }
 };
 
-template <class Delassus>
-void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows, Delassus& w) {
+void LagrangeMultiplierSolver::warmStart(const ConstraintRows& rows) {
+  // λ of the previous call when its rows were of the same kinds (an earlier stage of the same
+  // step, same contact set); else the rows' guesses (a contact's force of the previous step, 0 for
+  // a new one).
   const int c = rows.rows();
-  // Warm start: λ of the previous call when its rows were of the same kinds (an earlier stage of
-  // the same step, same contact set); else the rows' guesses (a contact's force of the previous
-  // step, 0 for a new one).
   bool warm = static_cast<int>(last_kinds_.size()) == c;
   for (int r = 0; warm && r < c; ++r) warm = last_kinds_[r] == rows.kind(r);
   if (!warm)
     for (int r = 0; r < c; ++r) lambda_[r] = rows.guess(r);
   last_kinds_.resize(c);
   for (int r = 0; r < c; ++r) last_kinds_[r] = rows.kind(r);
-  w.begin();
+}
 
+void LagrangeMultiplierSolver::setCompliance(const ConstraintRows& rows) {
+  // R_r = ε W_rr on contact rows (ε_n on normal rows, ε_t on friction rows), 0 on equality rows.
+  const int c = rows.rows();
+  if (compliance_.size() < c) compliance_.resize(2 * c);  // grows only
+  for (int r = 0; r < c; ++r) {
+    const ConstraintRows::Kind kind = rows.kind(r);
+    const double epsilon = kind == ConstraintRows::Kind::kNormal     ? options_.contact_compliance
+                           : kind == ConstraintRows::Kind::kFriction ? options_.friction_compliance
+                                                                     : 0.0;
+    compliance_[r] = epsilon * std::max(diagonal_[r], 0.0);
+  }
+}
+
+template <class Delassus>
+double LagrangeMultiplierSolver::contactResidual(const ConstraintRows& rows, Delassus& w) {
+  const int c = rows.rows();
+  if (wl_.size() < c) wl_.resize(2 * c);  // grows only
+  if (effective_diagonal_.size() < c) effective_diagonal_.resize(2 * c);
+  for (int r = 0; r < c; ++r) {
+    wl_[r] = w.product(r) + compliance_[r] * lambda_[r] - rhs_[r];
+    effective_diagonal_[r] = diagonal_[r] + compliance_[r];
+  }
+  const double residual = newton_.residual(rows, effective_diagonal_.head(c), wl_.head(c), lambda_.head(c));
+  // The threshold of contact_newton.hpp: tolerance · max(|β|∞, max_r |λ_r| (W_rr + R_r)).
+  stats_.threshold = options_.contact_tolerance *
+                     std::max({rhs_.head(c).lpNorm<Eigen::Infinity>(), newton_.forceScale(), 1e-300});
+  return residual;
+}
+
+template <class Delassus>
+void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows, Delassus& w) {
+  const int c = rows.rows();
+  warmStart(rows);
+  setCompliance(rows);
+  w.begin();
+  projectedGaussSeidel(rows, w, options_.contact_iterations);
+}
+
+template <class Delassus>
+void LagrangeMultiplierSolver::projectedGaussSeidel(const ConstraintRows& rows, Delassus& w, int max_sweeps) {
+  const int c = rows.rows();
   // The equality block W_BB, factored once.
   equality_rows_.clear();
   for (int r = 0; r < c; ++r)
@@ -602,15 +658,17 @@ void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows, Del
     ldlt_bb_.compute(w_bb_);
     residual_bb_.resize(nb);
   }
-  const double threshold = options_.contact_tolerance * std::max(rhs_.head(c).lpNorm<Eigen::Infinity>(), 1e-300);
-  auto residual = [&](int r) { return rhs_[r] - w.product(r); };
+  // With the compliance R (zero on equality rows): W + diag(R).
+  auto residual = [&](int r) { return rhs_[r] - w.product(r) - compliance_[r] * lambda_[r]; };
+  auto diagonal = [&](int r) { return diagonal_[r] + compliance_[r]; };
   auto set = [&](int r, double value) {
     w.changed(r, value - lambda_[r]);
     lambda_[r] = value;
   };
 
   stats_.sweeps = 0;
-  for (int sweep = 0; sweep < options_.contact_iterations; ++sweep) {
+  stats_.residual = contactResidual(rows, w);
+  for (int sweep = 0; sweep < max_sweeps && stats_.residual > stats_.threshold; ++sweep) {
     double change = 0.0;
     // Equality block exactly: Δλ_B = W_BB⁻¹ (β − W λ)_B.
     if (nb > 0) {
@@ -625,18 +683,18 @@ void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows, Del
     // Contact rows in order: a normal λ_n >= 0, then its friction pair in μ λ_n's disc.
     for (int r = 0; r < c; ++r) {
       const ConstraintRows::Kind kind = rows.kind(r);
-      if (kind == ConstraintRows::Kind::kEquality || !(diagonal_[r] > 0.0)) continue;
+      if (kind == ConstraintRows::Kind::kEquality || !(diagonal(r) > 0.0)) continue;
       if (kind == ConstraintRows::Kind::kNormal) {
-        const double next = std::max(0.0, lambda_[r] + residual(r) / diagonal_[r]);
-        change = std::max(change, diagonal_[r] * std::abs(next - lambda_[r]));
+        const double next = std::max(0.0, lambda_[r] + residual(r) / diagonal(r));
+        change = std::max(change, diagonal(r) * std::abs(next - lambda_[r]));
         set(r, next);
         continue;
       }
       const int r2 = r + 1;  // friction rows come in pairs (t1, t2) after their normal row
       const double old1 = lambda_[r], old2 = lambda_[r2];
-      double l1 = old1 + residual(r) / diagonal_[r];
+      double l1 = old1 + residual(r) / diagonal(r);
       set(r, l1);  // t2's residual sees t1's update (Gauss–Seidel within the pair)
-      double l2 = diagonal_[r2] > 0.0 ? old2 + residual(r2) / diagonal_[r2] : old2;
+      double l2 = diagonal(r2) > 0.0 ? old2 + residual(r2) / diagonal(r2) : old2;
       const double bound = rows.friction(r) * lambda_[r - 1];
       const double norm = std::sqrt(l1 * l1 + l2 * l2);  // |λ_t| (no overflow: |λ| is far below 1e150)
       if (norm > bound) {
@@ -644,15 +702,81 @@ void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows, Del
         l1 *= shrink;
         l2 *= shrink;
       }
-      change = std::max({change, diagonal_[r] * std::abs(l1 - old1), diagonal_[r2] * std::abs(l2 - old2)});
+      change = std::max({change, diagonal(r) * std::abs(l1 - old1), diagonal(r2) * std::abs(l2 - old2)});
       set(r, l1);
       set(r2, l2);
       ++r;
     }
     stats_.sweeps = sweep + 1;
     stats_.change = change;
-    if (change <= threshold) break;
+    // The change per sweep only says Gauss–Seidel is slow, not that it is done: the residual
+    // decides, measured when the sweep changed little and every 8 sweeps (a product per row).
+    constexpr int kResidualEvery = 8;
+    if (change <= stats_.threshold || stats_.sweeps % kResidualEvery == 0 || stats_.sweeps == max_sweeps)
+      stats_.residual = contactResidual(rows, w);
   }
+  stats_.converged = stats_.residual <= stats_.threshold;
+}
+
+/// Newton on W dense (both triangles mirrored by DenseDelassus::begin), Gauss–Seidel from its
+/// best iterate when it does not converge.
+void LagrangeMultiplierSolver::solveWithNewton(const ConstraintRows& rows) {
+  const int c = rows.rows();
+  warmStart(rows);
+  setCompliance(rows);
+  DenseDelassus w{*this};
+  w.begin();
+  ContactNewton::Settings settings;
+  settings.damping = options_.newton_damping;
+  // Newton, and where it stalls (its active set still moving) a few Gauss–Seidel sweeps to
+  // smooth λ before the next Newton round, within newton_iterations Newton iterations in all.
+  constexpr int kSmoothingSweeps = 8;
+  int sweeps = 0;
+  while (true) {
+    settings.iterations = options_.newton_iterations - stats_.newton_iterations;
+    const ContactNewton::Result result =
+        newton_.solve(w_, rhs_.head(c), compliance_.head(c), rows, settings, options_.contact_tolerance, lambda_.head(c));
+    stats_.newton_iterations += result.iterations;
+    stats_.residual = result.residual;
+    stats_.threshold = result.threshold;
+    stats_.converged = result.converged;
+    if (result.converged || !result.stalled || stats_.newton_iterations >= options_.newton_iterations) break;
+    projectedGaussSeidel(rows, w, kSmoothingSweeps);
+    sweeps += stats_.sweeps;
+    if (stats_.converged) break;
+  }
+  stats_.sweeps = sweeps;
+  if (!stats_.converged) {
+    stats_.fell_back = true;
+    projectedGaussSeidel(rows, w, options_.contact_iterations);
+  }
+  polishEqualities(rows, w);
+}
+
+template <class Delassus>
+void LagrangeMultiplierSolver::polishEqualities(const ConstraintRows& rows, Delassus& w) {
+  // The equality rows exactly, with the contact forces as they are: Δλ_B = W_BB⁻¹ (β − Wλ)_B. The
+  // iterative solve leaves them a residual of its tolerance, which a fixed point held for
+  // thousands of steps would integrate into drift; the contact rows move by W_CB Δλ_B, of the
+  // same small size, and the residual reported is measured after.
+  const int c = rows.rows();
+  equality_rows_.clear();
+  for (int r = 0; r < c; ++r)
+    if (rows.kind(r) == ConstraintRows::Kind::kEquality) equality_rows_.push_back(r);
+  const int nb = static_cast<int>(equality_rows_.size());
+  if (nb == 0) return;
+  w.equalityBlock(rows, w_bb_);
+  ldlt_bb_.compute(w_bb_);
+  residual_bb_.resize(nb);
+  for (int i = 0; i < nb; ++i) residual_bb_[i] = rhs_[equality_rows_[i]] - w.product(equality_rows_[i]);
+  delta_bb_ = ldlt_bb_.solve(residual_bb_);
+  for (int i = 0; i < nb; ++i) {
+    const int r = equality_rows_[i];
+    w.changed(r, delta_bb_[i]);
+    lambda_[r] += delta_bb_[i];
+  }
+  stats_.residual = contactResidual(rows, w);
+  stats_.converged = stats_.residual <= stats_.threshold;
 }
 
 bool LagrangeMultiplierSolver::sameRowsAsLastCall(const ConstraintRows& rows) const {
@@ -706,7 +830,11 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   stats_ = Statistics();
   stats_.rows = c;
   stats_.columns = separable ? rows.anchors() : c;
-  stats_.sparse = c > options_.sparse_above;
+  stats_.inequalities = rows.inequalityCount();
+  // Contacts by Newton need W dense (contact_newton.hpp): kept dense up to newton_rows rows.
+  const bool newton = stats_.inequalities > 0 && options_.contact_method == ContactMethod::kNewton &&
+                      c <= options_.newton_rows;
+  stats_.sparse = c > options_.sparse_above && !newton;
   // Row-sized buffers grow only (the contact rows change in number from step to step).
   c_ = c;
   if (rhs_.size() < c) {
@@ -740,8 +868,7 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
     unchanged = last_factor_anchor_[f] == rows.factorAnchor(f) && last_factor_direction_[f] == rows.factorDirection(f);
   // Contact rows through an operator that mixes the axes (an implicit step matrix): projected
   // Gauss–Seidel on the factored form (FactoredDelassus), W not assembled — only its diagonal.
-  stats_.inequalities = rows.inequalityCount();
-  const bool factored_form = stats_.inequalities > 0 && !separable && !inverse.coupled() &&
+  const bool factored_form = !newton && stats_.inequalities > 0 && !separable && !inverse.coupled() &&
                              (options_.contact_form == ContactForm::kAuto ? factoredFormIsCheaper(scene, rows)
                                                                            : options_.contact_form == ContactForm::kFactored);
   if (factored_form) {
@@ -767,7 +894,10 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   for (int r = 0; r < c; ++r) rhs_[r] = rows.rhs(r) - rows.dot(r, a);
 
   // 4. λ = W⁻¹ (E − L A_t), or with contact rows the projected Gauss–Seidel solution.
-  if (factored_form) {
+  if (newton) {
+    solveWithNewton(rows);
+    factored_last_call_ = false;
+  } else if (factored_form) {
     FactoredDelassus w{*this, scene, rows, u_};
     solveWithContacts(rows, w);
     factored_last_call_ = false;
@@ -790,6 +920,10 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
     factorAndSolve();
     factored_last_call_ = true;
   }
+  if (stats_.inequalities > 0)
+    tally_.add(stats_.converged, stats_.fell_back,
+               stats_.newton_iterations > 0 ? stats_.newton_iterations : stats_.sweeps,
+               stats_.threshold > 0.0 ? stats_.residual / stats_.threshold : 0.0);
   // Remember the structure W was built from (mass operator only: nothing else is kept).
   have_factorization_ = separable && lambda_.head(c).allFinite();
   last_sparse_ = stats_.sparse;

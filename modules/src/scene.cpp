@@ -125,6 +125,7 @@ void Scene::init() {
   initCollision();
   resizeWorkspace();
   contact_halvings_ = 0;
+  solve_halvings_ = 0;
   step_count_ = 0;
   initialized_ = true;
 }
@@ -370,13 +371,32 @@ void Scene::applyScheduledLayoutChanges() {
       }
 }
 
+long Scene::unconvergedContactSolves() const {
+  if (!constraint_solver_) return 0;
+  const ContactSolveTally& tally = constraint_solver_->contactTally();
+  return tally.solves - tally.converged;
+}
+
 void Scene::advance(double h, int depth) {
   detectCollisions(h);
   substep_start_[depth] = state_;  // preallocated: no allocation
+  const long unconverged = unconvergedContactSolves();
   integrate(h);
   if (!fault_.empty() || !collision_) return;
+  // A contact solve that did not reach its tolerance (constraint_solver.hpp's tally): the step
+  // is redone in halves, down to dt / 2^kMaxSolveHalvings — a shorter step moves the contacts less
+  // from the state their rows were built at, and its Newton starts nearer its solution. At the
+  // finest sub-step the best iterate is kept; the tally reports it.
+  const bool solve_failed = unconvergedContactSolves() > unconverged && depth < kMaxSolveHalvings;
   const CollisionPipeline::Miss miss = collision_->missedContact(state_);
-  if (miss == CollisionPipeline::Miss::kNone) return;
+  if (miss == CollisionPipeline::Miss::kNone && !solve_failed) return;
+  if (miss == CollisionPipeline::Miss::kNone) {
+    ++solve_halvings_;
+    state_ = substep_start_[depth];
+    advance(0.5 * h, depth + 1);
+    if (fault_.empty()) advance(0.5 * h, depth + 1);
+    return;
+  }
   // The contact set of the start did not hold the motion (a strand moved through another, or
   // deep into it, within the step): redo it as two halves, each with its own detection (Bridson
   // et al. 2002 stop a step at the first such event; halving keeps the step pipeline as it is).

@@ -93,5 +93,21 @@ TEST_P(Friction, AThreadOnAnInclinedPlaneSticksBelowTheFrictionAngleAndSlidesAbo
 
 INSTANTIATE_TEST_SUITE_P(Responses, Friction, ::testing::Values("penalty", "unilateral"));
 
+// The onset of sliding, with exact Coulomb friction (unilateral response): the thread lying along
+// the slope is a block on an incline, held while tan θ <= μ and sliding once tan θ > μ, here at
+// tan θ = 0.98 μ and 1.02 μ. Held: no creep beyond 0.01 mm/s. Sliding: the centre accelerates at
+// g (sin θ − μ cos θ) = 0.087 m/s², so its mean speed over [0.2, 0.5] s is about 0.03 m/s; a third
+// of that is asked (the first contact's transient delays the start by a few ms).
+TEST(UnilateralFriction, SlidingStartsAtTanThetaEqualsMu) {
+  const double friction_angle = std::atan(kMu) * 180.0 / M_PI;
+  const double below = std::atan(0.98 * kMu) * 180.0 / M_PI, above = std::atan(1.02 * kMu) * 180.0 / M_PI;
+  const SlopeRun held = slide(below, "unilateral");
+  const SlopeRun sliding = slide(above, "unilateral");
+  std::cout << "  friction angle " << friction_angle << "°: at " << below << "° creep " << held.creep_speed * 1e3
+            << " mm/s; at " << above << "° mean speed " << sliding.creep_speed << " m/s\n";
+  EXPECT_LT(std::abs(held.creep_speed), 1e-5);
+  EXPECT_GT(sliding.creep_speed, 0.01);
+}
+
 }  // namespace
 }  // namespace filum::collision

@@ -53,16 +53,25 @@
 //   equality rows B:  (W λ − β)_B = 0,                   λ_B free;
 //   normal rows:      (W λ − β)_n >= 0, λ_n >= 0,         λ_n (W λ − β)_n = 0;
 //   friction pairs:   (W λ − β)_t = 0 inside the disc    |(λ_t1, λ_t2)| <= μ λ_n.
-// Solved by projected block Gauss–Seidel: each sweep solves the equality block exactly,
+// Solved by a semismooth Newton method on the Alart–Curnier function (contact_newton.hpp) on W
+// kept dense (up to newton_rows rows; the Gauss–Seidel operators below are then not used): it
+// converges on the nearly singular W of a tight knot, where projected Gauss–Seidel plateaus
+// (docs/contact-solver.md has the measurements), and it stops on the true residual. λ starts from
+// the previous call's when the rows are of the same kinds (the stages of one step), else from the
+// rows' guesses (the last step's contact forces). When Newton does not reach the threshold in
+// newton_iterations, projected Gauss–Seidel continues from its best iterate and the statistics say
+// so (fell_back); Statistics::residual is what was reached either way.
+// Projected block Gauss–Seidel ("contact_method": "gauss_seidel", the fallback, and the method
+// above newton_rows): each sweep solves the equality block exactly,
 // Δλ_B = W_BB⁻¹ (β − W λ)_B (W_BB factored once per call by LDLᵀ), then every contact row in
 // order, λ_r ← proj(λ_r + (β − W λ)_r / W_rr), a friction pair projected on its disc after both
-// rows moved. It is block coordinate descent on the convex problem min ½ λᵀWλ − βᵀλ over the
-// admissible set, so it converges for W positive semi-definite — also with redundant contacts (a
-// thread lying on a plane has more contacts than degrees of freedom). It stops when no row's
-// acceleration changes by more than contact_tolerance · |β|∞ (W_rr |Δλ_r|, m/s²) or after
-// contact_iterations sweeps; λ starts from the previous call's when the rows are of the same
-// kinds (the stages of one step). W is the matrix assembled above (dense or sparse, kept while
-// unchanged — within a step the contact set and its anchors are fixed); a sweep costs O(nnz(W)).
+// rows moved. With the disc's radius μ λ_n moving with λ_n the problem is not a convex one and
+// Gauss–Seidel has no convergence guarantee; on redundant contacts (more rows than the strands'
+// degrees of freedom) it slows to a crawl. It stops when the Alart–Curnier residual is below
+// contact_tolerance · |β|∞ (checked when a sweep changed no row's acceleration by more than that,
+// W_rr |Δλ_r|, and every 8 sweeps) or after contact_iterations sweeps. W is the matrix assembled
+// above (dense or sparse, kept while unchanged — within a step the contact set and its anchors are
+// fixed), or through an implicit step matrix its factored form; a sweep costs O(nnz(W)).
 #pragma once
 
 #include <cstdint>
@@ -71,6 +80,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "filum/constraints/contact_newton.hpp"
 #include "filum/core/constraint_solver.hpp"
 #include "filum/core/params.hpp"
 
@@ -82,13 +92,22 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// The Delassus operator of the contact sweeps through an operator that mixes the axes:
   /// whichever costs less per sweep, W assembled, or factored (A⁻¹Lᵀλ kept, W never assembled).
   enum class ContactForm { kAuto, kAssembled, kFactored };
+  /// How rows with contacts are solved: semismooth Newton on the Alart–Curnier function
+  /// (contact_newton.hpp; projected Gauss–Seidel only as its fallback), or projected Gauss–Seidel.
+  enum class ContactMethod { kNewton, kGaussSeidel };
 
   struct Options {
     int sparse_above = 64;          // c above this: sparse factorization of W
     double drop_tolerance = 1e-14;  // sparse path: drop |W_rk| <= τ √(W_rr W_kk)
     bool reuse = true;              // keep M⁻¹ w_a for unchanged anchors between calls
+    ContactMethod contact_method = ContactMethod::kNewton;
+    int newton_iterations = 50;     // Newton iterations at most (contact rows)
+    double newton_damping = 1e-9;   // δ of ContactNewton (the proximal shift of its unit-diagonal rows)
+    int newton_rows = 2000;         // Newton on W kept dense up to this many rows; above, Gauss–Seidel
+    double contact_compliance = 1e-6;   // ε_n: R = ε_n W_rr on normal rows
+    double friction_compliance = 1e-6;  // ε_t: R = ε_t W_rr on friction rows
     int contact_iterations = 200;   // projected Gauss–Seidel sweeps at most (contact rows)
-    double contact_tolerance = 1e-6;  // relative to |β|∞
+    double contact_tolerance = 1e-6;  // on the Alart–Curnier residual, relative (see Statistics::threshold)
     ContactForm contact_form = ContactForm::kAuto;
     SparseBackend backend = cholmodAvailable() ? SparseBackend::kCholmod : SparseBackend::kSimplicialLdlt;
   };
@@ -106,6 +125,11 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     int inequalities = 0;    // contact rows (normal and friction)
     int sweeps = 0;          // projected Gauss–Seidel sweeps (with contact rows)
     double change = 0.0;     // the last sweep's largest W_rr |Δλ_r| (m/s²)
+    int newton_iterations = 0;  // Newton iterations (with contact rows, method newton)
+    double residual = 0.0;   // Alart–Curnier residual max_r |F_r|/ρ_r of the returned λ (m/s²)
+    double threshold = 0.0;  // the residual asked for: contact_tolerance · max(|β|∞, max_r |λ_r|(W_rr + R_r)) (m/s²)
+    bool converged = true;   // residual <= threshold (always true without contact rows)
+    bool fell_back = false;  // Newton did not converge and projected Gauss–Seidel took over
   };
 
   LagrangeMultiplierSolver();
@@ -114,9 +138,12 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
 
   /// "sparse_above": c threshold (integer >= 0, default 64), "drop_tolerance": τ in [0, 1e-6]
   /// (default 1e-14), "reuse": bool (default true), "sparse_solver": "cholmod" (default when
-  /// built with FILUM_WITH_SUITESPARSE) or "simplicial_ldlt"; with contacts "contact_iterations"
-  /// (sweeps, default 200), "contact_tolerance" (relative, default 1e-6) and "contact_form"
-  /// ("auto", "assembled", "factored"; the same solution up to round-off, at different costs).
+  /// built with FILUM_WITH_SUITESPARSE) or "simplicial_ldlt"; with contacts "contact_method"
+  /// ("newton", default, or "gauss_seidel"), "newton_iterations" (default 50), "newton_damping"
+  /// (δ in [0, 1e-3], default 1e-9), "newton_rows" (default 2000), "contact_iterations" (Gauss–
+  /// Seidel sweeps, default 200), "contact_tolerance" (relative, default 1e-6) and
+  /// "contact_form" ("auto", "assembled", "factored": Gauss–Seidel's operator; the same solution
+  /// up to round-off, at different costs).
   static std::unique_ptr<LagrangeMultiplierSolver> fromParams(const Params& p);
   static bool cholmodAvailable();
 
@@ -162,6 +189,22 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   struct FactoredDelassus;
   template <class Delassus>
   void solveWithContacts(const ConstraintRows& rows, Delassus& w);
+  void solveWithNewton(const ConstraintRows& rows);
+  /// The equality rows solved exactly for the current contact forces (after an iterative solve).
+  template <class Delassus>
+  void polishEqualities(const ConstraintRows& rows, Delassus& w);
+  /// λ from the previous call (rows of the same kinds) or from the rows' guesses.
+  void warmStart(const ConstraintRows& rows);
+  /// Projected Gauss–Seidel sweeps from the current λ, stopping on the Alart–Curnier residual.
+  template <class Delassus>
+  void projectedGaussSeidel(const ConstraintRows& rows, Delassus& w, int max_sweeps);
+  /// max_r |F_r|/ρ_r of the current λ through the operator's products.
+  template <class Delassus>
+  double contactResidual(const ConstraintRows& rows, Delassus& w);
+  /// R of the contact rows (setCompliance).
+  void setCompliance(const ConstraintRows& rows);
+  ContactNewton newton_;
+  VecX wl_, compliance_, effective_diagonal_;  // (W + R)λ − β (residual checks), R, W_rr + R_r
   /// Contact sweeps through an operator that mixes the axes: the factored form costs less per
   /// sweep than the assembled W (row cost: points of its bodies against rows it couples to).
   bool factoredFormIsCheaper(const Scene& scene, const ConstraintRows& rows);

@@ -14,6 +14,24 @@ namespace filum {
 
 class Scene;
 
+/// What a solver's contact solves did (reports: the timing summary, bench_realtime; not physics).
+/// A solve counts when its rows hold contacts (inequality rows).
+struct ContactSolveTally {
+  long solves = 0;
+  long converged = 0;        // the residual reached the threshold
+  long fell_back = 0;        // the main method gave up and a fallback finished the solve
+  long iterations = 0;       // of the main method, summed
+  double worst_ratio = 0.0;  // largest residual / threshold
+
+  void add(bool solve_converged, bool solve_fell_back, int solve_iterations, double ratio) {
+    ++solves;
+    converged += solve_converged ? 1 : 0;
+    fell_back += solve_fell_back ? 1 : 0;
+    iterations += solve_iterations;
+    if (ratio > worst_ratio || !(ratio == ratio)) worst_ratio = ratio;  // a NaN ratio stays visible
+  }
+};
+
 class ConstraintSolver : public Component {
  public:
   /// Solves  A a = b,  L a = E  for a, given a_t = A⁻¹ b in `a` on entry (the constrained
@@ -21,6 +39,12 @@ class ConstraintSolver : public Component {
   virtual void solve(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a) = 0;
   /// λ of the last solve, one per row (N for a point row; contact rows report their force).
   virtual Eigen::Ref<const VecX> multipliers() const = 0;
+  /// Contact solves since construction or the last resetContactTally().
+  const ContactSolveTally& contactTally() const { return tally_; }
+  void resetContactTally() { tally_ = ContactSolveTally(); }
+
+ protected:
+  ContactSolveTally tally_;
 };
 
 }  // namespace filum

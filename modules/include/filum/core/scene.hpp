@@ -148,6 +148,8 @@ class Scene {
   /// Steps redone in halves because the contact set of their start missed a contact
   /// (CollisionPipeline::missedContact: a pass-through, a deep overlap or a fast slide; since init).
   long contactHalvings() const { return contact_halvings_; }
+  /// Steps redone in halves because a contact solve did not reach its tolerance (since init).
+  long solveHalvings() const { return solve_halvings_; }
   int dofPointCount() const { return point_count_; }
   /// Number E of extra scalar DOFs (constraints' own, after the 3N point coordinates).
   int extraDofCount() const { return extra_count_; }
@@ -228,8 +230,12 @@ class Scene {
   /// Stage 5: a non-finite or too fast state is rolled back and reported; else the step counts.
   StepReport endStep(StepReport report);
   static constexpr int kMaxContactHalvings = 6;
+  static constexpr int kMaxSolveHalvings = 3;  // an unconverged contact solve: down to dt / 8
   std::vector<SceneState> substep_start_;  // one per halving depth (sized at init)
   long contact_halvings_ = 0;
+  long solve_halvings_ = 0;
+  /// Contact solves of the constraint solver that did not converge, since its construction.
+  long unconvergedContactSolves() const;
   long layout_revision_ = 0;
   /// Binds force fields, constraints and the collision pipeline to the bodies' current layout
   /// again (refine).

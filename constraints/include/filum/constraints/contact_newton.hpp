@@ -1,0 +1,105 @@
+// ContactNewton: the frictional contact problem of one constraint solve, solved by a semismooth
+// Newton method on the Alart–Curnier function (P. Alart, A. Curnier, "A mixed formulation for
+// frictional contact problems prone to Newton like solution methods", CMAME 92 (1991) 353; the
+// same function Siconos' fc3d_nonsmooth_Newton_AlartCurnier solves), damped by a line search.
+//
+// The problem (lagrange_multiplier_solver.hpp): W λ − β = w, with W = L A⁻¹ Lᵀ symmetric positive
+// semi-definite, and per row kind
+//   equality rows:  w_r = 0;
+//   normal rows:    0 <= λ_n ⊥ w_n >= 0                              (Signorini);
+//   friction pairs: λ_t in the disc D(μ λ_n), w_t = 0 inside it, and on its rim λ_t opposes
+//                   w_t: λ_t = −μ λ_n w_t/|w_t|                       (Coulomb, maximal dissipation).
+// Alart–Curnier writes all three as one equation F(λ) = λ − P(λ − ρ w(λ)) = 0 with P the
+// projection on the admissible set:
+//   equality:  P(z) = z, so F_r = ρ_r w_r;
+//   normal:    F_n = λ_n − max(0, z_n),              z_n = λ_n − ρ_n w_n;
+//   friction:  F_t = λ_t − proj_{D(μ max(0, z_n))}(z_t),  z_t = λ_t − ρ_t w_t.
+// ρ_r = 1/W_rr (ρ_t = 2/(W_t1t1 + W_t2t2) for both rows of a pair: the disc stays a disc). F = 0
+// is exactly the true (non-convex) Coulomb problem: sticking contacts have w_t = 0, no creep.
+//
+// Newton. F is piecewise smooth; its generalized Jacobian J = I − D (I − ρ W), D the Jacobian of
+// P at z (1 on equality rows, active normal rows and sticking pairs; 0 on inactive rows;
+// (R/|z_t|)(I − ẑẑᵀ) and μ ẑ ∂z_n on a sliding pair, R = μ z_n). Rows with D = 0 have the step
+// Δ_r = −λ_r; the rest form a smaller system J_SS Δ_S = −F_S − J_SI Δ_I, factored by LU with
+// partial pivoting (J is not symmetric on sliding pairs). Redundant contacts (spheres every
+// 0.3 mm on a thread of 1 mm spans) make W nearly singular (cond ~1e10), so J_SS is shifted by
+// δ I (δ = "damping", relative: rows of J_SS are scaled to a unit diagonal by ρ): a proximal
+// (Levenberg–Marquardt) step. It does not move the solution — F is unchanged — and the
+// components of λ that W cannot see, which the shift slows, do not enter the residual.
+// A step is accepted by Armijo's test on θ = Σ_r (F_r/ρ_r)², halving it up to 30 times. A step
+// cut below stall_step means the active set is still being found (contacts opening, pairs starting
+// to slide, where F has kinks): the solve stops and says so, and the caller (the constraint
+// solver) smooths λ by a few projected Gauss–Seidel sweeps before it calls Newton again.
+//
+// Stop. The residual is max_r |F_r|/ρ_r (m/s²): the largest violation of complementarity, of the
+// disc or of stick, as an acceleration; the solve stops when it is below tolerance times the
+// largest term it balances, max(|β|∞, max_r |λ_r|(W_rr + R_r)) — the round-off of (W + R)λ − β is
+// of that size, and in a tight knot the contact forces exceed the right-hand side by orders. Cost per iteration: W λ (c²), J (c²), one LU of the |S| rows that are not free (|S|³/3).
+// The workspace only grows: a steady step allocates nothing.
+#pragma once
+
+#include <vector>
+
+#include "filum/core/constraint_rows.hpp"
+#include "filum/core/types.hpp"
+
+namespace filum::constraints {
+
+class ContactNewton {
+ public:
+  struct Settings {
+    int iterations = 50;     // Newton iterations at most
+    double damping = 1e-9;      // δ's floor, the proximal shift of J_SS (its rows have a unit diagonal)
+    double max_damping = 1.0;   // δ's ceiling (δ follows the relative residual in between)
+    double stall_step = 1.0 / 64;  // a line search that had to cut the step below this stops the solve
+  };
+  struct Result {
+    int iterations = 0;
+    double residual = 0.0;   // max_r |F_r|/ρ_r at the returned λ (m/s²)
+    bool converged = false;  // residual <= threshold
+    bool stalled = false;    // stopped on a short step (stall_step)
+    double threshold = 0.0;  // tolerance · max(|β|∞, max_r |λ_r| (W_rr + R_r)) at the returned λ
+  };
+
+  /// Solves for λ (in: the warm start; out: the last iterate, or the best one when it did not
+  /// converge). `w` is W with both triangles (c × c leading block), `beta` β, `rows` the kinds.
+  /// W is the leading c × c block of `w` (c = β's size), with both triangles; `compliance` R
+  /// (one per row, >= 0) makes the problem that of W + diag(R).
+  Result solve(const MatX& w, const Eigen::Ref<const VecX>& beta, const Eigen::Ref<const VecX>& compliance,
+               const ConstraintRows& rows, const Settings& settings, double tolerance, Eigen::Ref<VecX> lambda);
+
+  /// max_r |F_r|/ρ_r (m/s²) of λ, given the diagonal of W + R and (W + R)λ − β: the residual by which any
+  /// contact solve (projected Gauss–Seidel too) is measured.
+  double residual(const ConstraintRows& rows, const Eigen::Ref<const VecX>& diagonal, const Eigen::Ref<const VecX>& wl,
+                  const Eigen::Ref<const VecX>& lambda);
+
+ private:
+  /// Workspace for c rows (grows only).
+  void grow(int c);
+  /// ρ per row (from W's diagonal).
+  void scale(const Eigen::Ref<const VecX>& diagonal, const ConstraintRows& rows);
+  /// F and the merit θ at λ, given wl_ = Wλ − β; with W (not null), J's rows and the free set.
+  double evaluate(const MatX* w, const ConstraintRows& rows, const Eigen::Ref<const VecX>& lambda);
+  /// Δ from J Δ = −F (the reduced system).
+  bool step(double damping);
+  /// In-place LU with partial pivoting of lu_'s leading s × s block; false if singular.
+  bool factor(int s);
+  void substitute(int s, Eigen::Ref<VecX> x) const;
+
+  int c_ = 0;
+  VecX rho_, wl_, f_, delta_, trial_, best_, rhs_, compliance_, diagonal_;
+  int capacity_ = 0;
+  MatX jac_;   // J, c × c (rows of the reduced system read from it)
+  MatX lu_;    // J_SS factored in place
+  std::vector<int> solved_, free_, pivot_;
+  std::vector<char> is_free_;
+  double max_abs_residual_ = 0.0;
+  double force_scale_ = 0.0;  // max_r |λ_r|/ρ_r of the last evaluation (m/s²)
+
+ public:
+  /// max_r |λ_r| (W_rr + R_r) of the last evaluation (solve or residual): with |β|∞ the scale
+  /// a residual is measured against.
+  double forceScale() const { return force_scale_; }
+};
+
+}  // namespace filum::constraints

@@ -1,0 +1,273 @@
+#include "filum/constraints/contact_newton.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace filum::constraints {
+
+namespace {
+
+using Kind = ConstraintRows::Kind;
+
+/// A friction pair starts at row r (its normal row is r − 1).
+bool startsFrictionPair(const ConstraintRows& rows, int r) {
+  return rows.kind(r) == Kind::kFriction && rows.kind(r - 1) == Kind::kNormal;
+}
+
+}  // namespace
+
+void ContactNewton::grow(int c) {
+  if (capacity_ >= c) return;  // grows only: a steady step allocates nothing
+  capacity_ = 2 * c;
+  for (VecX* v : {&rho_, &wl_, &f_, &delta_, &trial_, &best_, &rhs_, &compliance_, &diagonal_}) v->resize(capacity_);
+  jac_.resize(capacity_, capacity_);
+  lu_.resize(capacity_, capacity_);
+  solved_.reserve(capacity_);
+  free_.reserve(capacity_);
+  pivot_.resize(capacity_);
+  is_free_.resize(capacity_);
+}
+
+void ContactNewton::scale(const Eigen::Ref<const VecX>& diagonal, const ConstraintRows& rows) {
+  // ρ_r = 1/W_rr; a friction pair shares 2/(W_t1t1 + W_t2t2) so that its disc stays round. A row
+  // with W_rr <= 0 touches no point (W is positive semi-definite): ρ = 0 marks it, λ_r = 0.
+  for (int r = 0; r < c_; ++r) {
+    if (startsFrictionPair(rows, r)) {
+      const double sum = diagonal[r] + diagonal[r + 1];
+      rho_[r] = rho_[r + 1] = sum > 0.0 ? 2.0 / sum : 0.0;
+      ++r;
+      continue;
+    }
+    rho_[r] = diagonal[r] > 0.0 ? 1.0 / diagonal[r] : 0.0;
+  }
+}
+
+double ContactNewton::evaluate(const MatX* w_matrix, const ConstraintRows& rows, const Eigen::Ref<const VecX>& lambda) {
+  const int c = c_;
+  const bool jacobian = w_matrix != nullptr;
+  const auto w = [&](int r) { return w_matrix->row(r).head(c); };
+  // A row whose F is λ_r itself (D = 0): its step is −λ_r, no W in its Jacobian row.
+  auto freeRow = [&](int r) {
+    f_[r] = lambda[r];
+    if (jacobian) is_free_[r] = 1;
+  };
+  // A row whose F is ρ_r w_r (D = 1): its Jacobian row is ρ_r W_r.
+  auto tiedRow = [&](int r) {
+    f_[r] = rho_[r] * wl_[r];
+    if (!jacobian) return;
+    is_free_[r] = 0;
+    jac_.row(r).head(c) = rho_[r] * w(r);
+    jac_(r, r) += rho_[r] * compliance_[r];
+  };
+  for (int r = 0; r < c; ++r) {
+    const Kind kind = rows.kind(r);
+    if (!(rho_[r] > 0.0)) {
+      freeRow(r);
+      continue;
+    }
+    if (kind == Kind::kEquality) {
+      tiedRow(r);
+      continue;
+    }
+    if (kind == Kind::kNormal) {
+      // F_n = λ_n − max(0, z_n): ρ_n w_n when z_n > 0, else λ_n.
+      const double zn = lambda[r] - rho_[r] * wl_[r];
+      if (zn > 0.0)
+        tiedRow(r);
+      else
+        freeRow(r);
+      continue;
+    }
+    // A friction pair (r, r + 1) of the normal row n = r − 1.
+    const int n = r - 1, t1 = r, t2 = r + 1;
+    const double mu = rows.friction(r);
+    const double zn = lambda[n] - rho_[n] * wl_[n];
+    const double radius = mu * std::max(0.0, zn);
+    const double z1 = lambda[t1] - rho_[t1] * wl_[t1], z2 = lambda[t2] - rho_[t2] * wl_[t2];
+    const double norm = std::hypot(z1, z2);
+    r = t2;
+    if (!(radius > 0.0)) {  // no normal force: no friction
+      freeRow(t1);
+      freeRow(t2);
+      continue;
+    }
+    if (norm <= radius) {  // stick: w_t = 0
+      tiedRow(t1);
+      tiedRow(t2);
+      continue;
+    }
+    // Slide: P = R ẑ, F_t = λ_t − R ẑ;
+    // ∂F_t = E_t − S (E_t − ρ_t W_t) − μ ẑ (e_n − ρ_n W_n),  S = (R/|z_t|)(I − ẑẑᵀ).
+    const Eigen::Vector2d hat(z1 / norm, z2 / norm);
+    f_[t1] = lambda[t1] - radius * hat[0];
+    f_[t2] = lambda[t2] - radius * hat[1];
+    if (!jacobian) continue;
+    is_free_[t1] = is_free_[t2] = 0;
+    const Eigen::Matrix2d s = (radius / norm) * (Eigen::Matrix2d::Identity() - hat * hat.transpose());
+    const int t[2] = {t1, t2};
+    for (int i = 0; i < 2; ++i) {
+      auto row = jac_.row(t[i]).head(c);
+      row = (s(i, 0) * rho_[t1]) * w(t1) + (s(i, 1) * rho_[t2]) * w(t2) + (mu * hat[i] * rho_[n]) * w(n);
+      row[t1] += s(i, 0) * rho_[t1] * compliance_[t1];
+      row[t2] += s(i, 1) * rho_[t2] * compliance_[t2];
+      row[n] += mu * hat[i] * rho_[n] * compliance_[n];
+      row[t[i]] += 1.0;
+      row[t1] -= s(i, 0);
+      row[t2] -= s(i, 1);
+      row[n] -= mu * hat[i];
+    }
+  }
+  double merit = 0.0;
+  max_abs_residual_ = 0.0;
+  force_scale_ = 0.0;
+  for (int r = 0; r < c; ++r) {
+    if (!(rho_[r] > 0.0)) continue;
+    const double scaled = f_[r] / rho_[r];  // m/s²
+    merit += scaled * scaled;
+    max_abs_residual_ = std::max(max_abs_residual_, std::abs(scaled));
+    force_scale_ = std::max(force_scale_, std::abs(lambda[r]) / rho_[r]);
+  }
+  return merit;
+}
+
+bool ContactNewton::factor(int s) {
+  // Doolittle LU with partial pivoting, in place, right-looking (one rank-1 update per column).
+  for (int k = 0; k < s; ++k) {
+    int p = k;
+    lu_.col(k).segment(k, s - k).cwiseAbs().maxCoeff(&p);
+    p += k;
+    pivot_[k] = p;
+    const double pivot = lu_(p, k);
+    if (!(std::abs(pivot) > 0.0) || !std::isfinite(pivot)) return false;
+    if (p != k) lu_.row(k).head(s).swap(lu_.row(p).head(s));
+    const int m = s - k - 1;
+    if (m == 0) continue;
+    lu_.col(k).segment(k + 1, m) /= pivot;
+    lu_.block(k + 1, k + 1, m, m).noalias() -= lu_.col(k).segment(k + 1, m) * lu_.row(k).segment(k + 1, m);
+  }
+  return true;
+}
+
+void ContactNewton::substitute(int s, Eigen::Ref<VecX> x) const {
+  for (int k = 0; k < s; ++k)
+    if (pivot_[k] != k) std::swap(x[k], x[pivot_[k]]);
+  lu_.topLeftCorner(s, s).triangularView<Eigen::UnitLower>().solveInPlace(x.head(s));
+  lu_.topLeftCorner(s, s).triangularView<Eigen::Upper>().solveInPlace(x.head(s));
+}
+
+bool ContactNewton::step(double damping) {
+  const int c = c_;
+  solved_.clear();
+  free_.clear();
+  for (int r = 0; r < c; ++r) (is_free_[r] ? free_ : solved_).push_back(r);
+  // Free rows: Δ_r = −F_r (= −λ_r).
+  for (int r : free_) delta_[r] = -f_[r];
+  const int s = static_cast<int>(solved_.size());
+  if (s == 0) return true;
+  // J_SS + δ I and −F_S − J_SI Δ_I.
+  for (int j = 0; j < s; ++j)
+    for (int i = 0; i < s; ++i) lu_(i, j) = jac_(solved_[i], solved_[j]);
+  for (int i = 0; i < s; ++i) {
+    const int r = solved_[i];
+    lu_(i, i) += damping;
+    double sum = -f_[r];
+    for (int k : free_) sum -= jac_(r, k) * delta_[k];
+    rhs_[i] = sum;
+  }
+  if (!factor(s)) return false;
+  substitute(s, rhs_.head(s));
+  for (int i = 0; i < s; ++i) delta_[solved_[i]] = rhs_[i];
+  return delta_.head(c).allFinite();
+}
+
+ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const VecX>& beta,
+                                           const Eigen::Ref<const VecX>& compliance, const ConstraintRows& rows,
+                                           const Settings& settings, double tolerance, Eigen::Ref<VecX> lambda) {
+  const int c = static_cast<int>(beta.size());
+  c_ = c;
+  grow(c);
+  compliance_.head(c) = compliance;
+  diagonal_.head(c) = w.diagonal().head(c) + compliance;
+  scale(diagonal_.head(c), rows);
+  for (int r = 0; r < c; ++r)
+    if (!(rho_[r] > 0.0)) lambda[r] = 0.0;
+  // F (and with the matrix, J) at x: w_ = W x − β first.
+  auto at = [&](const Eigen::Ref<const VecX>& x, bool jacobian) {
+    wl_.head(c).noalias() = w.topLeftCorner(c, c) * x;
+    wl_.head(c) += compliance_.head(c).cwiseProduct(x) - beta;
+    return evaluate(jacobian ? &w : nullptr, rows, x);
+  };
+
+  // The residual is asked to be small against the largest term it balances: |β|∞ or a row's
+  // force as an acceleration, |λ_r| (W_rr + R_r) — the round-off of (W + R)λ − β is of that size.
+  const double beta_scale = beta.lpNorm<Eigen::Infinity>();
+  auto threshold = [&] { return tolerance * std::max({beta_scale, force_scale_, 1e-300}); };
+  Result result;
+  double merit = at(lambda, true);
+  double best_merit = merit;
+  best_.head(c) = lambda;
+  constexpr double kArmijo = 1e-4;  // sufficient decrease (the usual σ of Armijo's rule)
+  constexpr int kHalvings = 30;     // α down to 2⁻³⁰: below that the direction is not one of descent
+  // Non-monotone Armijo (Grippo, Lampariello & Lucidi 1986): the decrease is asked against the
+  // largest merit of the last kMemory iterates, so a full step that crosses a kink of F (a contact
+  // opening, a pair starting to slide) and raises θ for one iterate is still taken.
+  constexpr int kMemory = 8;
+  double history[kMemory];
+  for (double& h : history) h = merit;
+  while (max_abs_residual_ > threshold() && result.iterations < settings.iterations) {
+    ++result.iterations;
+    // Levenberg–Marquardt's shift tied to the residual (Yamashita & Fukushima 2001: δ_k ~ |F_k|
+    // keeps Newton's local quadratic rate): far from the solution it holds back the steps along
+    // the near-null directions of redundant rows, near it the step is Newton's own.
+    const double relative = max_abs_residual_ / std::max({beta_scale, force_scale_, 1e-300});
+    const double shift = std::clamp(relative, settings.damping, settings.max_damping);
+    if (!step(shift)) break;
+    // Armijo: θ(λ + αΔ) <= (1 − 2σα) θ(λ) (θ = |F|², its slope along a Newton step is −2θ).
+    double alpha = 1.0;
+    bool accepted = false;
+    const double reference = *std::max_element(history, history + kMemory);
+    for (int k = 0; k <= kHalvings; ++k, alpha *= 0.5) {
+      trial_.head(c) = lambda + alpha * delta_.head(c);
+      if (at(trial_.head(c), false) <= reference - 2.0 * kArmijo * alpha * merit) {
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted) break;
+    lambda = trial_.head(c);
+    merit = at(lambda, true);
+    history[result.iterations % kMemory] = merit;
+    if (merit < best_merit) {
+      best_merit = merit;
+      best_.head(c) = lambda;
+    }
+    // A short step: the active set is changing under Newton's feet (a contact opens, a pair
+    // starts to slide); the caller smooths with a few Gauss–Seidel sweeps and comes back.
+    if (alpha < settings.stall_step && max_abs_residual_ > threshold()) {
+      result.stalled = true;
+      break;
+    }
+  }
+  result.converged = max_abs_residual_ <= threshold();
+  if (!result.converged) {
+    lambda = best_.head(c);
+    at(lambda, false);
+    result.converged = max_abs_residual_ <= threshold();
+  }
+  result.residual = max_abs_residual_;
+  result.threshold = threshold();
+  return result;
+}
+
+double ContactNewton::residual(const ConstraintRows& rows, const Eigen::Ref<const VecX>& diagonal,
+                               const Eigen::Ref<const VecX>& wl, const Eigen::Ref<const VecX>& lambda) {
+  const int c = static_cast<int>(wl.size());
+  c_ = c;
+  grow(c);
+  scale(diagonal, rows);
+  wl_.head(c) = wl;
+  evaluate(nullptr, rows, lambda);
+  return max_abs_residual_;
+}
+
+}  // namespace filum::constraints
