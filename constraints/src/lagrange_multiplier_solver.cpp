@@ -638,7 +638,6 @@ double LagrangeMultiplierSolver::contactResidual(const ConstraintRows& rows, Del
 
 template <class Delassus>
 void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows, Delassus& w) {
-  const int c = rows.rows();
   warmStart(rows);
   setCompliance(rows);
   w.begin();
@@ -758,13 +757,19 @@ void LagrangeMultiplierSolver::polishEqualities(const ConstraintRows& rows, Dela
   // The equality rows exactly, with the contact forces as they are: Δλ_B = W_BB⁻¹ (β − Wλ)_B. The
   // iterative solve leaves them a residual of its tolerance, which a fixed point held for
   // thousands of steps would integrate into drift; the contact rows move by W_CB Δλ_B, of the
-  // same small size, and the residual reported is measured after.
+  // same small size, and the residual reported is measured after; a polish that would take a
+  // converged solve past the tolerance is undone.
   const int c = rows.rows();
   equality_rows_.clear();
   for (int r = 0; r < c; ++r)
     if (rows.kind(r) == ConstraintRows::Kind::kEquality) equality_rows_.push_back(r);
   const int nb = static_cast<int>(equality_rows_.size());
   if (nb == 0) return;
+  // Kept only if the contact rows stay within the tolerance (a converged solve stays converged).
+  const bool was_converged = stats_.converged;
+  const double was_residual = stats_.residual, was_threshold = stats_.threshold;
+  if (unpolished_.size() < c) unpolished_.resize(2 * c);
+  unpolished_.head(c) = lambda_.head(c);
   w.equalityBlock(rows, w_bb_);
   ldlt_bb_.compute(w_bb_);
   residual_bb_.resize(nb);
@@ -777,6 +782,13 @@ void LagrangeMultiplierSolver::polishEqualities(const ConstraintRows& rows, Dela
   }
   stats_.residual = contactResidual(rows, w);
   stats_.converged = stats_.residual <= stats_.threshold;
+  if (was_converged && !stats_.converged) {
+    for (int i = 0; i < nb; ++i) w.changed(equality_rows_[i], -delta_bb_[i]);
+    lambda_.head(c) = unpolished_.head(c);
+    stats_.residual = was_residual;
+    stats_.threshold = was_threshold;
+    stats_.converged = true;
+  }
 }
 
 bool LagrangeMultiplierSolver::sameRowsAsLastCall(const ConstraintRows& rows) const {

@@ -204,7 +204,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// R of the contact rows (setCompliance).
   void setCompliance(const ConstraintRows& rows);
   ContactNewton newton_;
-  VecX wl_, compliance_, effective_diagonal_;  // (W + R)λ − β (residual checks), R, W_rr + R_r
+  VecX wl_, compliance_, effective_diagonal_, unpolished_;  // (W + R)λ − β (residual checks), R, W_rr + R_r
   /// Contact sweeps through an operator that mixes the axes: the factored form costs less per
   /// sweep than the assembled W (row cost: points of its bodies against rows it couples to).
   bool factoredFormIsCheaper(const Scene& scene, const ConstraintRows& rows);
