@@ -6,8 +6,9 @@
 // as a check of that derivation, by integrating dT/dθ = μT + wρ_c(cos θ + μ sin θ) with RK4.
 //
 // Tolerances.
-//  - Slip at 1.02 of L2_max (the issue's 2 %); hold at 0.9 (kHeld below says why not at 0.98). What moves the true threshold away
-//    from the ideal capstan: the cord's bending stiffness concentrates normal force where it enters
+//  - Slip at 1.02 of L2_max (the issue's 2 %); hold at 0.95: the discretization's first-order
+//    deficit (kHeld below). What else moves the true threshold away from the ideal capstan, and
+//    is left out: the cord's bending stiffness concentrates normal force where it enters
 //    and leaves the peg (a moment EI/ρ_c over the boundary layer ℓ = √(EI/T)), which adds friction
 //    of relative size about 2μℓ/ρ_c: with EI = 7.9e-10 N·m², T >= 8.5e-3 N, ℓ <= 0.3 mm, ρ_c = 31 mm,
 //    at most 0.8 % at μ = 0.4; the cord's stretch (T/EA <= 1 %) moves mass between the wrap and the
@@ -95,12 +96,13 @@ CapstanRun runCapstan(double mu, double heavy_fraction) {
   return run;
 }
 
-// The simulated threshold is lower than the analytic one: at μ = 0.3 the cord holds at 0.93 of
-// L2_max and slides at 0.96, with the Newton solve and with projected Gauss–Seidel alike, without
-// bending stiffness too (measured while writing this test; see docs/contact-solver.md, "Still
-// open"). Until that is found, "held" is asked at 0.9: the 2 % the issue asks below the limit is
-// not met, and this test says so rather than hiding it.
-constexpr double kHeld = 0.9;
+// The discrete cord holds less than the continuous capstan: the deficit is first order in the
+// control-point spacing h (measured with the Newton solve and with projected Gauss–Seidel alike,
+// with and without bending stiffness: the cord slides at 0.96 of L2_max and holds at 0.93 with
+// h = 10 mm, slides at 0.99 and holds at 0.96 with h = 5 mm; with dt = 0.25 ms as with 1 ms). At
+// h = 5 mm the threshold is thus about 0.975; "held" is asked at 0.95, twice that deficit below
+// the limit. The 2 % the issue asks below the limit needs h <= 2.5 mm.
+constexpr double kHeld = 0.95;
 
 class CapstanLimit : public ::testing::TestWithParam<double> {};
 
