@@ -23,10 +23,12 @@
 // Δ_r = −λ_r; the rest form a smaller system J_SS Δ_S = −F_S − J_SI Δ_I, factored by LU with
 // partial pivoting (J is not symmetric on sliding pairs). Redundant contacts (spheres every
 // 0.3 mm on a thread of 1 mm spans) make W nearly singular (cond ~1e10), so J_SS is shifted by
-// δ I (δ = "damping", relative: rows of J_SS are scaled to a unit diagonal by ρ): a proximal
-// (Levenberg–Marquardt) step. It does not move the solution — F is unchanged — and the
-// components of λ that W cannot see, which the shift slows, do not enter the residual.
-// A step is accepted by Armijo's test on θ = Σ_r (F_r/ρ_r)², halving it up to 30 times. A step
+// δ I, rows of J_SS being scaled to a unit diagonal by ρ: a Levenberg–Marquardt step with δ the
+// relative residual, clamped to [damping, max_damping] (Yamashita & Fukushima 2001: δ_k ~ |F_k|
+// keeps the local quadratic rate). Far from the solution it holds back the steps along the
+// near-null directions of redundant rows; it does not move the solution — F is unchanged.
+// A step is accepted by a non-monotone Armijo test (Grippo, Lampariello & Lucidi 1986) on
+// θ = Σ_r (F_r/ρ_r)² against the largest of the last 8 merits, halving it up to 30 times. A step
 // cut below stall_step means the active set is still being found (contacts opening, pairs starting
 // to slide, where F has kinks): the solve stops and says so, and the caller (the constraint
 // solver) smooths λ by a few projected Gauss–Seidel sweeps before it calls Newton again.

@@ -102,7 +102,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     bool reuse = true;              // keep M⁻¹ w_a for unchanged anchors between calls
     ContactMethod contact_method = ContactMethod::kNewton;
     int newton_iterations = 50;     // Newton iterations at most (contact rows)
-    double newton_damping = 1e-9;   // δ of ContactNewton (the proximal shift of its unit-diagonal rows)
+    double newton_damping = 1e-9;   // floor of ContactNewton's shift δ (its rows have a unit diagonal)
     int newton_rows = 2000;         // Newton on W kept dense up to this many rows; above, Gauss–Seidel
     double contact_compliance = 1e-6;   // ε_n: R = ε_n W_rr on normal rows
     double friction_compliance = 1e-6;  // ε_t: R = ε_t W_rr on friction rows
@@ -140,7 +140,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// (default 1e-14), "reuse": bool (default true), "sparse_solver": "cholmod" (default when
   /// built with FILUM_WITH_SUITESPARSE) or "simplicial_ldlt"; with contacts "contact_method"
   /// ("newton", default, or "gauss_seidel"), "newton_iterations" (default 50), "newton_damping"
-  /// (δ in [0, 1e-3], default 1e-9), "newton_rows" (default 2000), "contact_iterations" (Gauss–
+  /// (the floor of Newton's shift δ, in [0, 1e-3], default 1e-9), "contact_compliance" and
+  /// "friction_compliance" (ε in [0, 1], default 1e-6), "newton_rows" (default 2000), "contact_iterations" (Gauss–
   /// Seidel sweeps, default 200), "contact_tolerance" (relative, default 1e-6) and
   /// "contact_form" ("auto", "assembled", "factored": Gauss–Seidel's operator; the same solution
   /// up to round-off, at different costs).
