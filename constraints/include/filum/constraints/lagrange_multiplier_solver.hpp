@@ -141,8 +141,9 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// built with FILUM_WITH_SUITESPARSE) or "simplicial_ldlt"; with contacts "contact_method"
   /// ("newton", default, or "gauss_seidel"), "newton_iterations" (default 50), "newton_damping"
   /// (the floor of Newton's shift δ, in [0, 1e-3], default 1e-9), "contact_compliance" and
-  /// "friction_compliance" (ε in [0, 1], default 1e-6), "newton_rows" (default 2000), "contact_iterations" (Gauss–
-  /// Seidel sweeps, default 200), "contact_tolerance" (relative, default 1e-6) and
+  /// "friction_compliance" (ε in [0, 1], default 1e-6), "newton_rows" (default 2000),
+  /// "contact_iterations" (Gauss–Seidel sweeps, default 200), "contact_tolerance" (relative,
+  /// default 1e-6) and
   /// "contact_form" ("auto", "assembled", "factored": Gauss–Seidel's operator; the same solution
   /// up to round-off, at different costs).
   static std::unique_ptr<LagrangeMultiplierSolver> fromParams(const Params& p);
