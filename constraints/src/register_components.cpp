@@ -25,7 +25,9 @@ void register_components(Factory& factory) {
               [](const Params& p) { return SlidingPointConstraint::fromParams(p); });
   factory.add("SplineJunctionConstraint", "joins two splines with C0, C1 or C2 continuity (3, 6 or 9 rows)",
               [](const Params& p) { return SplineJunctionConstraint::fromParams(p); });
-  factory.add("LagrangeMultiplierSolver", "bilateral constraints by Lagrange multipliers (paper §4)",
+  factory.add("LagrangeMultiplierSolver",
+              "bilateral constraints by Lagrange multipliers (paper §4); contacts with Coulomb friction by "
+              "semismooth Newton",
               [](const Params& p) { return LagrangeMultiplierSolver::fromParams(p); });
   factory.setDefault("ConstraintSolver", "LagrangeMultiplierSolver");
 }
