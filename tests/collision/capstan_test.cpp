@@ -6,7 +6,7 @@
 // as a check of that derivation, by integrating dT/dθ = μT + wρ_c(cos θ + μ sin θ) with RK4.
 //
 // Tolerances.
-//  - Slip at 1.02 of L2_max (the issue's 2 %); hold at 0.95: the discretization's first-order
+//  - Slip at 1.02 of L2_max (a 2 % margin); hold at 0.95: the discretization's first-order
 //    deficit (kHeld below). What else moves the true threshold away from the ideal capstan, and
 //    is left out: the cord's bending stiffness concentrates normal force where it enters
 //    and leaves the peg (a moment EI/ρ_c over the boundary layer ℓ = √(EI/T)), which adds friction
@@ -14,8 +14,8 @@
 //    at most 0.8 % at μ = 0.4; the cord's stretch (T/EA <= 1 %) moves mass between the wrap and the
 //    arms by at most 1 % of the wrap's weight term, itself 6 % of L2_max: 0.06 %. Both well inside 2 %.
 //  - No creep while held: after the settling pin is released (capstan_scene.hpp), the material
-//    point on top of the peg moves slower than 0.01 mm/s over the last second (the issue's bound;
-//    exact Coulomb stick has no creep at all, the friction rows' compliance allows R λ_t/ω_f,
+//    point on top of the peg moves slower than 0.01 mm/s over the last second (the bound asked of
+//    held contacts; exact Coulomb stick has no creep at all, the friction rows' compliance allows R λ_t/ω_f,
 //    about 1e-7 m/s here, and the arms' remaining waves are damped at 5 /s).
 //  - Slip: above the limit the cord runs off towards the heavy side, faster and faster (every mm
 //    slipped makes the heavy arm heavier); at 1.02 L2_max the excess weight, 2 % of w L2,
@@ -101,7 +101,7 @@ CapstanRun runCapstan(double mu, double heavy_fraction) {
 // with and without bending stiffness: the cord slides at 0.96 of L2_max and holds at 0.93 with
 // h = 10 mm, slides at 0.99 and holds at 0.96 with h = 5 mm; with dt = 0.25 ms as with 1 ms). At
 // h = 5 mm the threshold is thus about 0.975; "held" is asked at 0.95, twice that deficit below
-// the limit. The 2 % the issue asks below the limit needs h <= 2.5 mm.
+// the limit. Holding at 2 % below the limit would need h <= 2.5 mm.
 constexpr double kHeld = 0.95;
 
 class CapstanLimit : public ::testing::TestWithParam<double> {};
