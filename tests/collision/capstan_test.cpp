@@ -15,8 +15,8 @@
 //    arms by at most 1 % of the wrap's weight term, itself 6 % of L2_max: 0.06 %. Both well inside 2 %.
 //  - No creep while held: after the settling pin is released (capstan_scene.hpp), the material
 //    point on top of the peg moves slower than 0.01 mm/s over the last second (the bound asked of
-//    held contacts; exact Coulomb stick has no creep at all, the friction rows' compliance allows R λ_t/ω_f,
-//    about 1e-7 m/s here, and the arms' remaining waves are damped at 5 /s).
+//    held contacts; exact Coulomb stick has no creep at all, the friction rows' compliance allows
+//    R λ_t/ω_f, about 1e-7 m/s here, and the arms' remaining waves are damped at 5 /s).
 //  - Slip: above the limit the cord runs off towards the heavy side, faster and faster (every mm
 //    slipped makes the heavy arm heavier); at 1.02 L2_max the excess weight, 2 % of w L2,
 //    accelerates the cord's mass w(L1 + πρ_c + L2)/g at about 0.1 m/s², slowed by the 5 /s damping
