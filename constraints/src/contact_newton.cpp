@@ -248,6 +248,8 @@ ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const
       break;
     }
   }
+  // The last evaluation may have been a rejected trial: measure the iterate itself.
+  at(lambda, false);
   result.converged = max_abs_residual_ <= threshold();
   if (!result.converged) {
     lambda = best_.head(c);
