@@ -201,7 +201,7 @@ ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const
   // The residual is asked to be small against the largest term it balances: |β|∞ or a row's
   // force as an acceleration, |λ_r| (W_rr + R_r) — the round-off of (W + R)λ − β is of that size.
   const double beta_scale = beta.lpNorm<Eigen::Infinity>();
-  auto threshold = [&] { return tolerance * std::max({beta_scale, force_scale_, 1e-300}); };
+  auto threshold = [&] { return this->threshold(tolerance, beta_scale); };
   Result result;
   double merit = at(lambda, true);
   double best_merit = merit;

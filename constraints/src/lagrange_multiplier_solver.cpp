@@ -630,9 +630,7 @@ double LagrangeMultiplierSolver::contactResidual(const ConstraintRows& rows, Del
     effective_diagonal_[r] = diagonal_[r] + compliance_[r];
   }
   const double residual = newton_.residual(rows, effective_diagonal_.head(c), wl_.head(c), lambda_.head(c));
-  // The threshold of contact_newton.hpp: tolerance · max(|β|∞, max_r |λ_r| (W_rr + R_r)).
-  stats_.threshold = options_.contact_tolerance *
-                     std::max({rhs_.head(c).lpNorm<Eigen::Infinity>(), newton_.forceScale(), 1e-300});
+  stats_.threshold = newton_.threshold(options_.contact_tolerance, rhs_.head(c).lpNorm<Eigen::Infinity>());
   return residual;
 }
 
@@ -641,22 +639,13 @@ void LagrangeMultiplierSolver::solveWithContacts(const ConstraintRows& rows, Del
   warmStart(rows);
   setCompliance(rows);
   w.begin();
+  factorEqualityBlock(rows, w);
   projectedGaussSeidel(rows, w, options_.contact_iterations);
 }
 
 template <class Delassus>
 void LagrangeMultiplierSolver::projectedGaussSeidel(const ConstraintRows& rows, Delassus& w, int max_sweeps) {
   const int c = rows.rows();
-  // The equality block W_BB, factored once.
-  equality_rows_.clear();
-  for (int r = 0; r < c; ++r)
-    if (rows.kind(r) == ConstraintRows::Kind::kEquality) equality_rows_.push_back(r);
-  const int nb = static_cast<int>(equality_rows_.size());
-  if (nb > 0) {
-    w.equalityBlock(rows, w_bb_);
-    ldlt_bb_.compute(w_bb_);
-    residual_bb_.resize(nb);
-  }
   // With the compliance R (zero on equality rows): W + diag(R).
   auto residual = [&](int r) { return rhs_[r] - w.product(r) - compliance_[r] * lambda_[r]; };
   auto diagonal = [&](int r) { return diagonal_[r] + compliance_[r]; };
@@ -665,20 +654,11 @@ void LagrangeMultiplierSolver::projectedGaussSeidel(const ConstraintRows& rows, 
     lambda_[r] = value;
   };
 
-  stats_.sweeps = 0;
   stats_.residual = contactResidual(rows, w);
   for (int sweep = 0; sweep < max_sweeps && stats_.residual > stats_.threshold; ++sweep) {
     double change = 0.0;
     // Equality block exactly: Δλ_B = W_BB⁻¹ (β − W λ)_B.
-    if (nb > 0) {
-      for (int i = 0; i < nb; ++i) residual_bb_[i] = residual(equality_rows_[i]);
-      delta_bb_ = ldlt_bb_.solve(residual_bb_);
-      for (int i = 0; i < nb; ++i) {
-        const int r = equality_rows_[i];
-        change = std::max(change, std::abs(diagonal_[r] * delta_bb_[i]));
-        set(r, lambda_[r] + delta_bb_[i]);
-      }
-    }
+    change = std::max(change, equalityStep(w));
     // Contact rows in order: a normal λ_n >= 0, then its friction pair in μ λ_n's disc.
     for (int r = 0; r < c; ++r) {
       const ConstraintRows::Kind kind = rows.kind(r);
@@ -706,12 +686,12 @@ void LagrangeMultiplierSolver::projectedGaussSeidel(const ConstraintRows& rows, 
       set(r2, l2);
       ++r;
     }
-    stats_.sweeps = sweep + 1;
+    ++stats_.sweeps;
     stats_.change = change;
     // The change per sweep only says Gauss–Seidel is slow, not that it is done: the residual
     // decides, measured when the sweep changed little and every 8 sweeps (a product per row).
     constexpr int kResidualEvery = 8;
-    if (change <= stats_.threshold || stats_.sweeps % kResidualEvery == 0 || stats_.sweeps == max_sweeps)
+    if (change <= stats_.threshold || (sweep + 1) % kResidualEvery == 0 || sweep + 1 == max_sweeps)
       stats_.residual = contactResidual(rows, w);
   }
   stats_.converged = stats_.residual <= stats_.threshold;
@@ -725,12 +705,12 @@ void LagrangeMultiplierSolver::solveWithNewton(const ConstraintRows& rows) {
   setCompliance(rows);
   DenseDelassus w{*this};
   w.begin();
+  factorEqualityBlock(rows, w);
   ContactNewton::Settings settings;
   settings.damping = options_.newton_damping;
   // Newton, and where it stalls (its active set still moving) a few Gauss–Seidel sweeps to
   // smooth λ before the next Newton round, within newton_iterations Newton iterations in all.
   constexpr int kSmoothingSweeps = 8;
-  int sweeps = 0;
   while (true) {
     settings.iterations = options_.newton_iterations - stats_.newton_iterations;
     const ContactNewton::Result result =
@@ -741,15 +721,43 @@ void LagrangeMultiplierSolver::solveWithNewton(const ConstraintRows& rows) {
     stats_.converged = result.converged;
     if (result.converged || !result.stalled || stats_.newton_iterations >= options_.newton_iterations) break;
     projectedGaussSeidel(rows, w, kSmoothingSweeps);
-    sweeps += stats_.sweeps;
     if (stats_.converged) break;
   }
-  stats_.sweeps = sweeps;
   if (!stats_.converged) {
     stats_.fell_back = true;
     projectedGaussSeidel(rows, w, options_.contact_iterations);
   }
   polishEqualities(rows, w);
+}
+
+template <class Delassus>
+void LagrangeMultiplierSolver::factorEqualityBlock(const ConstraintRows& rows, Delassus& w) {
+  // W_BB of the equality rows, factored once per solve (Gauss–Seidel's sweeps and the polish).
+  equality_rows_.clear();
+  for (int r = 0; r < rows.rows(); ++r)
+    if (rows.kind(r) == ConstraintRows::Kind::kEquality) equality_rows_.push_back(r);
+  const int nb = static_cast<int>(equality_rows_.size());
+  if (nb == 0) return;
+  w.equalityBlock(rows, w_bb_);
+  ldlt_bb_.compute(w_bb_);
+  residual_bb_.resize(nb);
+}
+
+template <class Delassus>
+double LagrangeMultiplierSolver::equalityStep(Delassus& w) {
+  // Δλ_B = W_BB⁻¹ (β − W λ)_B (equality rows have no compliance); returns max W_rr |Δλ_r| (m/s²).
+  const int nb = static_cast<int>(equality_rows_.size());
+  if (nb == 0) return 0.0;
+  for (int i = 0; i < nb; ++i) residual_bb_[i] = rhs_[equality_rows_[i]] - w.product(equality_rows_[i]);
+  delta_bb_ = ldlt_bb_.solve(residual_bb_);
+  double change = 0.0;
+  for (int i = 0; i < nb; ++i) {
+    const int r = equality_rows_[i];
+    change = std::max(change, std::abs(diagonal_[r] * delta_bb_[i]));
+    w.changed(r, delta_bb_[i]);
+    lambda_[r] += delta_bb_[i];
+  }
+  return change;
 }
 
 template <class Delassus>
@@ -760,9 +768,6 @@ void LagrangeMultiplierSolver::polishEqualities(const ConstraintRows& rows, Dela
   // same small size, and the residual reported is measured after; a polish that would take a
   // converged solve past the tolerance is undone.
   const int c = rows.rows();
-  equality_rows_.clear();
-  for (int r = 0; r < c; ++r)
-    if (rows.kind(r) == ConstraintRows::Kind::kEquality) equality_rows_.push_back(r);
   const int nb = static_cast<int>(equality_rows_.size());
   if (nb == 0) return;
   // Kept only if the contact rows stay within the tolerance (a converged solve stays converged).
@@ -770,16 +775,7 @@ void LagrangeMultiplierSolver::polishEqualities(const ConstraintRows& rows, Dela
   const double was_residual = stats_.residual, was_threshold = stats_.threshold;
   if (unpolished_.size() < c) unpolished_.resize(2 * c);
   unpolished_.head(c) = lambda_.head(c);
-  w.equalityBlock(rows, w_bb_);
-  ldlt_bb_.compute(w_bb_);
-  residual_bb_.resize(nb);
-  for (int i = 0; i < nb; ++i) residual_bb_[i] = rhs_[equality_rows_[i]] - w.product(equality_rows_[i]);
-  delta_bb_ = ldlt_bb_.solve(residual_bb_);
-  for (int i = 0; i < nb; ++i) {
-    const int r = equality_rows_[i];
-    w.changed(r, delta_bb_[i]);
-    lambda_[r] += delta_bb_[i];
-  }
+  equalityStep(w);
   stats_.residual = contactResidual(rows, w);
   stats_.converged = stats_.residual <= stats_.threshold;
   if (was_converged && !stats_.converged) {

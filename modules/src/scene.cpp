@@ -392,9 +392,7 @@ void Scene::advance(double h, int depth) {
   if (miss == CollisionPipeline::Miss::kNone && !solve_failed) return;
   if (miss == CollisionPipeline::Miss::kNone) {
     ++solve_halvings_;
-    state_ = substep_start_[depth];
-    advance(0.5 * h, depth + 1);
-    if (fault_.empty()) advance(0.5 * h, depth + 1);
+    redoInHalves(h, depth);
     return;
   }
   // The contact set of the start did not hold the motion (a strand moved through another, or
@@ -413,6 +411,10 @@ void Scene::advance(double h, int depth) {
     return;
   }
   ++contact_halvings_;
+  redoInHalves(h, depth);
+}
+
+void Scene::redoInHalves(double h, int depth) {
   state_ = substep_start_[depth];
   advance(0.5 * h, depth + 1);
   if (fault_.empty()) advance(0.5 * h, depth + 1);

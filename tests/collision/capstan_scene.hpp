@@ -35,7 +35,6 @@ struct CapstanCord {
   double radius = 1e-3;       // r (m)
   double density = 1100.0;    // kg/m³
   double youngs_modulus = 1e6;  // Pa
-  nlohmann::json solver = nullptr;  // the scene's "constraint_solver" block (none: the pipeline's own)
   double damping = 5.0;       // 1/s
   double friction = 0.3;      // μ
   double light_arm = 0.25;    // L1 (m)
@@ -105,7 +104,6 @@ inline nlohmann::json capstanScene(const CapstanCord& c) {
               {"collision", {{"type", "ContactPipeline"}, {"response", "unilateral"}}},
               {"components", {peg}},
               {"nodes", {thread}}};
-  if (!c.solver.is_null()) scene["constraint_solver"] = c.solver;
   return scene;
 }
 

@@ -19,10 +19,9 @@ namespace {
 TEST(SlidingPull, ACordPulledOverAPegAndThroughAHoleAtOneMetrePerSecondDoesNotDiverge) {
   test::CapstanCord cord;
   cord.heavy_arm = 0.5;  // below the capstan limit (0.70 m at μ = 0.3): held when the grip stops
-  cord.settle = 0.0;     // no settling pin: the grip holds the light end from the start
   nlohmann::json document = test::capstanScene(cord);
   auto& components = document["nodes"][0]["components"];
-  // Drop the settling pin; add the grip on the light end (s = 0, at (ρ_c, 0, −L1)) and the hole.
+  // Drop the settling pin (the grip holds the light end from the start); add the grip on the light end (s = 0, at (ρ_c, 0, −L1)) and the hole.
   components.erase(components.end() - 1);
   const double x = cord.wrapRadius(), z0 = -cord.light_arm;
   nlohmann::json path = nlohmann::json::array();

@@ -40,6 +40,7 @@
 // The workspace only grows: a steady step allocates nothing.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "filum/core/constraint_rows.hpp"
@@ -102,6 +103,10 @@ class ContactNewton {
   /// max_r |λ_r| (W_rr + R_r) of the last evaluation (solve or residual): with |β|∞ the scale
   /// a residual is measured against.
   double forceScale() const { return force_scale_; }
+  /// The residual asked for: tolerance · max(|β|∞, forceScale()) (m/s²).
+  double threshold(double tolerance, double beta_scale) const {
+    return tolerance * std::max({beta_scale, force_scale_, 1e-300});
+  }
 };
 
 }  // namespace filum::constraints

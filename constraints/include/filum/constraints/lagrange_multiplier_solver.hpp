@@ -123,7 +123,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     bool refactored = false; // W changed and was factored again
     bool reassembled = false;  // W was assembled (false: unchanged anchors and directions)
     int inequalities = 0;    // contact rows (normal and friction)
-    int sweeps = 0;          // projected Gauss–Seidel sweeps (with contact rows)
+    int sweeps = 0;          // projected Gauss–Seidel sweeps (with contact rows; smoothing and fallback included)
     double change = 0.0;     // the last sweep's largest W_rr |Δλ_r| (m/s²)
     int newton_iterations = 0;  // Newton iterations (with contact rows, method newton)
     double residual = 0.0;   // Alart–Curnier residual max_r |F_r|/ρ_r of the returned λ (m/s²)
@@ -195,6 +195,12 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// The equality rows solved exactly for the current contact forces (after an iterative solve).
   template <class Delassus>
   void polishEqualities(const ConstraintRows& rows, Delassus& w);
+  /// The equality rows and their block W_BB, factored (once per solve).
+  template <class Delassus>
+  void factorEqualityBlock(const ConstraintRows& rows, Delassus& w);
+  /// λ_B += W_BB⁻¹ (β − Wλ)_B; returns the largest change of a row's acceleration (m/s²).
+  template <class Delassus>
+  double equalityStep(Delassus& w);
   /// λ from the previous call (rows of the same kinds) or from the rows' guesses.
   void warmStart(const ConstraintRows& rows);
   /// Projected Gauss–Seidel sweeps from the current λ, stopping on the Alart–Curnier residual.

@@ -234,6 +234,8 @@ class Scene {
   std::vector<SceneState> substep_start_;  // one per halving depth (sized at init)
   long contact_halvings_ = 0;
   long solve_halvings_ = 0;
+  /// The (sub-)step of length h at halving depth `depth` taken again from its start, as two halves.
+  void redoInHalves(double h, int depth);
   /// Contact solves of the constraint solver that did not converge, since its construction.
   long unconvergedContactSolves() const;
   long layout_revision_ = 0;
