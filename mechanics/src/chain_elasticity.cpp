@@ -31,38 +31,45 @@ double ChainElasticity::segment(const SceneState& s, int i, VecX* forces) const 
   const Vec3 e = (x.row(i + 1) - x.row(i)).transpose();
   const double length = e.norm();
   const Vec3 t = e / length;
-  const Eigen::Quaterniond Ra = chain.orientation(s.q, i), Rb = chain.orientation(s.q, i + 1);
-  const Vec3 da = Ra * Vec3::UnitZ(), db = Rb * Vec3::UnitZ();
-  const Vec3 phi = geometry::rotationLog(Ra.conjugate() * Rb);
-  const Vec3 moment = bending_.cwiseProduct(phi) / l;  // B φ / l
-  const double energy = 0.5 * axial_ / l * (length - l) * (length - l) +
-                        0.25 * shear_ * l * ((da - t).squaredNorm() + (db - t).squaredNorm()) + 0.5 * phi.dot(moment);
+  const Eigen::Quaterniond R = chain.orientation(s.q, i);
+  const Vec3 d3 = R * Vec3::UnitZ();
+  const double energy = 0.5 * axial_ / l * (length - l) * (length - l) + 0.5 * shear_ * l * (d3 - t).squaredNorm();
   if (!forces) return energy;
 
-  // ∂E/∂e: stretching along t; shear through t = e/|e|, ∂t/∂e = (I − t tᵀ)/|e|.
-  const Vec3 dE_dt = -0.5 * shear_ * l * (da + db - 2.0 * t);
-  const Vec3 dE_de = (axial_ / l * (length - l)) * t + (dE_dt - t * t.dot(dE_dt)) / length;
+  // ∂E/∂d3 = κGA l (d3 − t) = g, ∂E/∂t = −g; through t = e/|e|, ∂t/∂e = (I − t tᵀ)/|e|.
+  const Vec3 g = shear_ * l * (d3 - t);
+  const Vec3 dE_de = (axial_ / l * (length - l)) * t - (g - t * t.dot(g)) / length;
   VecX& B = *forces;
   const int a = chain.offset() + i, b = a + 1;
   B.segment<3>(3 * a) += dE_de;  // e = x_b − x_a: Q_a = +∂E/∂e, Q_b = −∂E/∂e
   B.segment<3>(3 * b) -= dE_de;
-  // Torques: shear (∂E/∂d3 = ½ κGA l (d3 − t)), then bend/twist.
-  auto torques = chain.internalVelocities(B);
-  const Vec3 ga = 0.5 * shear_ * l * (da - t), gb = 0.5 * shear_ * l * (db - t);
-  torques.segment<3>(3 * i) -= Vec3::UnitZ().cross(Ra.conjugate() * ga);
-  torques.segment<3>(3 * (i + 1)) -= Vec3::UnitZ().cross(Rb.conjugate() * gb);
-  torques.segment<3>(3 * i) += geometry::leftJacobianInverse(phi).transpose() * moment;
-  torques.segment<3>(3 * (i + 1)) -= geometry::rightJacobianInverse(phi).transpose() * moment;
+  chain.internalVelocities(B).segment<3>(3 * i) -= Vec3::UnitZ().cross(R.conjugate() * g);
+  return energy;
+}
+
+double ChainElasticity::joint(const SceneState& s, int j, VecX* forces) const {
+  const FramedChain& chain = *chain_;
+  const double voronoi = 0.5 * (chain.restLength(j - 1) + chain.restLength(j));
+  const Eigen::Quaterniond Ra = chain.orientation(s.q, j - 1), Rb = chain.orientation(s.q, j);
+  const Vec3 phi = geometry::rotationLog(Ra.conjugate() * Rb);
+  const Vec3 moment = bending_.cwiseProduct(phi) / voronoi;  // B φ / ℓ
+  const double energy = 0.5 * phi.dot(moment);
+  if (!forces) return energy;
+  auto torques = chain.internalVelocities(*forces);
+  torques.segment<3>(3 * (j - 1)) += geometry::leftJacobianInverse(phi).transpose() * moment;
+  torques.segment<3>(3 * j) -= geometry::rightJacobianInverse(phi).transpose() * moment;
   return energy;
 }
 
 void ChainElasticity::addForce(const SceneState& s, VecX& B) const {
-  for (int i = 0; i + 1 < chain_->pointCount(); ++i) segment(s, i, &B);
+  for (int i = 0; i < chain_->segmentCount(); ++i) segment(s, i, &B);
+  for (int j = 1; j < chain_->segmentCount(); ++j) joint(s, j, &B);
 }
 
 double ChainElasticity::potentialEnergy(const SceneState& s) const {
   double energy = 0.0;
-  for (int i = 0; i + 1 < chain_->pointCount(); ++i) energy += segment(s, i, nullptr);
+  for (int i = 0; i < chain_->segmentCount(); ++i) energy += segment(s, i, nullptr);
+  for (int j = 1; j < chain_->segmentCount(); ++j) energy += joint(s, j, nullptr);
   return energy;
 }
 

@@ -1,5 +1,6 @@
 #include "filum/mechanics/framed_chain.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "filum/core/scene_error.hpp"
@@ -11,10 +12,14 @@ namespace filum::mechanics {
 
 namespace {
 
-/// Node i's quaternion in the frames' block of q (4 numbers per node).
-Eigen::Quaterniond quaternionAt(Eigen::Ref<const VecX> q, int node) { return geometry::unpackQuaternion(q.data() + 4 * node); }
+/// Segment i's quaternion in the frames' block of q (4 numbers per segment).
+Eigen::Quaterniond quaternionAt(Eigen::Ref<const VecX> q, int segment) {
+  return geometry::unpackQuaternion(q.data() + 4 * segment);
+}
 
-void store(const Eigen::Quaterniond& r, Eigen::Ref<VecX> q, int node) { geometry::packQuaternion(r, q.data() + 4 * node); }
+void store(const Eigen::Quaterniond& r, Eigen::Ref<VecX> q, int segment) {
+  geometry::packQuaternion(r, q.data() + 4 * segment);
+}
 
 /// The degree-1 B-spline through the nodes, knots at their rest arc lengths (clamped).
 std::unique_ptr<geometry::SplineBasis> polylineBasis(const std::vector<double>& lengths) {
@@ -41,10 +46,16 @@ FramedChain::FramedChain(Points nodes, double radius, double mass)
   for (int i = 0; i < n; ++i) {
     const double share = 0.5 * ((i > 0 ? rest_lengths_[i - 1] : 0.0) + (i + 1 < n ? rest_lengths_[i] : 0.0));
     masses_.push_back(line_density * share);
-    inertia_.push_back(Vec3(rotary * share, rotary * share, 2.0 * rotary * share));
-    const int segment = std::min(i, n - 2);
-    const Vec3 tangent = (nodes_.row(segment + 1) - nodes_.row(segment)).transpose().normalized();
-    initial_frames_.push_back(Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), tangent));
+  }
+  Vec3 previous = Vec3::UnitZ();
+  Eigen::Quaterniond frame = Eigen::Quaterniond::Identity();
+  for (int i = 0; i + 1 < n; ++i) {
+    const double l = rest_lengths_[i];
+    inertia_.push_back(Vec3(rotary * l, rotary * l, 2.0 * rotary * l));
+    const Vec3 tangent = (nodes_.row(i + 1) - nodes_.row(i)).transpose() / l;
+    frame = (Eigen::Quaterniond::FromTwoVectors(previous, tangent) * frame).normalized();  // parallel transport
+    initial_frames_.push_back(frame);
+    previous = tangent;
   }
 }
 
@@ -73,7 +84,7 @@ std::unique_ptr<FramedChain> FramedChain::fromParams(const Params& p) {
   auto chain = std::make_unique<FramedChain>(std::move(nodes), radius, massFromParams(p, radius, length));
   if (p.has("angular_velocities"))
     chain->initial_angular_velocities_ =
-        p.points("angular_velocities", chain->pointCount(), chain->pointCount(), "framed_chain.hpp: one per node");
+        p.points("angular_velocities", chain->segmentCount(), chain->segmentCount(), "framed_chain.hpp: one per segment");
   return chain;
 }
 
@@ -100,58 +111,69 @@ double FramedChain::gravityPotential(const Vec3& g, ConstPointsRef q) const {
 }
 
 void FramedChain::initialInternalState(Eigen::Ref<VecX> q, Eigen::Ref<VecX> v) const {
-  for (int i = 0; i < pointCount(); ++i) store(initial_frames_[i], q, i);
+  for (int i = 0; i < segmentCount(); ++i) store(initial_frames_[i], q, i);
   if (initial_angular_velocities_.rows() == 0)
     v.setZero();
   else
-    for (int i = 0; i < pointCount(); ++i) v.segment<3>(3 * i) = initial_angular_velocities_.row(i).transpose();
+    for (int i = 0; i < segmentCount(); ++i) v.segment<3>(3 * i) = initial_angular_velocities_.row(i).transpose();
 }
 
 void FramedChain::integrateInternal(Eigen::Ref<const VecX> q0, Eigen::Ref<const VecX> w, Eigen::Ref<VecX> q1) const {
-  // R ← R exp(w_i) per node, renormalized (one rounding per product).
-  for (int i = 0; i < pointCount(); ++i)
+  // R ← R exp(w_i) per segment, renormalized (one rounding per product).
+  for (int i = 0; i < segmentCount(); ++i)
     store((quaternionAt(q0, i) * geometry::rotationExp(w.segment<3>(3 * i))).normalized(), q1, i);
 }
 
 void FramedChain::differenceInternal(Eigen::Ref<const VecX> q1, Eigen::Ref<const VecX> q0, Eigen::Ref<VecX> w) const {
-  for (int i = 0; i < pointCount(); ++i)
+  for (int i = 0; i < segmentCount(); ++i)
     w.segment<3>(3 * i) = geometry::rotationLog(quaternionAt(q0, i).conjugate() * quaternionAt(q1, i));
 }
 
 void FramedChain::addInternalForce(const SceneState& s, Eigen::Ref<VecX> B) const {
   // Euler's equations in the body frame: J ω̇ = τ − ω × J ω.
   const auto omega = internalVelocities(s.v);
-  for (int i = 0; i < pointCount(); ++i) {
+  for (int i = 0; i < segmentCount(); ++i) {
     const Vec3 w = omega.segment<3>(3 * i);
     B.segment<3>(3 * i) -= w.cross(inertia_[i].cwiseProduct(w));
   }
 }
 
 void FramedChain::solveInternalMass(Eigen::Ref<VecX> B) const {
-  for (int i = 0; i < pointCount(); ++i) B.segment<3>(3 * i) = B.segment<3>(3 * i).cwiseQuotient(inertia_[i]);
+  for (int i = 0; i < segmentCount(); ++i) B.segment<3>(3 * i) = B.segment<3>(3 * i).cwiseQuotient(inertia_[i]);
 }
 
 void FramedChain::multiplyInternalMass(Eigen::Ref<const VecX> x, Eigen::Ref<VecX> out) const {
-  for (int i = 0; i < pointCount(); ++i) out.segment<3>(3 * i) = inertia_[i].cwiseProduct(x.segment<3>(3 * i));
+  for (int i = 0; i < segmentCount(); ++i) out.segment<3>(3 * i) = inertia_[i].cwiseProduct(x.segment<3>(3 * i));
 }
 
 SparseMatrix FramedChain::refine(const std::vector<double>&) {
   throw SceneError(origin(), "a body whose point count may change (a DynamicSpline) to insert points into",
-                   describe() + ", whose nodes carry frames");
+                   describe() + ", whose segments carry frames");
 }
 
 SparseMatrix FramedChain::coarsen(double, ConstPointsRef, double) {
   throw SceneError(origin(), "a body whose point count may change (a DynamicSpline) to remove points from",
-                   describe() + ", whose nodes carry frames");
+                   describe() + ", whose segments carry frames");
 }
 
 SparseMatrix FramedChain::cut(double) {
   throw SceneError(origin(), "a body whose point count may change (a DynamicSpline) to cut",
-                   describe() + ", whose nodes carry frames");
+                   describe() + ", whose segments carry frames");
 }
 
-Eigen::Quaterniond FramedChain::orientation(const VecX& q, int node) const {
-  return quaternionAt(internalPositions(q), node);
+int FramedChain::segmentAt(double s) const {
+  BasisRow row;
+  basis_->evaluate(s, row);  // degree 1: the support is the segment's two nodes
+  return std::clamp(row.first, 0, segmentCount() - 1);
+}
+
+void FramedChain::addTorque(const SceneState& st, double s, const Vec3& torque, VecX& B) const {
+  const int segment = segmentAt(s);
+  internalVelocities(B).segment<3>(3 * segment) += orientation(st.q, segment).conjugate() * torque;
+}
+
+Eigen::Quaterniond FramedChain::orientation(const VecX& q, int segment) const {
+  return quaternionAt(internalPositions(q), segment);
 }
 
 }  // namespace filum::mechanics

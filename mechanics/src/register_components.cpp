@@ -10,7 +10,9 @@
 #include "filum/mechanics/implicit_euler.hpp"
 #include "filum/mechanics/implicit_midpoint.hpp"
 #include "filum/mechanics/parametric_bending.hpp"
+#include "filum/mechanics/point_load.hpp"
 #include "filum/mechanics/rayleigh_damping.hpp"
+#include "filum/mechanics/rod_end_frame.hpp"
 #include "filum/mechanics/runge_kutta4.hpp"
 #include "filum/mechanics/spring_force_field.hpp"
 #include "filum/mechanics/symplectic_euler.hpp"
@@ -21,7 +23,7 @@ namespace filum::mechanics {
 void register_components(Factory& factory) {
   factory.add("DynamicSpline", "dynamic Lagrangian spline: control points as DOFs, banded mass (paper §3)",
               [](const Params& p) { return DynamicSpline::fromParams(p); });
-  factory.add("FramedChain", "a chain of point masses with a rotation per node (a discrete rod's centre line and frames)",
+  factory.add("FramedChain", "a discrete Cosserat rod: point masses with a material frame per segment (catheters, guidewires)",
               [](const Params& p) { return FramedChain::fromParams(p); });
 
   // Energies and dissipation (each with an analytic Jacobian, for the implicit integrators).
@@ -38,6 +40,10 @@ void register_components(Factory& factory) {
               [](const Params& p) { return CurvatureBending::fromParams(p); });
   factory.add("ChainElasticity", "stretching, shear, bending and twist of a FramedChain (discrete Cosserat rod)",
               [](const Params& p) { return ChainElasticity::fromParams(p); });
+  factory.add("RodEndFrame", "holds an end's material frame of a FramedChain (built-in end: direction and roll)",
+              [](const Params& p) { return RodEndFrame::fromParams(p); });
+  factory.add("PointLoad", "a force (any curve) and a torque (rods with frames) at an abscissa, constant or on a path",
+              [](const Params& p) { return PointLoad::fromParams(p); });
   factory.add("ViscousDamping", "mass-proportional viscous drag Q = -gamma M v",
               [](const Params& p) { return ViscousDamping::fromParams(p); });
   factory.add("RayleighDamping", "stiffness-proportional damping Q = beta K(q) v",

@@ -1,4 +1,4 @@
-// The second body kind through the code the splines use, unchanged (issue 13's acceptance):
+// The second body kind through the code the splines use, unchanged:
 // apps/scenes/framed_chain.json — a FramedChain (points with frames, internal DOFs) held by a
 // FixedPointConstraint, resting on a PlaneObstacle through unilateral contact rows, drawn by a
 // GeneralizedCylinder skin — run by `filum run --meshes` for 0.6 s (settled: the drag's time
@@ -64,7 +64,8 @@ TEST(FramedChainScene, IsHeldRestsOnTheTableAndIsDrawn) {
   EXPECT_GE(x.col(2).minCoeff(), r * (1.0 - 1e-6));
   EXPECT_NEAR(x(20, 2), r, 1e-6 * r);
   // Inextensible at this load: the stretch is at most the whole weight over E A,
-  // ρ A g L / (E A) = 1150 · 9.81 · 0.2 / 3e6 = 7.5e-4.
+  // ρ A g L / (E A) = 1150 · 9.81 · 0.2 / 3e7 = 7.5e-5 (7.5e-4 asserted: the bound of the
+  // softer rod this scene had, still far below any stiffness error).
   double length = 0.0;
   for (int i = 0; i + 1 < 21; ++i) length += (x.row(i + 1) - x.row(i)).norm();
   EXPECT_NEAR(length, 0.2, 0.2 * 7.5e-4);

@@ -1,21 +1,30 @@
-// FramedChain: a chain of point masses, each node with its own rotation — the second body kind of
-// the kernel (issue 13), the prototype of the catheter and guidewire rods (discrete Cosserat
-// rods: Spillmann & Teschner's CoRdE, Bergou et al.'s discrete elastic rods, Gazzola et al.'s
-// Elastica). Node i has a position x_i (a point, m) and an orientation R_i, the rotation from its
-// material frame (d1, d2, d3 = R_i e3 along the rod) to the world: a unit quaternion (w, x, y, z)
-// in q and the body-frame angular velocity ω_i in v (internal DOFs: 4 positions, 3 velocities per
-// node, MechanicalState). Frames move by R ← R exp(h ω) (a right, body-frame increment).
+// FramedChain: a discrete Cosserat rod — a chain of point masses with a material frame on each
+// segment between them (Gazzola et al., "Forward and inverse problems in the mechanics of soft
+// filaments", R. Soc. open sci. 2018; Spillmann & Teschner's CoRdE keeps frames the same way),
+// the second body kind of the kernel and the body of catheters and guidewires. Node i has a
+// position x_i (m); segment i (nodes i, i + 1) has an orientation R_i, the rotation from its
+// material frame (d1, d2, d3 = R_i e3, d3 along the segment) to the world: a unit quaternion
+// (w, x, y, z) in q and the body-frame angular velocity ω_i in v (internal DOFs: 4 positions and
+// 3 velocities per segment, MechanicalState). Frames move by R ← R exp(h ω) (a right, body-frame
+// increment).
+//
+// Why frames on segments and not on nodes: a segment's frame follows its own edge (the shear term
+// d3_i − t_i, ChainElasticity), and bending lives at the nodes between two segments' frames. With
+// a frame per node held to the tangents of both segments around it, a turn θ of the tangent at a
+// node was paid as shear, ≈ κGA l θ²/8, beside the bending ½ EI θ²/l: an effective bending
+// stiffness EI (1 + κ (G/E) l²/r²), 31 times too stiff at l = 10 mm, r = 1 mm (measured on the
+// self-weight elastica before this layout; docs/rods.md).
 //
 // Its centre line is the polyline through the nodes, P(s) = Σ b_i(s) x_i with the degree-1
 // B-spline basis on knots at the nodes' rest arc lengths (s ∈ [0, 1]): a CurveBody, so
 // constraints, contacts, tools and skins act on it through their existing code.
 //
-// Mass, lumped (the rod's ρA and ρI shared half-half by the two nodes of each segment of rest
-// length l_i, ℓ_i = (l_{i−1} + l_i)/2 per node):
-//   m_i = ρ A ℓ_i,   J_i = ρ ℓ_i diag(I, I, 2I),   A = π r², I = π r⁴ / 4,
-// and the frames' own force, Euler's gyroscopic torque −ω_i × J_i ω_i (body frame). Elasticity
-// is a force field, ChainElasticity. Explicit integrators only (internal DOFs); the point count is
-// fixed (refine, coarsen and cut are refused).
+// Mass, lumped: the rod's ρA shared half-half by the two nodes of each segment of rest length
+// l_i (m_i = ρ A ℓ_i, ℓ_i = (l_{i−1} + l_i)/2), and each segment's frame carries the rotary
+// inertia of its own slice, J_i = ρ l_i diag(I, I, 2I) (A = π r², I = π r⁴ / 4), with Euler's
+// gyroscopic torque −ω_i × J_i ω_i (body frame). Elasticity is a force field, ChainElasticity.
+// Explicit integrators only (internal DOFs); the point count is fixed (refine, coarsen and cut
+// are refused).
 #pragma once
 
 #include <memory>
@@ -32,13 +41,15 @@ namespace filum::mechanics {
 class FramedChain final : public CurveBody {
  public:
   /// nodes: n >= 2 positions (m); radius (m) > 0; mass: total (kg) > 0. Frames start with d3
-  /// along the chain (at each node, along its first segment; the last node, along its last) by
-  /// the shortest turn from e3, so that a straight chain starts untwisted.
+  /// along their segments: the first by the shortest turn from e3, each next one parallel
+  /// transported from the one before (the shortest turn from the segment's tangent to the
+  /// next's), so that the chain starts untwisted whatever its shape.
   FramedChain(Points nodes, double radius, double mass);
 
   /// "nodes": {"from": [..], "to": [..], "count": n} (equally spaced) or [[x,y,z], ...];
   /// "radius": m (default 1e-3); "mass": kg or "density": kg/m³;
-  /// "angular_velocities": [[ωx,ωy,ωz], ...] one per node, body frame (rad/s; default at rest).
+  /// "angular_velocities": [[ωx,ωy,ωz], ...] one per segment (n − 1), body frame (rad/s;
+  /// default at rest).
   static std::unique_ptr<FramedChain> fromParams(const Params& p);
 
   std::string typeName() const override { return "FramedChain"; }
@@ -54,8 +65,8 @@ class FramedChain final : public CurveBody {
   double gravityPotential(const Vec3& g, ConstPointsRef q) const override;
 
   // Frames: internal DOFs.
-  int internalPositionCount() const override { return 4 * pointCount(); }
-  int internalVelocityCount() const override { return 3 * pointCount(); }
+  int internalPositionCount() const override { return 4 * segmentCount(); }
+  int internalVelocityCount() const override { return 3 * segmentCount(); }
   void initialInternalState(Eigen::Ref<VecX> q, Eigen::Ref<VecX> v) const override;
   void integrateInternal(Eigen::Ref<const VecX> q0, Eigen::Ref<const VecX> w, Eigen::Ref<VecX> q1) const override;
   void differenceInternal(Eigen::Ref<const VecX> q1, Eigen::Ref<const VecX> q0, Eigen::Ref<VecX> w) const override;
@@ -67,15 +78,24 @@ class FramedChain final : public CurveBody {
   const CurveBasis& basis() const override { return *basis_; }
   double radius() const override { return radius_; }
   double mass() const override { return mass_; }
+  bool takesTorques() const override { return true; }
+  /// On the frame of the segment holding s (body frame: Q_ω += Rᵀ τ).
+  void addTorque(const SceneState& st, double s, const Vec3& torque, VecX& B) const override;
+  /// The segment holding s ∈ [0, 1] (the last one at s = 1).
+  int segmentAt(double s) const;
   SparseMatrix refine(const std::vector<double>& abscissas) override;
   SparseMatrix coarsen(double abscissa, ConstPointsRef q, double tolerance) override;
   SparseMatrix cut(double abscissa) override;
 
-  /// Node i's orientation in the state's q (the internal block), as a unit quaternion.
-  Eigen::Quaterniond orientation(const VecX& q, int node) const;
-  /// Rest length of segment i (m) and the node's inertia diagonal diag(ρℓI, ρℓI, 2ρℓI) (kg m²).
+  /// Segments (n − 1), each with a frame.
+  int segmentCount() const { return pointCount() - 1; }
+  /// Segment i's orientation in the state's q (the internal block), as a unit quaternion.
+  Eigen::Quaterniond orientation(const VecX& q, int segment) const;
+  /// Rest length of segment i (m); the segment's inertia diagonal diag(ρlI, ρlI, 2ρlI) (kg m²).
   double restLength(int segment) const { return rest_lengths_[segment]; }
-  const Vec3& nodeInertia(int node) const { return inertia_[node]; }
+  const Vec3& segmentInertia(int segment) const { return inertia_[segment]; }
+  /// Segment i's frame in the initial state (parallel transported along the initial nodes).
+  const Eigen::Quaterniond& initialFrame(int segment) const { return initial_frames_[segment]; }
   double nodeMass(int node) const { return masses_[node]; }
 
  private:
@@ -83,9 +103,9 @@ class FramedChain final : public CurveBody {
   double radius_, mass_;
   std::unique_ptr<geometry::SplineBasis> basis_;
   std::vector<double> rest_lengths_, masses_;
-  std::vector<Vec3> inertia_;
-  std::vector<Eigen::Quaterniond> initial_frames_;
-  Points initial_angular_velocities_;  // n × 3 (body frame), empty: at rest
+  std::vector<Vec3> inertia_;                  // per segment
+  std::vector<Eigen::Quaterniond> initial_frames_;  // per segment
+  Points initial_angular_velocities_;  // (n − 1) × 3 (body frame), empty: at rest
 };
 
 }  // namespace filum::mechanics

@@ -33,6 +33,13 @@ class CurveBody : public MechanicalState {
   const CurveBody* curve() const override { return this; }
   CurveBody* curve() override { return this; }
 
+  /// Whether the body carries material frames that take torques (a rod with frames); a spline's
+  /// control points take forces only.
+  virtual bool takesTorques() const { return false; }
+  /// B += the generalized force of a torque τ (N·m, world frame) on the body's material at s
+  /// in state st (on the frame that holds s). Only for takesTorques(); others add nothing.
+  virtual void addTorque(const SceneState& /*st*/, double /*s*/, const Vec3& /*torque*/, VecX& /*B*/) const {}
+
   /// Inserts control points without changing the curve (knots at the abscissas s ∈ (0, 1),
   /// exact B-spline knot insertion — the refinement step of adaptive NUBS): the body's model
   /// (basis, rest shape, mass) takes the new points. Returns A (ñ × n) such that the new points
