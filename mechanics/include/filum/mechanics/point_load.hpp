@@ -41,6 +41,12 @@ class PointLoad final : public ForceField {
   std::string typeName() const override { return "PointLoad"; }
   void addForce(const SceneState& s, VecX& B) const override;
   double potentialEnergy(const SceneState& s) const override;
+  /// The force does not depend on the configuration (a fixed direction at a material point):
+  /// ∂Q/∂q = 0, ∂Q/∂q̇ = 0, nothing to add. (A torque on a frame, Rᵀτ, does depend on R, but
+  /// bodies with frames take explicit steps only.)
+  void addJacobian(const SceneState&, double, double, JacobianAccumulator&) const override {}
+  bool hasJacobian() const override { return true; }
+  bool jacobianIsConstant() const override { return true; }
 
   /// The force and the torque at time t (linear between keyframes).
   Keyframe loadAt(double t) const;
