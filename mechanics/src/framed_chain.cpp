@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/nonuniform_bspline.hpp"
@@ -32,27 +33,53 @@ std::unique_ptr<geometry::SplineBasis> polylineBasis(const std::vector<double>& 
 
 }  // namespace
 
+namespace {
+
+/// Rest lengths of the segments between consecutive nodes.
+std::vector<double> segmentLengths(const Points& nodes) {
+  std::vector<double> lengths;
+  for (Eigen::Index i = 0; i + 1 < nodes.rows(); ++i) lengths.push_back((nodes.row(i + 1) - nodes.row(i)).norm());
+  return lengths;
+}
+
+double total(const std::vector<double>& values) {
+  double sum = 0.0;
+  for (const double v : values) sum += v;
+  return sum;
+}
+
+}  // namespace
+
 FramedChain::FramedChain(Points nodes, double radius, double mass)
-    : nodes_(std::move(nodes)), radius_(radius), mass_(mass) {
+    : FramedChain(nodes, radius,
+                  std::vector<Section>(std::max<Eigen::Index>(nodes.rows() - 1, 0),
+                                       {radius, mass / (std::numbers::pi * radius * radius * total(segmentLengths(nodes)))})) {}
+
+FramedChain::FramedChain(Points nodes, double radius, std::vector<Section> sections)
+    : nodes_(std::move(nodes)), radius_(radius), sections_(std::move(sections)) {
   const int n = pointCount();
-  double length = 0.0;
-  for (int i = 0; i + 1 < n; ++i) {
-    rest_lengths_.push_back((nodes_.row(i + 1) - nodes_.row(i)).norm());
-    length += rest_lengths_.back();
-  }
+  rest_lengths_ = segmentLengths(nodes_);
+  const double length = total(rest_lengths_);
   basis_ = polylineBasis(rest_lengths_);
-  // ρA = m / L per unit length; ρI = ρA r²/4 (I/A = r²/4 for a disc).
-  const double line_density = mass_ / length, rotary = line_density * radius_ * radius_ / 4.0;
-  for (int i = 0; i < n; ++i) {
-    const double share = 0.5 * ((i > 0 ? rest_lengths_[i - 1] : 0.0) + (i + 1 < n ? rest_lengths_[i] : 0.0));
-    masses_.push_back(line_density * share);
+  // Per segment: ρA l shared half-half by its nodes; rotary inertia ρ l diag(I, I, 2I), I = π r⁴/4.
+  masses_.assign(n, 0.0);
+  mass_ = 0.0;
+  double arc = 0.0;
+  node_abscissas_.push_back(0.0);
+  for (int i = 0; i + 1 < n; ++i) {
+    const double l = rest_lengths_[i], r = sections_[i].radius, area = std::numbers::pi * r * r;
+    const double segment_mass = sections_[i].density * area * l, second = area * r * r / 4.0;
+    masses_[i] += 0.5 * segment_mass;
+    masses_[i + 1] += 0.5 * segment_mass;
+    mass_ += segment_mass;
+    inertia_.push_back(sections_[i].density * l * Vec3(second, second, 2.0 * second));
+    node_abscissas_.push_back((arc += l) / length);
   }
+  node_abscissas_.back() = 1.0;
   Vec3 previous = Vec3::UnitZ();
   Eigen::Quaterniond frame = Eigen::Quaterniond::Identity();
   for (int i = 0; i + 1 < n; ++i) {
-    const double l = rest_lengths_[i];
-    inertia_.push_back(Vec3(rotary * l, rotary * l, 2.0 * rotary * l));
-    const Vec3 tangent = (nodes_.row(i + 1) - nodes_.row(i)).transpose() / l;
+    const Vec3 tangent = (nodes_.row(i + 1) - nodes_.row(i)).transpose() / rest_lengths_[i];
     frame = (Eigen::Quaterniond::FromTwoVectors(previous, tangent) * frame).normalized();  // parallel transport
     initial_frames_.push_back(frame);
     previous = tangent;
@@ -81,7 +108,25 @@ std::unique_ptr<FramedChain> FramedChain::fromParams(const Params& p) {
   const double radius = p.positive("radius", 1e-3);
   double length = 0.0;
   for (Eigen::Index i = 1; i < nodes.rows(); ++i) length += (nodes.row(i) - nodes.row(i - 1)).norm();
-  auto chain = std::make_unique<FramedChain>(std::move(nodes), radius, massFromParams(p, radius, length));
+  std::unique_ptr<FramedChain> chain;
+  if (!p.has("spans")) {
+    chain = std::make_unique<FramedChain>(std::move(nodes), radius, massFromParams(p, radius, length));
+  } else {
+    if (p.has("mass")) p.fail("mass", "a 'density' (kg/m³) with 'spans' (each span may change it), not a total mass");
+    const double density = p.positive("density");
+    const std::vector<double> lengths = segmentLengths(nodes);
+    std::vector<Section> sections(lengths.size(), {radius, density});
+    for (const Params& span : p.objects("spans")) {
+      const double from = span.abscissa("from"), to = span.abscissa("to");
+      if (!(to > from)) span.fail("to", "an abscissa above 'from' (" + std::to_string(from) + ")", std::to_string(to));
+      const double r = span.positive("radius", radius), rho = span.positive("density", density);
+      span.finish();
+      double arc = 0.0;
+      for (std::size_t i = 0; i < lengths.size(); arc += lengths[i], ++i)
+        if (const double middle = (arc + lengths[i] / 2.0) / length; middle >= from && middle <= to) sections[i] = {r, rho};
+    }
+    chain = std::make_unique<FramedChain>(std::move(nodes), radius, std::move(sections));
+  }
   if (p.has("angular_velocities"))
     chain->initial_angular_velocities_ =
         p.points("angular_velocities", chain->segmentCount(), chain->segmentCount(), "framed_chain.hpp: one per segment");

@@ -8,16 +8,45 @@
 
 namespace filum::mechanics {
 
+namespace {
+
+/// "direction" (optional, normalized) and "roll" of p.
+RodEndFrame::Keyframe poseFromParams(const Params& p) {
+  RodEndFrame::Keyframe k;
+  if (p.has("direction")) {
+    const Vec3 d = p.vec3("direction");
+    if (!(d.norm() > 0.0)) p.fail("direction", "a non-zero direction");
+    k.direction = d.normalized();
+  }
+  k.roll = p.number("roll", 0.0);
+  return k;
+}
+
+}  // namespace
+
 std::unique_ptr<RodEndFrame> RodEndFrame::fromParams(const Params& p) {
   const std::string end = p.string("end", "start");
   if (end != "start" && end != "end") p.fail("end", "\"start\" or \"end\"", "\"" + end + "\"");
-  std::optional<Vec3> direction;
-  if (p.has("direction")) {
-    direction = p.vec3("direction");
-    if (!(direction->norm() > 0.0)) p.fail("direction", "a non-zero direction");
-    direction->normalize();
+  std::vector<Keyframe> keyframes;
+  if (p.has("path")) {
+    if (p.has("direction") || p.has("roll")) p.fail("path", "either a 'path' or a fixed 'direction'/'roll', not both");
+    for (const Params& key : p.objects("path")) {
+      Keyframe k = poseFromParams(key);
+      if (!key.has("time")) key.fail("time", "the keyframe's time (s)");
+      k.time = key.nonNegative("time", 0.0);
+      if (!keyframes.empty() && k.time <= keyframes.back().time)
+        key.fail("time", "a time later than the keyframe before (" + std::to_string(keyframes.back().time) + " s)",
+                 std::to_string(k.time));
+      if (!keyframes.empty() && k.direction.has_value() != keyframes.front().direction.has_value())
+        key.fail("direction", "a direction in every keyframe or in none");
+      key.finish();
+      keyframes.push_back(k);
+    }
+    if (keyframes.empty()) p.fail("path", "at least one keyframe {\"time\", \"direction\", \"roll\"}", "an empty list");
+  } else {
+    keyframes.push_back(poseFromParams(p));
   }
-  return std::make_unique<RodEndFrame>(end == "start" ? End::kStart : End::kFinish, direction, p.number("roll", 0.0));
+  return std::make_unique<RodEndFrame>(end == "start" ? End::kStart : End::kFinish, std::move(keyframes));
 }
 
 void RodEndFrame::init(const Scene& scene) {
@@ -33,28 +62,50 @@ void RodEndFrame::init(const Scene& scene) {
                      "a ChainElasticity on " + body().describe() +
                          " listed before this component (the rod's bending and twist stiffness)",
                      "none");
-  const int segment = end_ == End::kStart ? 0 : chain_->segmentCount() - 1;
-  stiffness_ = elasticity->bendingTwistingStiffness() / (0.5 * chain_->restLength(segment));
-  const Eigen::Quaterniond initial = chain_->initialFrame(segment);
-  const Vec3 tangent = initial * Vec3::UnitZ(), d = direction_.value_or(tangent);
-  held_ = (Eigen::Quaterniond(Eigen::AngleAxisd(roll_, d)) * Eigen::Quaterniond::FromTwoVectors(tangent, d) * initial)
-              .normalized();
+  const bool start = end_ == End::kStart;
+  segment_ = start ? 0 : chain_->segmentCount() - 1;
+  const double half = 0.5 * chain_->restLength(segment_), length = chain_->restLength(segment_) /
+                                                                        (chain_->nodeAbscissa(segment_ + 1) - chain_->nodeAbscissa(segment_));
+  stiffness_ = elasticity->bendingTwistingStiffness(segment_) / half;
+  rest_ = elasticity->restFromInitial() ? Vec3::Zero()
+                                        : (start ? elasticity->restTurn(0.0, half) : elasticity->restTurn(length - half, length));
+  initial_ = chain_->initialFrame(segment_);
+}
+
+std::pair<Vec3, double> RodEndFrame::poseAt(double t) const {
+  const Vec3 tangent = initial_ * Vec3::UnitZ();
+  const auto pose = [&](const Keyframe& k) { return std::pair<Vec3, double>{k.direction.value_or(tangent), k.roll}; };
+  if (t <= keyframes_.front().time) return pose(keyframes_.front());
+  if (t >= keyframes_.back().time) return pose(keyframes_.back());
+  std::size_t k = 1;
+  while (keyframes_[k].time < t) ++k;
+  const auto [da, ra] = pose(keyframes_[k - 1]);
+  const auto [db, rb] = pose(keyframes_[k]);
+  const double u = (t - keyframes_[k - 1].time) / (keyframes_[k].time - keyframes_[k - 1].time);
+  const Vec3 d = (1.0 - u) * da + u * db;
+  return {d.norm() > 0.0 ? Vec3(d.normalized()) : db, (1.0 - u) * ra + u * rb};
+}
+
+Eigen::Quaterniond RodEndFrame::heldFrame(double t) const {
+  const auto [d, roll] = poseAt(t);
+  return (Eigen::Quaterniond(Eigen::AngleAxisd(roll, d)) *
+          Eigen::Quaterniond::FromTwoVectors(initial_ * Vec3::UnitZ(), d) * initial_)
+      .normalized();
 }
 
 double RodEndFrame::term(const SceneState& s, VecX* forces) const {
   const bool start = end_ == End::kStart;
-  const int segment = start ? 0 : chain_->segmentCount() - 1;
-  const Eigen::Quaterniond R = chain_->orientation(s.q, segment);
-  const Vec3 phi = geometry::rotationLog(start ? held_.conjugate() * R : R.conjugate() * held_);
-  const Vec3 moment = stiffness_.cwiseProduct(phi);  // B φ / ℓ
+  const Eigen::Quaterniond R = chain_->orientation(s.q, segment_), held = heldFrame(s.time);
+  const Vec3 phi = geometry::rotationLog(start ? held.conjugate() * R : R.conjugate() * held);
+  const Vec3 moment = stiffness_.cwiseProduct(phi - rest_);  // m = B (φ − φ̄) / ℓ
   if (forces) {
-    auto torque = chain_->internalVelocities(*forces).segment<3>(3 * segment);
+    auto torque = chain_->internalVelocities(*forces).segment<3>(3 * segment_);
     if (start)
       torque -= geometry::rightJacobianInverse(phi).transpose() * moment;
     else
       torque += geometry::leftJacobianInverse(phi).transpose() * moment;
   }
-  return 0.5 * phi.dot(moment);
+  return 0.5 * (phi - rest_).dot(moment);
 }
 
 void RodEndFrame::addForce(const SceneState& s, VecX& B) const { term(s, &B); }

@@ -108,7 +108,7 @@ TEST(FramedChain, TwistOscillatesAtTheTorsionalFrequency) {
   auto probe = load(chainScene(3, 1e-7, 1e-7));
   const FramedChain& chain0 = chainOf(*probe);
   const double l = chain0.restLength(0), J3 = chain0.segmentInertia(0).z();
-  const double Omega = std::sqrt(2.0 * elasticityOf(*probe).bendingTwistingStiffness().z() / (l * J3));
+  const double Omega = std::sqrt(2.0 * elasticityOf(*probe).bendingTwistingStiffness(0).z() / (l * J3));
   const double T = 1.2 / Omega, dt = T / 1200.0;
   auto scene = load(chainScene(3, dt, T, "RungeKutta4", {{0, 0, -w}, {0, 0, w}}));
   for (int k = 0; k < 1200; ++k) ASSERT_TRUE(scene->step().ok);

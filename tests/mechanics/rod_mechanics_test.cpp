@@ -4,13 +4,8 @@
 // solutions of Kirchhoff's equations, support/elastica_shooting.hpp), torsion and the first
 // bending frequency.
 //
-// Statics: the equilibrium of the discrete rod is found here by Newton's method on its
-// generalized forces (the body's gravity and every force field's addForce, as the scene sums
-// them), with a central-difference Jacobian over the velocity-space increments (points moved,
-// frames turned by R ← R exp(δ) through Scene::integratePositions) and the load applied in
-// steps from the straight rod. The clamp: node 0's position is removed from the unknowns (a
-// FixedPointConstraint holds it in a running scene) and RodEndFrame holds the frame. The Jacobian
-// only steers Newton; the residual is the code's own force, converged to round-off.
+// Statics: the equilibrium of the discrete rod is found by Newton's method on its generalized
+// forces, node 0 held (support/rod_statics.hpp); RodEndFrame holds the frame at the clamp.
 //
 // Material, real: a polymer catheter-like rod, r = 1 mm, L = 0.2 m, ρ = 1100 kg/m³, ν = 0.5, with
 // E set from the load parameter Γ = ρ A g L³ / (E I) the measurements used (Γ = 5:
@@ -28,12 +23,15 @@
 #include "filum/mechanics/chain_elasticity.hpp"
 #include "filum/mechanics/framed_chain.hpp"
 #include "support/elastica_shooting.hpp"
+#include "support/rod_statics.hpp"
 
 namespace filum {
 namespace {
 
 using nlohmann::json;
 using mechanics::FramedChain;
+using test::equilibrium;
+using test::rodForces;
 
 constexpr double kLength = 0.2, kRadius = 1e-3, kDensity = 1100.0, kGravity = 9.81;
 constexpr double kArea = std::numbers::pi * kRadius * kRadius, kSecond = kArea * kRadius * kRadius / 4.0;
@@ -73,59 +71,6 @@ std::unique_ptr<Scene> rodScene(const RodCase& c) {
   auto scene = loadScene(document, "rod mechanics test", app::makeFactory());
   scene->init();
   return scene;
-}
-
-/// The generalized forces at s (points and frames, velocity layout), the loads scaled by load.
-VecX forces(const Scene& scene, const SceneState& s, double load) {
-  VecX elastic = VecX::Zero(scene.velocitySize()), loads = VecX::Zero(scene.velocitySize());
-  for (const MechanicalState* body : scene.bodies()) body->addGravity(scene.settings().gravity, body->block(loads));
-  for (const ForceField* field : scene.forceFields()) field->addForce(s, field->typeName() == "PointLoad" ? loads : elastic);
-  return elastic + load * loads;
-}
-
-/// The clamped rod's equilibrium under its loads, reached in `increments` load steps by Newton
-/// (node 0 held: its three coordinates are not unknowns). Fails the test if Newton stalls.
-SceneState equilibrium(const Scene& scene, int increments) {
-  SceneState s = scene.state();
-  const int n = scene.velocitySize(), free = n - 3;
-  const auto reduced = [&](const SceneState& at, double load) { return VecX(forces(scene, at, load).tail(free)); };
-  const auto moved = [&](const SceneState& at, const VecX& w_free, double h) {
-    VecX w = VecX::Zero(n);
-    w.tail(free) = w_free;
-    SceneState out = at;
-    scene.integratePositions(at.q, w, h, out.q);
-    return out;
-  };
-  for (int step = 1; step <= increments; ++step) {
-    const double load = double(step) / increments;
-    double residual = reduced(s, load).cwiseAbs().maxCoeff();
-    int iteration = 0;
-    for (; iteration < 60; ++iteration) {
-      // J = ∂F/∂w by central differences, h = 1e-8 (m or rad): truncation h² |F'''| and round-off
-      // ε |F| / h both far below what Newton needs (it only steers; the residual is exact).
-      MatX J(free, free);
-      const double h = 1e-8;
-      for (int k = 0; k < free; ++k) {
-        VecX e = VecX::Zero(free);
-        e[k] = 1.0;
-        J.col(k) = (reduced(moved(s, e, h), load) - reduced(moved(s, e, -h), load)) / (2.0 * h);
-      }
-      const VecX F = reduced(s, load);
-      const VecX dw = J.partialPivLu().solve(-F);
-      // Full Newton steps, as finite-element codes take them on geometrically nonlinear beams
-      // (Crisfield, Non-linear finite element analysis of solids and structures, §9): the first
-      // step of a load increment stretches the turned segments by l θ²/2, which raises |F| and
-      // the energy (E A ≫ the loads) and which the next step removes; a line search on either
-      // would stall there.
-      s = moved(s, dw, 1.0);
-      residual = reduced(s, load).cwiseAbs().maxCoeff();
-      // Converged when the update is at the round-off of positions (1e-13 of the rod's length)
-      // and of angles (1e-13 rad).
-      if (dw.cwiseAbs().maxCoeff() < 1e-13) break;
-    }
-    EXPECT_LT(iteration, 60) << "Newton stalled at load step " << step << ", residual " << residual;
-  }
-  return s;
 }
 
 Vec3 tipOf(const Scene& scene, const SceneState& s) {
@@ -240,7 +185,7 @@ TEST(RodMechanics, FirstBendingFrequencyIsEulerBernoullis) {
     SceneState plus = s, minus = s;
     scene->integratePositions(s.q, w, h, plus.q);
     scene->integratePositions(s.q, w, -h, minus.q);
-    K.col(k) = -(forces(*scene, plus, 1.0) - forces(*scene, minus, 1.0)).tail(free) / (2.0 * h);
+    K.col(k) = -(rodForces(*scene, plus, 1.0) - rodForces(*scene, minus, 1.0)).tail(free) / (2.0 * h);
   }
   K = 0.5 * (K + K.transpose()).eval();  // symmetric to the differences' round-off
   const auto& chain = dynamic_cast<const FramedChain&>(*scene->bodies().front());

@@ -45,11 +45,20 @@ class FramedChain final : public CurveBody {
   /// transported from the one before (the shortest turn from the segment's tangent to the
   /// next's), so that the chain starts untwisted whatever its shape.
   FramedChain(Points nodes, double radius, double mass);
+  /// A rod whose cross-section changes along it: each segment's radius (m) and density (kg/m³)
+  /// (a stiff shaft and a soft, thin tip); `radius` is the body's radius for collision and skins.
+  struct Section {
+    double radius;
+    double density;
+  };
+  FramedChain(Points nodes, double radius, std::vector<Section> sections);
 
   /// "nodes": {"from": [..], "to": [..], "count": n} (equally spaced) or [[x,y,z], ...];
   /// "radius": m (default 1e-3); "mass": kg or "density": kg/m³;
   /// "angular_velocities": [[ωx,ωy,ωz], ...] one per segment (n − 1), body frame (rad/s;
-  /// default at rest).
+  /// default at rest); "spans": [{"from": s0, "to": s1, "radius": m, "density": kg/m³}, ...]
+  /// (with "density", not "mass"): the cross-section of the segments whose middle lies in
+  /// [s0, s1] (later spans win), the rest keeps "radius" and "density".
   static std::unique_ptr<FramedChain> fromParams(const Params& p);
 
   std::string typeName() const override { return "FramedChain"; }
@@ -97,12 +106,17 @@ class FramedChain final : public CurveBody {
   /// Segment i's frame in the initial state (parallel transported along the initial nodes).
   const Eigen::Quaterniond& initialFrame(int segment) const { return initial_frames_[segment]; }
   double nodeMass(int node) const { return masses_[node]; }
+  /// Segment i's cross-section radius (m).
+  double segmentRadius(int segment) const { return sections_[segment].radius; }
+  /// Node i's abscissa s ∈ [0, 1] (its rest arc length over the rod's).
+  double nodeAbscissa(int node) const { return node_abscissas_[node]; }
 
  private:
   Points nodes_;
   double radius_, mass_;
   std::unique_ptr<geometry::SplineBasis> basis_;
-  std::vector<double> rest_lengths_, masses_;
+  std::vector<double> rest_lengths_, masses_, node_abscissas_;
+  std::vector<Section> sections_;  // per segment
   std::vector<Vec3> inertia_;                  // per segment
   std::vector<Eigen::Quaterniond> initial_frames_;  // per segment
   Points initial_angular_velocities_;  // (n − 1) × 3 (body frame), empty: at rest
