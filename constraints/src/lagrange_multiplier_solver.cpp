@@ -817,6 +817,8 @@ void LagrangeMultiplierSolver::scatterForces(const Scene& scene, const Constrain
   const int n3 = 3 * scene.dofPointCount();
   force_.setZero(n3);
   for (int r = 0; r < rows.rows(); ++r) rows.addTransposed(r, lambda_[r], force_);
+  // Internal DOFs coupled to the points by A (a rod's frames under an implicit step) follow too.
+  inverse.addInternalResponse(force_, a);
   if (inverse.coupled()) {
     inverse.solveAll(force_);
     a.head(n3) += force_;
@@ -961,6 +963,11 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
         const int size = 3 * body.pointCount();
         a.segment(3 * body.offset(), size) += lambda_[r] * col.y.segment(col.starts[seg], size);
       }
+    }
+    if (scene.hasInternalDofs()) {  // the internal DOFs' part of A⁻¹ Lᵀ λ (a rod's frames)
+      force_.setZero(3 * scene.dofPointCount());
+      for (int r = 0; r < c; ++r) rows.addTransposed(r, lambda_[r], force_);
+      inverse.addInternalResponse(force_, a);
     }
   } else {
     scatterForces(scene, rows, inverse, a);

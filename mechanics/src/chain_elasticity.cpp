@@ -137,6 +137,44 @@ double ChainElasticity::joint(const SceneState& s, int j, VecX* forces) const {
   return energy;
 }
 
+void ChainElasticity::addJacobian(const SceneState& s, double k_factor, double, JacobianAccumulator& out) const {
+  if (k_factor == 0.0) return;
+  const FramedChain& chain = *chain_;
+  const ConstPointsMap x = chain.block(s.q);
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  for (int i = 0; i < chain.segmentCount(); ++i) {
+    const double l = chain.restLength(i), ks = shear_[i] * l;
+    const Vec3 e = (x.row(i + 1) - x.row(i)).transpose();
+    const double r = e.norm();
+    const Vec3 t = e / r;
+    const Eigen::Quaterniond R = chain.orientation(s.q, i);
+    const Vec3 d3 = R * Vec3::UnitZ(), tb = R.conjugate() * t, pd = d3 - t * t.dot(d3);
+    const Eigen::Matrix3d P = I - t * t.transpose();
+    const Eigen::Matrix3d Hee = axial_[i] / l * (t * t.transpose() + (1.0 - l / r) * P) +
+                                ks / (r * r) * (pd * t.transpose() + t * pd.transpose() + t.dot(d3) * P);
+    const Eigen::Matrix3d Hed = ks / r * P * R.toRotationMatrix() * geometry::skew(Vec3::UnitZ());
+    const Eigen::Matrix3d Hdd =
+        ks * (tb.z() * I - 0.5 * (tb * Vec3::UnitZ().transpose() + Vec3::UnitZ() * tb.transpose()));
+    // k · K = −k · H over (x_a, x_b, δ): H_aa = H_bb = H_ee, H_ab = −H_ee, H_bδ = H_eδ, H_aδ = −H_eδ.
+    const int a = chain.offset() + i, b = a + 1, f = chain.internalGroup(i);
+    out.addBlock(a, a, -k_factor * Hee);
+    out.addBlock(b, b, -k_factor * Hee);
+    out.addBlockPair(b, a, k_factor * Hee);
+    out.addBlock(f, f, -k_factor * Hdd);
+    out.addBlockPair(b, f, -k_factor * Hed);
+    out.addBlockPair(a, f, k_factor * Hed);
+  }
+  for (int j = 1; j < chain.segmentCount(); ++j) {
+    const Vec3 phi = geometry::rotationLog(chain.orientation(s.q, j - 1).conjugate() * chain.orientation(s.q, j));
+    const Eigen::Matrix3d Jl = geometry::leftJacobianInverse(phi), Jr = geometry::rightJacobianInverse(phi);
+    const Eigen::Matrix3d B = joint_bending_[j].asDiagonal();
+    const int ga = chain.internalGroup(j - 1), gb = chain.internalGroup(j);
+    out.addBlock(ga, ga, -k_factor * (Jl.transpose() * B * Jl));
+    out.addBlock(gb, gb, -k_factor * (Jr.transpose() * B * Jr));
+    out.addBlockPair(ga, gb, k_factor * (Jl.transpose() * B * Jr));
+  }
+}
+
 void ChainElasticity::addForce(const SceneState& s, VecX& B) const {
   for (int i = 0; i < chain_->segmentCount(); ++i) segment(s, i, &B);
   for (int j = 1; j < chain_->segmentCount(); ++j) joint(s, j, &B);

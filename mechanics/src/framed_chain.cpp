@@ -187,6 +187,11 @@ void FramedChain::solveInternalMass(Eigen::Ref<VecX> B) const {
   for (int i = 0; i < segmentCount(); ++i) B.segment<3>(3 * i) = B.segment<3>(3 * i).cwiseQuotient(inertia_[i]);
 }
 
+void FramedChain::addInternalMassMatrix(double factor, JacobianAccumulator& out) const {
+  for (int i = 0; i < segmentCount(); ++i)
+    out.addBlock(internalGroup(i), internalGroup(i), Eigen::Matrix3d((factor * inertia_[i]).asDiagonal()));
+}
+
 void FramedChain::multiplyInternalMass(Eigen::Ref<const VecX> x, Eigen::Ref<VecX> out) const {
   for (int i = 0; i < segmentCount(); ++i) out.segment<3>(3 * i) = inertia_[i].cwiseProduct(x.segment<3>(3 * i));
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "filum/core/collision_pipeline.hpp"
+#include "filum/core/curve_body.hpp"
 #include "filum/core/scene.hpp"
 
 namespace filum::mechanics {
@@ -68,12 +69,13 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
   // a holds the 3N point accelerations, then those of the constraints' extra DOFs (a sliding
   // point's s̈): these follow from the constrained point accelerations (Scene::applyConstraints,
   // stage 3d), so the Newton system and its convergence test are on the points only.
-  const Eigen::Index size = scene.velocitySize();  // = s0.q.size(): no internal DOFs under implicit steps (Scene::init)
+  const Eigen::Index size = scene.velocitySize();  // points, extra DOFs, internal DOFs
   const Eigen::Index n3 = 3 * scene.dofPointCount();
-  a.setZero(size);  // a_0 = 0: the first iterate evaluates forces at (q0 + θh v0, v0)
+  a.setZero(size);  // a_0 = 0: the first iterate evaluates forces at (q0 ⊕ θh v0, v0)
   eval_.time = s0.time + theta * h;
   eval_.steps = s0.steps;
   ma_.resize(n3);
+  if (scene.hasInternalDofs()) internal_ma_.setZero(size);
   const double gravity = scene.settings().gravity.norm();
   const bool fixed_count = settings_.max_iterations == 1 || (!settings_.linearized && settings_.tolerance == 0.0);
   // ℓ: the extent of the scene (largest side of the points' bounding box), the length scale of
@@ -91,7 +93,10 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
     // Residual r = Q(q, v) − M a at the iterate. At a_0 = 0 (M a_0 = 0) after a stale attempt:
     // Q(q0 + θh v0, v0), which that attempt evaluated and kept.
     if (k == 0 && first_force_known) {
-      eval_.q = s0.q + (theta * h) * s0.v;
+      if (scene.hasInternalDofs())
+        scene.integratePositions(s0.q, s0.v, theta * h, eval_.q);
+      else
+        eval_.q = s0.q + (theta * h) * s0.v;
       eval_.v = s0.v;
       force_ = first_force_;
     } else {
@@ -115,7 +120,7 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
     const bool estimate = settings_.linearized && k == 1;
     if (estimate) residual_ = force_;
     if (!update(scene, s0, a, k)) return Attempt::kFailed;
-    double change = (next_ - a).head(n3).lpNorm<Eigen::Infinity>();
+    double change = this->change(scene, next_, a);
     if (estimate) {
       // The error estimate of the linearized step a_1 (one chord iteration): a_1 is accepted as
       // it is when small enough; else this iteration becomes a Newton one from a_1, with A
@@ -137,7 +142,7 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
         a.swap(next_);  // a_2
         residualAt(scene, s0, h, theta, kappa, a, false);
         if (!update(scene, s0, a, k)) return Attempt::kFailed;
-        change = (next_ - a).head(n3).lpNorm<Eigen::Infinity>();
+        change = this->change(scene, next_, a);
         if (kappa * h * h * change > settings_.linearization_tolerance * linearized_displacement) return Attempt::kStale;
         a.swap(next_);  // a_3 = a_2 + Δa_2
         fresh_next_ = true;
@@ -148,7 +153,7 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
       if (!assembleAt(scene, h, theta, kappa)) return Attempt::kFailed;
       force_ = residual_;
       if (!update(scene, s0, a, k)) return Attempt::kFailed;
-      change = (next_ - a).head(n3).lpNorm<Eigen::Infinity>();
+      change = this->change(scene, next_, a);
     }
     a.swap(next_);
     ++last_iterations_;
@@ -199,14 +204,59 @@ bool ImplicitStepSolver::inContact(const Scene& scene) {
 
 void ImplicitStepSolver::residualAt(Scene& scene, const SceneState& s0, double h, double theta, double kappa,
                                     const VecX& a, bool a_is_zero) {
-  // The iterate's state: q = q0 + θh v0 + κh² a, v = v0 + θh a; r = Q(q, v) − M a.
+  // The iterate's state: q = q0 ⊕ (θh v0 + κh² a) (q0 + ... for points; R exp(...) for frames),
+  // v = v0 + θh a; r = Q(q, v) − M a.
   const Eigen::Index n3 = 3 * scene.dofPointCount();
-  eval_.q = s0.q + (theta * h) * s0.v + (kappa * h * h) * a;
+  if (scene.hasInternalDofs()) {
+    increment_ = (theta * h) * s0.v + (kappa * h * h) * a;
+    scene.integratePositions(s0.q, increment_, 1.0, eval_.q);
+  } else {
+    eval_.q = s0.q + (theta * h) * s0.v + (kappa * h * h) * a;
+  }
   eval_.v = s0.v + (theta * h) * a;
   scene.computeForce(eval_, force_);
   if (a_is_zero) return;  // M a_0 = 0
-  for (const MechanicalState* body : scene.bodies()) body->multiplyMass(body->block(a), body->block(ma_));
-  force_.head(n3) -= ma_;
+  for (const MechanicalState* body : scene.bodies()) {
+    body->multiplyMass(body->block(a), body->block(ma_));
+    if (body->internalVelocityCount() > 0) {
+      auto internal = body->internalVelocities(internal_ma_);
+      body->multiplyInternalMass(body->internalVelocities(a), internal);
+      body->internalVelocities(force_) -= internal;
+    }
+  }
+  force_.head(n3) -= ma_.head(n3);
+}
+
+double ImplicitStepSolver::change(const Scene& scene, const VecX& next, const VecX& a) {
+  // Points in m/s²; a frame's angular acceleration times the body's radius (how fast its
+  // surface moves by it), so that a rod's frames converge with its points.
+  const Eigen::Index n3 = 3 * scene.dofPointCount();
+  double largest = (next - a).head(n3).lpNorm<Eigen::Infinity>();
+  if (!scene.hasInternalDofs()) return largest;
+  for (const MechanicalState* body : scene.bodies()) {
+    const CurveBody* curve = body->curve();
+    if (body->internalVelocityCount() == 0 || !curve) continue;
+    const int first = body->internalVelocityOffset(), count = body->internalVelocityCount();
+    largest = std::max(largest, curve->radius() * (next.segment(first, count) - a.segment(first, count)).lpNorm<Eigen::Infinity>());
+  }
+  return largest;
+}
+
+void ImplicitStepSolver::solveStep(const Scene& scene) {
+  // force_ := A⁻¹ force_ on the points and the internal DOFs (the extra DOFs carry no force).
+  const Eigen::Index n3 = 3 * scene.dofPointCount();
+  if (!scene.hasInternalDofs()) {
+    matrix_.solveAll(force_.head(n3));
+    return;
+  }
+  // Group order for the step matrix: points, then the internal triples (after the extra DOFs in v).
+  const Eigen::Index internal = scene.velocitySize() - (n3 + scene.extraDofCount());
+  packed_.resize(n3 + internal);
+  packed_.head(n3) = force_.head(n3);
+  packed_.tail(internal) = force_.tail(internal);
+  matrix_.solveAll(packed_);
+  force_.head(n3) = packed_.head(n3);
+  force_.tail(internal) = packed_.tail(internal);
 }
 
 bool ImplicitStepSolver::update(Scene& scene, const SceneState& s0, const VecX& a, int k) {
@@ -214,10 +264,12 @@ bool ImplicitStepSolver::update(Scene& scene, const SceneState& s0, const VecX& 
   // sets the extra DOFs' accelerations after the points).
   // The forces are laid out as v (scene_state.hpp): the points' 3N, then the extra DOFs (no force).
   const Eigen::Index n3 = 3 * scene.dofPointCount();
-  matrix_.solveAll(force_.head(n3));
+  solveStep(scene);
   next_.resize(a.size());
   next_.head(n3) = a.head(n3) + force_.head(n3);
-  next_.tail(a.size() - n3).setZero();
+  next_.segment(n3, scene.extraDofCount()).setZero();
+  const Eigen::Index internal = a.size() - n3 - scene.extraDofCount();
+  next_.tail(internal) = a.tail(internal) + force_.tail(internal);
   scene.applyConstraints(s0, matrix_, next_);
   if (next_.allFinite()) return true;
   failure_ = "Newton iteration " + std::to_string(k + 1) + " produced non-finite accelerations";
@@ -235,8 +287,13 @@ bool ImplicitStepSolver::advance(Scene& scene, SceneState& s, double h, double t
                                  double position_factor, int depth) {
   const Status status = solve(scene, s, h, theta, kappa, a_);
   if (status == Status::kConverged) {
-    // v1 = v0 + h a,  q1 = q0 + h v0 + c h² a.
-    s.q += h * s.v + (position_factor * h * h) * a_;
+    // v1 = v0 + h a,  q1 = q0 ⊕ (h v0 + c h² a) (q0 + ... for points, R exp(...) for frames).
+    if (scene.hasInternalDofs()) {
+      increment_ = h * s.v + (position_factor * h * h) * a_;
+      scene.integratePositions(s.q, increment_, 1.0, s.q);
+    } else {
+      s.q += h * s.v + (position_factor * h * h) * a_;
+    }
     s.v += h * a_;
     s.time += h;
     return true;

@@ -110,6 +110,16 @@ double RodEndFrame::term(const SceneState& s, VecX* forces) const {
 
 void RodEndFrame::addForce(const SceneState& s, VecX& B) const { term(s, &B); }
 
+void RodEndFrame::addJacobian(const SceneState& s, double k_factor, double, JacobianAccumulator& out) const {
+  if (k_factor == 0.0) return;
+  const bool start = end_ == End::kStart;
+  const Eigen::Quaterniond R = chain_->orientation(s.q, segment_), held = heldFrame(s.time);
+  const Vec3 phi = geometry::rotationLog(start ? held.conjugate() * R : R.conjugate() * held);
+  const Eigen::Matrix3d J = start ? geometry::rightJacobianInverse(phi) : geometry::leftJacobianInverse(phi);
+  out.addBlock(chain_->internalGroup(segment_), chain_->internalGroup(segment_),
+               -k_factor * (J.transpose() * stiffness_.asDiagonal() * J));
+}
+
 double RodEndFrame::potentialEnergy(const SceneState& s) const { return term(s, nullptr); }
 
 }  // namespace filum::mechanics

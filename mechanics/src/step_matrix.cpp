@@ -23,18 +23,29 @@ int halfBandwidth(int range) { return 3 * range + 2; }
 void StepMatrix::analyse(const Scene& scene) {
   const auto& bodies = scene.bodies();
   const int body_count = static_cast<int>(bodies.size());
-  const int points = scene.dofPointCount();
-  const bool new_scene = static_cast<int>(point_body_.size()) != points || static_cast<int>(body_first_.size()) != body_count;
+  const int groups = scene.stepGroupCount();
+  const bool new_scene = static_cast<int>(point_body_.size()) != groups || static_cast<int>(body_first_.size()) != body_count;
   if (new_scene) {
-    point_body_.assign(points, 0);
+    point_body_.assign(groups, 0);
+    group_slot_.assign(groups, 0);
     body_first_.assign(body_count, 0);
     wanted_range_.assign(body_count, -1);
     wanted_coupling_ = false;
     for (int b = 0; b < body_count; ++b) {
-      body_first_[b] = bodies[b]->offset();
-      std::fill_n(point_body_.begin() + bodies[b]->offset(), bodies[b]->pointCount(), b);
+      const MechanicalState& body = *bodies[b];
+      body_first_[b] = body.offset();
+      for (int i = 0; i < body.pointCount(); ++i) {
+        point_body_[body.offset() + i] = b;
+        group_slot_[body.offset() + i] = body.stepSlotOfPoint(i);
+      }
+      for (int k = 0; k < body.internalVelocityCount() / 3; ++k) {
+        point_body_[body.internalGroup(k)] = b;
+        group_slot_[body.internalGroup(k)] = body.stepSlotOfInternal(k);
+      }
     }
   }
+  point_count_ = scene.dofPointCount();
+  internal_velocity_base_ = 3 * point_count_ + scene.extraDofCount();
   body_block_.assign(body_count, 0);
   blocks_.clear();
   has_constant_ = false;
@@ -46,15 +57,28 @@ void StepMatrix::analyse(const Scene& scene) {
   if (coupled_) {
     Block& block = blocks_.emplace_back();
     block.first_point = 0;
-    block.points = points;
+    block.points = groups;
+    block.point_slots = point_count_;
     block.band = false;
+    block.work.resize(3 * groups);
     return;
   }
   for (int b = 0; b < body_count; ++b) {
+    const MechanicalState& body = *bodies[b];
     Block& block = blocks_.emplace_back();
-    block.first_point = bodies[b]->offset();
-    block.points = bodies[b]->pointCount();
-    const int declared = bodies[b]->couplingRange();
+    block.first_point = body.offset();
+    block.point_slots = body.pointCount();
+    block.points = body.pointCount() + body.internalVelocityCount() / 3;
+    block.contiguous = block.points == block.point_slots;
+    for (int i = 0; i < body.pointCount() && block.contiguous; ++i) block.contiguous = body.stepSlotOfPoint(i) == i;
+    if (!block.contiguous) {
+      block.group_of_slot.assign(block.points, 0);
+      for (int i = 0; i < body.pointCount(); ++i) block.group_of_slot[body.stepSlotOfPoint(i)] = body.offset() + i;
+      for (int k = 0; k < body.internalVelocityCount() / 3; ++k)
+        block.group_of_slot[body.stepSlotOfInternal(k)] = body.internalGroup(k);
+      block.work.resize(3 * block.points);
+    }
+    const int declared = body.couplingRange();
     block.range = std::max({declared, wanted_range_[b], 0});
     block.band = choice_ == LinearSolverChoice::Band ||
                  (choice_ == LinearSolverChoice::Auto && halfBandwidth(block.range) <= kAutoBandLimit);
@@ -76,7 +100,7 @@ int StepMatrix::route(int i, int j) {
     fits_ = false;
     return kMisfit;
   }
-  const int distance = std::abs(i - j);
+  const int distance = std::abs(group_slot_[i] - group_slot_[j]);
   if (distance > wanted_range_[bi]) wanted_range_[bi] = distance;
   const int b = body_block_[bi];
   const Block& block = blocks_[b];
@@ -103,7 +127,7 @@ void StepMatrix::addBlock(int i, int j, const Eigen::Matrix3d& value) {
   // (a diagonal block's upper triangle is ignored by the factorization).
   Block& block = blocks_[b];
   BlockBandLdlt& target = constant_pass_ ? block.constant : block.band_factor;
-  const int I = i - block.first_point, J = j - block.first_point;
+  const int I = slotOf(i), J = slotOf(j);
   if (I > J)
     target.block(I, J) += 0.5 * value;
   else if (I < J)
@@ -122,7 +146,7 @@ void StepMatrix::addBlockPair(int i, int j, const Eigen::Matrix3d& value) {
   // value at (i, j) and valueᵀ at (j, i): symmetric already, the lower one is added.
   Block& block = blocks_[b];
   BlockBandLdlt& target = constant_pass_ ? block.constant : block.band_factor;
-  const int I = i - block.first_point, J = j - block.first_point;
+  const int I = slotOf(i), J = slotOf(j);
   if (I > J)
     target.block(I, J) += value;
   else
@@ -135,7 +159,7 @@ void StepMatrix::addSupportBlocks(int first, int count, const Eigen::Matrix3d* l
   // both ends in one band block put every pair in it, at distance <= count − 1.
   const int b = route(first + count - 1, first);
   if (b == kMisfit) return;
-  if (b == kSparse) {
+  if (b == kSparse || !blocks_[b].contiguous) {  // entry by entry (a body that interleaves slots)
     JacobianAccumulator::addSupportBlocks(first, count, lower);
     return;
   }
@@ -154,7 +178,7 @@ void StepMatrix::addEntry(int row, int col, double value) {
     return;
   }
   Block& block = blocks_[b];
-  const int r = row - 3 * block.first_point, c = col - 3 * block.first_point;
+  const int r = 3 * slotOf(row / 3) + row % 3, c = 3 * slotOf(col / 3) + col % 3;
   addLower(block, std::max(r, c), std::min(r, c), r == c ? value : 0.5 * value);
 }
 
@@ -167,7 +191,7 @@ void StepMatrix::addIsotropic(int i, int j, double value) {
   }
   Block& block = blocks_[b];
   BlockBandLdlt& target = constant_pass_ ? block.constant : block.band_factor;
-  const int I = i - block.first_point, J = j - block.first_point;
+  const int I = slotOf(i), J = slotOf(j);
   target.block(std::max(I, J), std::min(I, J)).diagonal().array() += I == J ? value : 0.5 * value;
 }
 
@@ -178,7 +202,7 @@ void StepMatrix::addRankOne(int first, ConstPointsRef u, double factor) {
   // entry. route() of the two ends checks the term stays in one body.
   const int b = coupled_ ? kSparse : route(first, first);
   if (b == kMisfit) return;
-  if (b == kSparse || constant_pass_ || point_body_[first] != point_body_[last]) {
+  if (b == kSparse || constant_pass_ || point_body_[first] != point_body_[last] || !blocks_[b].contiguous) {
     JacobianAccumulator::addRankOne(first, u, factor);
     return;
   }
@@ -229,8 +253,8 @@ bool StepMatrix::fill(const Scene& scene, const SceneState& s, double k_factor, 
 }
 
 bool StepMatrix::laidOutFor(const Scene& scene) const {
-  return static_cast<int>(point_body_.size()) == scene.dofPointCount() && body_first_.size() == scene.bodies().size() &&
-         !blocks_.empty();
+  return static_cast<int>(point_body_.size()) == scene.stepGroupCount() && point_count_ == scene.dofPointCount() &&
+         body_first_.size() == scene.bodies().size() && !blocks_.empty();
 }
 
 std::string StepMatrix::assemble(const Scene& scene, const SceneState& s, double k_factor, double d_factor) {
@@ -265,8 +289,7 @@ std::string StepMatrix::factorBlocks(const Scene& scene) {
   for (const Triplet& t : triplets_) {
     Block& block = blocks_[coupled_ ? 0 : body_block_[point_body_[t.row() / 3]]];
     if (!block.pattern_ok) continue;
-    const int first = 3 * block.first_point;
-    const int i = t.row() - first, j = t.col() - first;
+    const int i = 3 * slotOf(t.row() / 3) + t.row() % 3, j = 3 * slotOf(t.col() / 3) + t.col() % 3;
     const int r = std::max(i, j), c = std::min(i, j);
     const std::size_t k = block.routed++;
     if (k >= block.keys.size() || block.keys[k] != static_cast<long long>(c) * 3 * block.points + r) {
@@ -289,7 +312,7 @@ std::string StepMatrix::factorBlocks(const Scene& scene) {
     if (!failure.empty()) {
       // Which body: the block's own, or all of them when a force couples the bodies.
       const std::string of = coupled_ ? "of the coupled bodies"
-                                      : "of " + scene.bodies()[point_body_[block.first_point]]->describe();
+                                      : "of " + scene.bodies()[point_body_[block.first_point]]->describe();  // a point of the body
       return "step matrix M - theta h D - kappa h^2 K " + of + ": " + failure;
     }
   }
@@ -301,10 +324,10 @@ void StepMatrix::rebuildSparse(Block& block) {
   scratch_.clear();
   block.keys.clear();
   const int index = static_cast<int>(&block - blocks_.data());
-  const int size = 3 * block.points, first = 3 * block.first_point;
+  const int size = 3 * block.points;
   for (const Triplet& t : triplets_) {
     if ((coupled_ ? 0 : body_block_[point_body_[t.row() / 3]]) != index) continue;
-    const int i = t.row() - first, j = t.col() - first;
+    const int i = 3 * slotOf(t.row() / 3) + t.row() % 3, j = 3 * slotOf(t.col() / 3) + t.col() % 3;
     const int r = std::max(i, j), c = std::min(i, j);
     scratch_.emplace_back(r, c, i == j ? t.value() : 0.5 * t.value());
     block.keys.push_back(static_cast<long long>(c) * size + r);
@@ -354,21 +377,57 @@ void StepMatrix::solveBand(const Block& block, Eigen::Ref<VecX> x) const {
   for (int a = 0; a < block.rank; ++a) x -= block.correction[a] * block.solved_low_rank.col(a);
 }
 
-void StepMatrix::solveBlock(int body, Eigen::Ref<VecX> x) const {
-  const Block& block = blocks_[body_block_[body]];
+void StepMatrix::solveLocal(const Block& block, Eigen::Ref<VecX> x) const {
   if (block.band)
     solveBand(block, x);
   else
     block.sparse.solve(x);
 }
 
+void StepMatrix::solveBlock(int body, Eigen::Ref<VecX> x) const {
+  const Block& block = blocks_[body_block_[body]];
+  if (block.contiguous) {
+    solveLocal(block, x);
+    return;
+  }
+  // Points at their slots, zero force on the internal DOFs; the points' part back.
+  block.work.setZero();
+  for (int k = 0; k < block.points; ++k)
+    if (const int g = block.group_of_slot[k]; g < point_count_) block.work.segment<3>(3 * k) = x.segment<3>(3 * (g - block.first_point));
+  solveLocal(block, block.work);
+  for (int k = 0; k < block.points; ++k)
+    if (const int g = block.group_of_slot[k]; g < point_count_) x.segment<3>(3 * (g - block.first_point)) = block.work.segment<3>(3 * k);
+}
+
 void StepMatrix::solveAll(Eigen::Ref<VecX> x) const {
+  const bool points_only = x.size() == 3 * Eigen::Index(point_count_) && point_body_.size() > std::size_t(point_count_);
   for (const Block& block : blocks_) {
-    auto segment = x.segment(3 * block.first_point, 3 * block.points);
-    if (block.band)
-      solveBand(block, segment);
-    else
-      block.sparse.solve(segment);
+    const bool gather = !block.contiguous || (coupled_ && points_only);
+    if (!gather) {
+      solveLocal(block, x.segment(3 * block.first_point, 3 * block.points));
+      continue;
+    }
+    const auto group = [&](int k) { return block.contiguous ? block.first_point + k : block.group_of_slot[k]; };
+    block.work.setZero();
+    for (int k = 0; k < block.points; ++k)
+      if (const int g = group(k); !points_only || g < point_count_) block.work.segment<3>(3 * k) = x.segment<3>(3 * g);
+    solveLocal(block, block.work);
+    for (int k = 0; k < block.points; ++k)
+      if (const int g = group(k); !points_only || g < point_count_) x.segment<3>(3 * g) = block.work.segment<3>(3 * k);
+  }
+}
+
+void StepMatrix::addInternalResponse(Eigen::Ref<const VecX> point_forces, VecX& a) const {
+  for (const Block& block : blocks_) {
+    if (block.points == block.point_slots) continue;  // no internal DOFs in this block
+    const auto group = [&](int k) { return block.contiguous ? block.first_point + k : block.group_of_slot[k]; };
+    block.work.setZero();
+    for (int k = 0; k < block.points; ++k)
+      if (const int g = group(k); g < point_count_) block.work.segment<3>(3 * k) = point_forces.segment<3>(3 * g);
+    solveLocal(block, block.work);
+    for (int k = 0; k < block.points; ++k)
+      if (const int g = group(k); g >= point_count_)
+        a.segment<3>(internal_velocity_base_ + 3 * (g - point_count_)) += block.work.segment<3>(3 * k);
   }
 }
 
@@ -376,8 +435,8 @@ MatX StepMatrix::assembledMatrix() const {
   const Eigen::Index n = 3 * static_cast<Eigen::Index>(point_body_.size());
   MatX A = MatX::Zero(n, n);
   for (const Block& block : blocks_) {
-    const int first = 3 * block.first_point, size = 3 * block.points;
-    auto part = A.block(first, first, size, size);
+    const int size = 3 * block.points;
+    MatX part(size, size);
     if (block.band) {
       part = block.band_factor.reconstruct();
       for (int k = 0; k < block.rank; ++k) part += block.sigma[k] * block.low_rank.col(k) * block.low_rank.col(k).transpose();
@@ -386,6 +445,9 @@ MatX StepMatrix::assembledMatrix() const {
       part = lower + lower.transpose();
       part.diagonal() = lower.diagonal();
     }
+    const auto group = [&](int k) { return block.contiguous ? block.first_point + k : block.group_of_slot[k]; };
+    for (int r = 0; r < block.points; ++r)
+      for (int c = 0; c < block.points; ++c) A.block<3, 3>(3 * group(r), 3 * group(c)) = part.block<3, 3>(3 * r, 3 * c);
   }
   return A;
 }

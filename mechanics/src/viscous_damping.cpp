@@ -20,7 +20,9 @@ void ViscousDamping::addForce(const SceneState& s, VecX& B) const {
 }
 
 void ViscousDamping::addJacobian(const SceneState&, double, double d_factor, JacobianAccumulator& out) const {
-  if (d_factor != 0.0 && coefficient_ != 0.0) body().addMassMatrix(-coefficient_ * d_factor, out);
+  if (d_factor == 0.0 || coefficient_ == 0.0) return;
+  body().addMassMatrix(-coefficient_ * d_factor, out);
+  if (body().internalVelocityCount() > 0) body().addInternalMassMatrix(-coefficient_ * d_factor, out);
 }
 
 }  // namespace filum::mechanics

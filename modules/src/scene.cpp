@@ -110,10 +110,10 @@ void Scene::init() {
     body->initialInternalState(body->internalPositions(state_.q), body->internalVelocities(state_.v));
   if (hasInternalDofs() && integrator_->needsJacobians())
     for (const MechanicalState* body : bodies_)
-      if (body->internalVelocityCount() > 0 || body->internalPositionCount() > 0)
+      if (!body->supportsImplicitInternal())
         throw SceneError(body->origin(),
-                         "an explicit integrator for a body with internal DOFs (implicit steps assemble the points' "
-                         "matrix only)",
+                         "an explicit integrator for " + body->describe() +
+                             " (its internal DOFs have no place in an implicit step's matrix)",
                          integrator_->typeName());
   for (Constraint* c : constraints_) c->updateRelease(state_);
   if (integrator_->needsJacobians())
@@ -146,6 +146,7 @@ void Scene::setInternalOffsets() {
   internal_velocity_count_ = 0;
   for (MechanicalState* body : bodies_) {
     body->setInternalOffsets(start + internal_position_count_, start + internal_velocity_count_);
+    body->setInternalGroupOffset(point_count_ + internal_velocity_count_ / 3);  // step matrix groups (triples)
     internal_position_count_ += body->internalPositionCount();
     internal_velocity_count_ += body->internalVelocityCount();
   }
@@ -317,7 +318,10 @@ void Scene::addForceJacobian(const SceneState& s, double k_factor, double d_fact
 }
 
 void Scene::addMassMatrix(double factor, JacobianAccumulator& out) const {
-  for (const MechanicalState* body : bodies_) body->addMassMatrix(factor, out);
+  for (const MechanicalState* body : bodies_) {
+    body->addMassMatrix(factor, out);
+    if (body->internalVelocityCount() > 0) body->addInternalMassMatrix(factor, out);
+  }
 }
 
 StepReport Scene::step() {

@@ -23,8 +23,20 @@
 // angular momentum are conserved. tests/mechanics/framed_chain_test.cpp checks the forces against
 // the energy's gradient, the torsion frequency and the invariants;
 // tests/mechanics/rod_mechanics_test.cpp the cantilever, the elastica (against shooting
-// solutions of Kirchhoff's equations), torsion and the first bending frequency. No Jacobian:
-// explicit steps.
+// solutions of Kirchhoff's equations), torsion and the first bending frequency.
+//
+// Jacobian (implicit steps), K = −H with H the energy's Hessian over the points and the frames'
+// right increments δ (R ← R exp(δ)). Per segment, with r = |e|, P = I − t tᵀ, k_s = κGA l and
+// E_a = k_s (1 − d3 · t) (equal to ½ k_s |d3 − t|² for unit vectors):
+//   H_ee = (E A / l) [t tᵀ + (1 − l / r) P] + k_s [(P d3) tᵀ + t (P d3)ᵀ + (t · d3) P] / r²,
+//   H_eδ = k_s P R ê3 / r,   H_δδ = k_s [(t_b · e3) I − ½ (t_b e3ᵀ + e3 t_bᵀ)],  t_b = Rᵀ t,
+// (e = x_{i+1} − x_i: ±H_ee on the points, ±H_eδ between points and frame) — exact. Per node, the
+// Gauss–Newton part of the bending and twist term, with φ ≈ φ₀ + J_r⁻¹ δ_j − J_l⁻¹ δ_{j−1}:
+//   H_jj = J_r⁻ᵀ B̃ J_r⁻¹,  H_{j−1,j−1} = J_l⁻ᵀ B̃ J_l⁻¹,  H_{j−1,j} = −J_l⁻ᵀ B̃ J_r⁻¹,  B̃ = B_j / ℓ_j;
+// the term it leaves out is m · ∂²φ, of the order of the moment m = B̃ (φ − φ̄) (zero at rest
+// shape, small against B̃ where the turns are small), which costs the Newton iteration a little
+// contraction, not accuracy (its residual is exact). The matrix is the symmetric part of ∂Q/∂w:
+// the right increments' Lie bracket adds a skew ½ τ̂ that the step matrix symmetrises away.
 #pragma once
 
 #include <memory>
@@ -65,6 +77,8 @@ class ChainElasticity final : public ForceField {
   std::string typeName() const override { return "ChainElasticity"; }
   void addForce(const SceneState& s, VecX& B) const override;
   double potentialEnergy(const SceneState& s) const override;
+  void addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const override;
+  bool hasJacobian() const override { return true; }
 
   /// Segment i's E A, κ G A, and B = diag(E I, E I, G J) (SI).
   double axialStiffness(int segment) const { return axial_[segment]; }

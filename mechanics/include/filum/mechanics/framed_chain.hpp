@@ -23,7 +23,9 @@
 // l_i (m_i = ρ A ℓ_i, ℓ_i = (l_{i−1} + l_i)/2), and each segment's frame carries the rotary
 // inertia of its own slice, J_i = ρ l_i diag(I, I, 2I) (A = π r², I = π r⁴ / 4), with Euler's
 // gyroscopic torque −ω_i × J_i ω_i (body frame). Elasticity is a force field, ChainElasticity.
-// Explicit integrators only (internal DOFs); the point count is fixed (refine, coarsen and cut
+// Explicit and implicit integrators: implicit steps put the frames' rotations in the step matrix
+// beside the points, interleaved (x0, R0, x1, R1, ...: a band two slots wide), and move frames
+// by R ← R exp(w) for the step's increment w. The point count is fixed (refine, coarsen and cut
 // are refused).
 #pragma once
 
@@ -69,7 +71,11 @@ class FramedChain final : public CurveBody {
   void solveMass(PointsRef B) const override;
   void multiplyMass(ConstPointsRef x, PointsRef out) const override;
   void addMassMatrix(double factor, JacobianAccumulator& out) const override;
-  int couplingRange() const override { return 1; }
+  /// In step-matrix slots (x0, R0, x1, R1, ...): a segment couples x_i, R_i, x_{i+1} and a node
+  /// R_{j−1}, R_j — two slots apart at most.
+  int couplingRange() const override { return 2; }
+  int stepSlotOfPoint(int i) const override { return 2 * i; }
+  int stepSlotOfInternal(int k) const override { return 2 * k + 1; }
   void addGravity(const Vec3& g, PointsRef B) const override;
   double gravityPotential(const Vec3& g, ConstPointsRef q) const override;
 
@@ -82,6 +88,9 @@ class FramedChain final : public CurveBody {
   void addInternalForce(const SceneState& s, Eigen::Ref<VecX> B) const override;
   void solveInternalMass(Eigen::Ref<VecX> B) const override;
   void multiplyInternalMass(Eigen::Ref<const VecX> x, Eigen::Ref<VecX> out) const override;
+  bool supportsImplicitInternal() const override { return true; }
+  /// factor · diag(J_i) at each frame's group.
+  void addInternalMassMatrix(double factor, JacobianAccumulator& out) const override;
 
   // Curve.
   const CurveBasis& basis() const override { return *basis_; }

@@ -78,6 +78,13 @@
 // the step reported to the scene (Scene::noteFault), which rolls it back. The iteration is also
 // abandoned early when the update stops shrinking above √tolerance (from the third iteration).
 //
+// Bodies with internal DOFs (a rod's frames): their rotations are unknowns of the same system,
+// moved by q0 ⊕ w (R exp(w)) for the increment w = θh v0 + κh² a, with their rotary inertia in
+// M and their torques' Jacobians in K (MechanicalState::addInternalMassMatrix, StepMatrix's
+// groups); the convergence measures count a frame's angular acceleration times its body's
+// radius. The gyroscopic torque's Jacobian is left out of D (tiny for rods: ω J ω), which costs
+// iterations, not accuracy (the residual is exact).
+//
 // Constraint rows are those of the (sub-)step's start state (Baumgarte terms included), as for
 // the explicit integrators. Workspaces are allocated on the first step and reused.
 #pragma once
@@ -182,6 +189,10 @@ class ImplicitStepSolver {
                   bool a_is_zero);
   /// next_ = a + A⁻¹ r with r in force_ (overwritten), constrained; false if not finite.
   bool update(Scene& scene, const SceneState& s0, const VecX& a, int k);
+  /// force_ := A⁻¹ force_ over the points and the bodies' internal DOFs.
+  void solveStep(const Scene& scene);
+  /// |next − a|∞ over the points (m/s²) and the internal DOFs times their body's radius.
+  static double change(const Scene& scene, const VecX& next, const VecX& a);
 
   NewtonSettings settings_;
   StepMatrix matrix_;
@@ -189,6 +200,9 @@ class ImplicitStepSolver {
   VecX a_, force_, ma_, next_;
   VecX residual_;  // Q − M a at a_1, kept for the Newton iteration that may follow the estimate
   VecX first_force_;  // Q at a_0 of an attempt that reuses a matrix (the fresh attempt after it starts there)
+  VecX increment_;    // θh v0 + κh² a, the step's velocity-space increment (bodies with internal DOFs)
+  VecX internal_ma_;  // M a of the internal DOFs (velocity layout)
+  VecX packed_;       // points and internal DOFs in the step matrix's group order
   std::string failure_;
   int last_iterations_ = 0;
   long total_iterations_ = 0;

@@ -51,6 +51,10 @@ class RodEndFrame final : public ForceField {
   std::string typeName() const override { return "RodEndFrame"; }
   void addForce(const SceneState& s, VecX& B) const override;
   double potentialEnergy(const SceneState& s) const override;
+  /// The Gauss–Newton Hessian J⁻ᵀ (B / ℓ) J⁻¹ on the end frame (J_r⁻¹ at the start, J_l⁻¹ at
+  /// the end; chain_elasticity.hpp says what it leaves out).
+  void addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const override;
+  bool hasJacobian() const override { return true; }
 
   /// The held frame at time t.
   Eigen::Quaterniond heldFrame(double t) const;

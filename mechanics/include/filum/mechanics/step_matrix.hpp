@@ -23,6 +23,14 @@
 // (a dashpot's direction depends on positions); Newton then converges a little slower but to the
 // same solution, since the residual is evaluated exactly.
 //
+// Bodies with internal DOFs (a rod's frame rotations, in triples: JacobianAccumulator's groups
+// after the points) have them in their own block, at the slots the body chooses
+// (MechanicalState::stepSlotOfPoint/OfInternal: a rod interleaves x0, R0, x1, R1, ... so that its
+// block stays a band). Solves then gather the block's values from the points and the internal
+// triples and scatter them back. A solve on points only (solveBlock, solveAll on 3N values: the
+// constraint solver's W = L A⁻¹ Lᵀ) pads the internal DOFs with zero force and returns the
+// points' part, (A⁻¹)_pp; addInternalResponse gives the internal DOFs' part of the same solve.
+//
 // The layout (band widths, coupling) is worked out on the first assembly and again only when an
 // entry does not fit it; in the steady state assembling and factoring allocate nothing.
 #pragma once
@@ -64,9 +72,14 @@ class StepMatrix final : public BlockInverse, public JacobianAccumulator {
   std::string assemble(const Scene& scene, const SceneState& s, double k_factor, double d_factor);
 
   // BlockInverse
+  /// x: the body's 3 n point values (internal DOFs padded with zero force, see the header).
   void solveBlock(int body, Eigen::Ref<VecX> x) const override;
   bool coupled() const override { return coupled_; }
+  /// x: 3 N point values (internal DOFs padded with zero), or 3 G values in group order (points,
+  /// then internal triples: the whole step matrix).
   void solveAll(Eigen::Ref<VecX> x) const override;
+  /// a (velocity layout) += the internal DOFs' part of A⁻¹ [f; 0] for point forces f (3N).
+  void addInternalResponse(Eigen::Ref<const VecX> point_forces, VecX& a) const override;
   /// Changes at every assembly (a constraint solver may keep A⁻¹Lᵀ while it does not).
   long revision() const override { return revision_; }
 
@@ -91,8 +104,12 @@ class StepMatrix final : public BlockInverse, public JacobianAccumulator {
 
  private:
   struct Block {
-    int first_point = 0;  // first global point
-    int points = 0;       // points of the block
+    int first_point = 0;  // first global group (a contiguous block: its slots are its groups in order)
+    int points = 0;       // slots of the block (points and internal triples)
+    int point_slots = 0;  // of them, points
+    bool contiguous = true;           // slot k is group first_point + k
+    std::vector<int> group_of_slot;   // otherwise: the global group of each slot
+    mutable VecX work;                // gathered values of a solve (non-contiguous blocks)
     bool band = true;
     int range = 0;  // band blocks: largest |i − j| of coupled points; half bandwidth 3 range + 2
     BlockBandLdlt band_factor;
@@ -138,6 +155,10 @@ class StepMatrix final : public BlockInverse, public JacobianAccumulator {
   std::string factorLowRank(Block& block);
   /// x := A⁻¹ x for a band block (band solve, then the Woodbury correction).
   void solveBand(const Block& block, Eigen::Ref<VecX> x) const;
+  /// x := A_block⁻¹ x in the block's own slot order.
+  void solveLocal(const Block& block, Eigen::Ref<VecX> x) const;
+  /// The block's slot of global group g.
+  int slotOf(int g) const { return coupled_ ? g : group_slot_[g]; }
 
   LinearSolverChoice choice_;
   long revision_ = 0;
@@ -149,7 +170,10 @@ class StepMatrix final : public BlockInverse, public JacobianAccumulator {
   double constant_key_[2] = {0.0, 0.0};
   std::vector<Block> blocks_;
   std::vector<int> body_block_;   // block of each body
-  std::vector<int> point_body_;   // body of each global point
+  std::vector<int> point_body_;   // body of each global group (points, then internal triples)
+  std::vector<int> group_slot_;   // slot of each global group in its body's block
+  int point_count_ = 0;           // N
+  int internal_velocity_base_ = 0;  // 3N + E: where the internal DOFs start in a velocity-layout vector
   std::vector<int> body_first_;   // first global point of each body
   std::vector<int> wanted_range_;  // per body: largest |i − j| seen (−1: none yet)
   bool wanted_coupling_ = false;   // an entry coupled two bodies

@@ -25,6 +25,12 @@ class BlockInverse {
     throw std::logic_error("BlockInverse::solveAll is not implemented by a block-diagonal inverse");
   }
 
+  /// a (velocity layout) += the bodies' internal DOFs' response to forces f on the points (3N):
+  /// their part of A⁻¹ [f; 0]. Nothing where A does not couple internal DOFs to points (the mass
+  /// matrix); an implicit step's matrix does for a rod (its frames turn with its points), and a
+  /// constraint solver calls this after scattering Lᵀλ so that the frames follow the constraint.
+  virtual void addInternalResponse(Eigen::Ref<const VecX> /*point_forces*/, VecX& /*a*/) const {}
+
   /// True when every block is I₃ ⊗ A_b: the same n_b × n_b matrix on x, y and z, as the mass
   /// matrix is (paper eq. 3). A constraint solver may then solve three scalar right-hand sides
   /// with one solveBlock (one per coordinate column) and share A_b⁻¹ b(s) between the rows of

@@ -5,7 +5,11 @@
 // body (mechanics/step_matrix.hpp), with no triplet list, scatter or sort in the step.
 //
 // Coordinates are the scene's global 3N point coordinates (3·point + axis), points numbered as in
-// the SceneState (MechanicalState::offset() + local index). Every call adds; nothing is replaced.
+// the SceneState (MechanicalState::offset() + local index), and after them the bodies' internal
+// DOFs in triples (a rod's frame rotations): group N + k for the k-th triple of the scene
+// (MechanicalState::internalGroup), coordinate 3 (N + k) + axis — a numbering of the matrix
+// only (in the SceneState the internal DOFs follow the extra DOFs). Every call adds; nothing is
+// replaced.
 // The matrices are symmetric or symmetrised by the consumer: A ← (A + Aᵀ)/2 (a dashpot's
 // Jacobian is not exactly symmetric; Newton then converges a little slower, to the same answer).
 //

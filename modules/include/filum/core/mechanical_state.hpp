@@ -90,6 +90,22 @@ class MechanicalState : public Component {
   virtual void solveInternalMass(Eigen::Ref<VecX> /*B*/) const {}
   virtual void multiplyInternalMass(Eigen::Ref<const VecX> /*x*/, Eigen::Ref<VecX> out) const { out.setZero(); }
 
+  /// Implicit steps with internal DOFs (a rotation's three velocity components per triple):
+  /// adds factor·M of the internal DOFs into `out`, triple k at the global group internalGroup(k)
+  /// (JacobianAccumulator's numbering: points first, then internal triples). A body whose
+  /// internal DOFs the step matrix cannot hold (nv not a multiple of 3, or no such mass) says so
+  /// with supportsImplicitInternal() = false and is refused by implicit integrators.
+  virtual bool supportsImplicitInternal() const { return internalVelocityCount() == 0; }
+  virtual void addInternalMassMatrix(double /*factor*/, JacobianAccumulator& /*out*/) const {}
+  /// Where the step matrix puts the body's point i and internal triple k in the body's band
+  /// (slots 0 .. pointCount() + nv/3 − 1): points first by default; a rod interleaves them
+  /// (x0, R0, x1, R1, ...) so that its matrix stays a narrow band. couplingRange() counts slots.
+  virtual int stepSlotOfPoint(int i) const { return i; }
+  virtual int stepSlotOfInternal(int k) const { return pointCount() + k; }
+  /// The global group of internal triple k (Scene::init): N + (the body's first triple) + k.
+  int internalGroup(int k) const { return internal_group_offset_ + k; }
+  void setInternalGroupOffset(int group) { internal_group_offset_ = group; }
+
   /// Where the internal blocks start in q and in v (set by Scene::init).
   int internalPositionOffset() const { return internal_position_offset_; }
   int internalVelocityOffset() const { return internal_velocity_offset_; }
@@ -120,6 +136,7 @@ class MechanicalState : public Component {
  private:
   int offset_ = 0;
   int internal_position_offset_ = 0, internal_velocity_offset_ = 0;
+  int internal_group_offset_ = 0;
 };
 
 }  // namespace filum

@@ -151,6 +151,9 @@ class Scene {
   /// Steps redone in halves because a contact solve did not reach its tolerance (since init).
   long solveHalvings() const { return solve_halvings_; }
   int dofPointCount() const { return point_count_; }
+  /// Groups of the implicit step matrix (JacobianAccumulator): the points, then the bodies'
+  /// internal DOFs in triples.
+  int stepGroupCount() const { return point_count_ + internal_velocity_count_ / 3; }
   /// Number E of extra scalar DOFs (constraints' own, after the 3N point coordinates).
   int extraDofCount() const { return extra_count_; }
   /// Sizes of q and of v (and of forces and accelerations): 3N + E + the bodies' internal DOFs
