@@ -6,9 +6,15 @@ namespace filum::geometry {
 
 Eigen::Quaterniond rotationExp(const Vec3& w) {
   const double angle = w.norm();
-  if (angle < 1e-8) {  // sin(θ/2)/θ = ½ − θ²/48: the series to round-off below 1e-8
-    const Vec3 axis = (0.5 - angle * angle / 48.0) * w;
-    return Eigen::Quaterniond(1.0 - angle * angle / 8.0, axis.x(), axis.y(), axis.z()).normalized();
+  if (angle < 0.1) {
+    // Small turns (a rod frame's per-step increment): cos(θ/2) and sin(θ/2)/θ by their Taylor
+    // series in x = θ/2 to x⁸ (the first left out, x¹⁰/10!, is below 3e-20 at x = 0.05: round-off),
+    // no sin/cos calls.
+    const double x2 = 0.25 * angle * angle;
+    const double c = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0 * (1.0 - x2 / 90.0))));
+    const double s = 0.5 * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))));
+    const Vec3 axis = s * w;
+    return Eigen::Quaterniond(c, axis.x(), axis.y(), axis.z()).normalized();
   }
   return Eigen::Quaterniond(Eigen::AngleAxisd(angle, w / angle));
 }
@@ -29,9 +35,16 @@ Eigen::Matrix3d skew(const Vec3& p) {
 }
 
 namespace {
-// c(θ) = 1/θ² − (1 + cos θ)/(2 θ sin θ), by its series 1/12 + θ²/720 below 1e-4 (cancellation).
+// c(θ) = 1/θ² − (1 + cos θ)/(2 θ sin θ) = Σ_{n>=1} |B_2n| θ^{2n−2} / (2n)!  (B: Bernoulli numbers,
+// from the series of cot(θ/2)): below θ = 0.25 by that series to θ¹⁰ (the first term left out,
+// |B_14| θ¹² / 14! ≈ 8e-19 there: round-off), which also avoids the closed form's cancellation
+// (ε / θ² relative) and its sin and cos calls — a rod's nodes turn by a few degrees.
 double secondOrderCoefficient(double angle) {
-  if (angle < 1e-4) return 1.0 / 12.0 + angle * angle / 720.0;
+  if (angle < 0.25) {
+    const double t2 = angle * angle;
+    return 1.0 / 12.0 + t2 * (1.0 / 720.0 + t2 * (1.0 / 30240.0 + t2 * (1.0 / 1209600.0 + t2 * (1.0 / 47900160.0 +
+                                                                                                 t2 * (691.0 / 2730.0 / 479001600.0)))));
+  }
   return 1.0 / (angle * angle) - (1.0 + std::cos(angle)) / (2.0 * angle * std::sin(angle));
 }
 }  // namespace
