@@ -56,4 +56,10 @@ Eigen::Matrix3d rightJacobianInverse(const Vec3& phi) {
 
 Eigen::Matrix3d leftJacobianInverse(const Vec3& phi) { return rightJacobianInverse(-phi); }
 
+void jacobianInverseTransposeTimes(const Vec3& phi, const Vec3& m, Vec3& right, Vec3& left) {
+  const Vec3 half = 0.5 * phi.cross(m), second = secondOrderCoefficient(phi.norm()) * phi.cross(phi.cross(m));
+  right = m - half + second;
+  left = m + half + second;
+}
+
 }  // namespace filum::geometry

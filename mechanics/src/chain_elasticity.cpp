@@ -131,9 +131,11 @@ double ChainElasticity::joint(const SceneState& s, int j, VecX* forces) const {
   const Vec3 moment = joint_bending_[j].cwiseProduct(phi - joint_rest_[j]);  // m = B (φ − φ̄) / ℓ
   const double energy = 0.5 * (phi - joint_rest_[j]).dot(moment);
   if (!forces) return energy;
+  Vec3 right, left;
+  geometry::jacobianInverseTransposeTimes(phi, moment, right, left);
   auto torques = chain.internalVelocities(*forces);
-  torques.segment<3>(3 * (j - 1)) += geometry::leftJacobianInverse(phi).transpose() * moment;
-  torques.segment<3>(3 * j) -= geometry::rightJacobianInverse(phi).transpose() * moment;
+  torques.segment<3>(3 * (j - 1)) += left;  // +J_l⁻ᵀ m
+  torques.segment<3>(3 * j) -= right;       // −J_r⁻ᵀ m
   return energy;
 }
 

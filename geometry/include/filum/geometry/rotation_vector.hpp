@@ -21,6 +21,10 @@ Vec3 rotationLog(const Eigen::Quaterniond& q);
 /// J_r⁻¹(φ) and J_l⁻¹(φ) (header).
 Eigen::Matrix3d rightJacobianInverse(const Vec3& phi);
 Eigen::Matrix3d leftJacobianInverse(const Vec3& phi);
+/// J_r⁻¹(φ)ᵀ m and J_l⁻¹(φ)ᵀ m without forming the matrices (φ̂ᵀ = −φ̂):
+///   J_r⁻ᵀ m = m − ½ φ × m + c(θ) φ × (φ × m),   J_l⁻ᵀ m = m + ½ φ × m + c(θ) φ × (φ × m)
+/// (a torque from a moment m on the rotation vector φ; a rod's joints need both).
+void jacobianInverseTransposeTimes(const Vec3& phi, const Vec3& m, Vec3& right, Vec3& left);
 /// The cross-product matrix φ̂ (φ̂ x = φ × x).
 Eigen::Matrix3d skew(const Vec3& phi);
 
