@@ -14,7 +14,7 @@ Eigen::Quaterniond rotationExp(const Vec3& w) {
     const double c = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0 * (1.0 - x2 / 90.0))));
     const double s = 0.5 * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))));
     const Vec3 axis = s * w;
-    return Eigen::Quaterniond(c, axis.x(), axis.y(), axis.z()).normalized();
+    return Eigen::Quaterniond(c, axis.x(), axis.y(), axis.z());  // unit to round-off: c² + (sθ)² = 1 by the series
   }
   return Eigen::Quaterniond(Eigen::AngleAxisd(angle, w / angle));
 }
