@@ -140,7 +140,7 @@ bool readResultRows(const std::string& path, std::vector<std::optional<RunResult
 
 int main(int argc, char** argv) {
   bool quick = false, plot = true, list = false;
-  std::string out = ".", only, rows_file;
+  std::string out = "out/accuracy_pareto", only, rows_file;  // not "." : a run from the checkout left CSVs at its root
   long configuration = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

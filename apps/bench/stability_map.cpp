@@ -81,7 +81,7 @@ bool readResultRows(const std::string& path, std::vector<std::optional<Result>>&
 
 int main(int argc, char** argv) {
   bool quick = false, plot = true, list = false;
-  std::string out = ".", rows_file;
+  std::string out = "out/stability_map", rows_file;  // not "." (files at the checkout root)
   long configuration = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

@@ -83,7 +83,9 @@ TEST(UniformGridBroadPhase, StopsAtItsBudgetWhenEverySphereOverlapsEveryOther) {
   ASSERT_EQ(pairs.size(), 2 * UniformGridBroadPhase::kPairsPerSphere * spheres.size());
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     EXPECT_LT(pairs[k].first, pairs[k].second);
-    if (k > 0) EXPECT_LT(pairs[k - 1], pairs[k]);
+    if (k > 0) {
+      EXPECT_LT(pairs[k - 1], pairs[k]);
+    }
   }
   // A budget above the true count: complete, and equal to the brute force.
   EXPECT_TRUE(grid.findPairs(spheres, pairs, 500000));

@@ -103,7 +103,9 @@ void expectStrandsUncoupled(Scene& scene, double s_cut) {
   scene.bodies()[0]->addMassMatrix(1.0, mass_accumulator);
   ASSERT_FALSE(mass.empty());
   for (const auto& e : mass)
-    if ((e.row() < 3 * a) != (e.col() < 3 * a)) EXPECT_EQ(e.value(), 0.0) << "M(" << e.row() << ", " << e.col() << ")";
+    if ((e.row() < 3 * a) != (e.col() < 3 * a)) {
+      EXPECT_EQ(e.value(), 0.0) << "M(" << e.row() << ", " << e.col() << ")";
+    }
 
   // Forces on strand 1 do not depend on strand 2: moving strand 2's points anywhere (and their
   // velocities) leaves them bit for bit the same (each span's integrand holds its own d + 1
@@ -128,7 +130,9 @@ void expectStrandsUncoupled(Scene& scene, double s_cut) {
   scene.addForceJacobian(scene.state(), 1.0, 1.0, accumulator);
   ASSERT_FALSE(entries.empty());
   for (const auto& e : entries)
-    if ((e.row() < 3 * a) != (e.col() < 3 * a)) EXPECT_EQ(e.value(), 0.0) << "(" << e.row() << ", " << e.col() << ")";
+    if ((e.row() < 3 * a) != (e.col() < 3 * a)) {
+      EXPECT_EQ(e.value(), 0.0) << "(" << e.row() << ", " << e.col() << ")";
+    }
 }
 
 TEST(CutBody, NoMassForceOrStiffnessJoinsTheTwoStrands) {
@@ -230,7 +234,9 @@ TEST(CutBody, AHeldThreadCutInTheMiddleFallsInTwoHalves) {
       // Until the halves touch the table nothing drives them (fixed graspers): backward Euler,
       // Rayleigh and viscous damping only take energy out. (Contacts then may give some back:
       // Baumgarte's term pushes a penetration out.) Slack: round-off of E, ~1e-16 |E|.
-      if (!landed) EXPECT_LE(e, e_previous + 1e-15 * std::abs(e_hanging)) << "t = " << scene->state().time;
+      if (!landed) {
+        EXPECT_LE(e, e_previous + 1e-15 * std::abs(e_hanging)) << "t = " << scene->state().time;
+      }
       EXPECT_GE(e, e_hanging * (1 + 1e-6)) << "t = " << scene->state().time;
     }
     e_previous = e;

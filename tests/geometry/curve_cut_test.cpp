@@ -133,7 +133,9 @@ TEST(CurveCut, UniformBasesHaveNoCutsAndTheirLeftRowsEndTheSegmentBefore) {
       // P'' too for the C² B-spline; Catmull-Rom's P'' jumps at knots (its left value, the end of
       // the segment before, is in general not the next segment's start), so it is not compared.
       const double jump = (combine(a, q, a.d2) - combine(b, q, b.d2)).norm();
-      if (basis == &bspline) EXPECT_LE(jump, 1e-12 * combine(a, q, a.d2).norm()) << "knot " << knot;
+      if (basis == &bspline) {
+        EXPECT_LE(jump, 1e-12 * combine(a, q, a.d2).norm()) << "knot " << knot;
+      }
     }
     // At s = 0 the left row is the first segment's, at s = 1 the last's (as evaluate).
     BasisRow a, b;
