@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   run_cmd->add_option("--duration,-t", run.duration, "simulated time in seconds (default: the scene's \"duration\")")
       ->check(CLI::PositiveNumber);
-  run_cmd->add_option("--out,-o", run.out, "output folder (default: out/<scene name>)");
+  run_cmd->add_option("--out,-o", run.out, "output folder (default: out/<scene file name without .json>, e.g. out/hanging_thread)");
   run_cmd->add_option("--every", run.interval, "simulated seconds between written frames (default: scene output.interval or 0.01)")
       ->check(CLI::PositiveNumber);
   run_cmd->add_option("--samples", run.curve_samples, "points per curve in curve.csv and the .vtp files (default 64)")

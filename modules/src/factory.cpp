@@ -1,5 +1,8 @@
 #include "filum/core/factory.hpp"
 
+#include <cctype>
+
+#include "filum/core/params.hpp"
 #include "filum/core/scene_error.hpp"
 
 namespace filum {
@@ -35,9 +38,28 @@ std::unique_ptr<Component> Factory::create(const std::string& type, const Params
     if (off != unavailable_.end())
       throw SceneError(type_key_where, "component type '" + type + "' was built out; reconfigure with -D" +
                                            off->second + "=ON to bring it");
-    std::string known;
-    for (const auto& name : typeNames()) known += (known.empty() ? "" : ", ") + name;
-    throw SceneError(type_key_where, "a known component type (" + known + ")", "\"" + type + "\"");
+    std::string known, guess;
+    std::size_t closest = 3;  // a suggestion only within two edits (or a difference of case alone)
+    for (const auto& name : typeNames()) {
+      known += (known.empty() ? "" : ", ") + name;
+      std::string lower_type = type, lower_name = name;
+      for (char& ch : lower_type) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+      for (char& ch : lower_name) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+      const std::size_t distance = lower_type == lower_name ? 0 : editDistance(type, name);
+      if (distance < closest) {
+        closest = distance;
+        guess = name;
+      }
+    }
+    std::string found = "\"";
+    found += type;
+    found += '"';
+    if (!guess.empty()) {
+      found += " (did you mean \"";
+      found += guess;
+      found += "\"?)";
+    }
+    throw SceneError(type_key_where, "a known component type (" + known + ")", found);
   }
   std::unique_ptr<Component> component = it->second(params);
   params.finish();

@@ -12,8 +12,6 @@ namespace filum {
 
 using nlohmann::json;
 
-namespace {
-
 // Levenshtein distance between two keys (insertions, deletions, substitutions).
 std::size_t editDistance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
@@ -29,6 +27,8 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
   }
   return row[b.size()];
 }
+
+namespace {
 
 // A typo of `key`: at most two edits away, and the key is long enough for that to mean something.
 bool looksLikeMisspelling(const std::string& candidate, const std::string& key) {

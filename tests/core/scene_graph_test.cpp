@@ -117,12 +117,21 @@ TEST(Factory, CreatesRegisteredTypes) {
   EXPECT_EQ(component->typeName(), "Marker");
 }
 
-// An unknown type is refused at the place of its "type" key, listing every known type.
+// An unknown type is refused at the place of its "type" key, listing every known type and
+// suggesting the nearest (within two edits, or differing in case only).
 TEST(Factory, UnknownTypeListsTheKnownOnes) {
   const Factory factory = markerFactory();
   const nlohmann::json empty = nlohmann::json::object();
   EXPECT_EQ(errorOf([&] { factory.create("Makrer", Params(empty, "f.json", "/c"), "f.json: /c/type"); }),
-            "f.json: /c/type: expected a known component type (Anchor, Marker), found \"Makrer\"");
+            "f.json: /c/type: expected a known component type (Anchor, Marker), found \"Makrer\" (did you mean "
+            "\"Marker\"?)");
+  // Nothing close: no suggestion.
+  EXPECT_EQ(errorOf([&] { factory.create("Spring", Params(empty, "f.json", "/c"), "f.json: /c/type"); }),
+            "f.json: /c/type: expected a known component type (Anchor, Marker), found \"Spring\"");
+  // A difference of case alone.
+  EXPECT_NE(errorOf([&] { factory.create("marker", Params(empty, "f.json", "/c"), "f.json: /c/type"); })
+                .find("(did you mean \"Marker\"?)"),
+            std::string::npos);
 }
 
 // A type built out of this build names the CMake option that brings it back, instead of

@@ -14,6 +14,9 @@
 
 namespace filum {
 
+/// Levenshtein distance (insertions, deletions, substitutions): how far a typo is from a name.
+std::size_t editDistance(const std::string& a, const std::string& b);
+
 class Params {
  public:
   /// obj must outlive the Params. file is for messages only; path is obj's JSON pointer.
