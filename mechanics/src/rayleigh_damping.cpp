@@ -1,5 +1,7 @@
 #include "filum/mechanics/rayleigh_damping.hpp"
 
+#include "filum/core/scene_error.hpp"
+
 #include <algorithm>
 
 #include "filum/core/scene.hpp"
@@ -16,6 +18,11 @@ std::unique_ptr<RayleighDamping> RayleighDamping::fromParams(const Params& p) {
 }
 
 void RayleighDamping::init(const Scene& scene) {
+  // Its stiffness cache spans the body's points only: a rod's frames (internal DOFs) have no
+  // place in it.
+  if (body().internalVelocityCount() > 0)
+    throw SceneError(origin(), "a body without internal DOFs for " + describe() + " (use ViscousDamping on a rod)",
+                     body().describe() + ", whose frames are internal DOFs");
   scene_ = &scene;
   resolved_ = false;
   stiffness_valid_ = false;

@@ -195,6 +195,7 @@ TEST(RodShape, RefusesShapesAndMaterialsThatDoNotFit) {
   refused(straightRod(5), base,
           json::array({{{"type", "RodEndFrame"}, {"path", {{{"time", 1.0}, {"roll", 0.0}}, {{"time", 0.5}, {"roll", 1.0}}}}}}),
           "/path/1/time");
+  refused(straightRod(5), base, json::array({{{"type", "RayleighDamping"}, {"stiffness_coefficient", 1e-3}}}), "ViscousDamping on a rod");
   json mass_with_spans = straightRod(5);
   mass_with_spans.erase("density");
   mass_with_spans["mass"] = 1e-3;
