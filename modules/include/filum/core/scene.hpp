@@ -165,9 +165,8 @@ class Scene {
 
   /// q1 = q0 ⊕ h w: positions moved along the velocity-layout vector w for a time h — q + h w for
   /// points and extra DOFs, each body's integrateInternal for its internal DOFs (a rotation
-  /// turned by h ω). q1 may be q0. The explicit integrators advance positions through it; the implicit
-  /// ones add h v to q directly, which is the same for points and extra DOFs (they refuse bodies
-  /// with internal DOFs, Scene::init).
+  /// turned by h ω). q1 may be q0. The integrators advance positions through it (the implicit ones
+  /// add h v to q directly when the scene has no internal DOFs: the same for points and extras).
   void integratePositions(const VecX& q0, const VecX& w, double h, VecX& q1) const;
 
   const std::vector<MechanicalState*>& bodies() const { return bodies_; }
