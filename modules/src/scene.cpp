@@ -108,6 +108,14 @@ void Scene::init() {
   for (const Constraint* c : constraints_) c->initialExtra(state_.q);
   for (const MechanicalState* body : bodies_)
     body->initialInternalState(body->internalPositions(state_.q), body->internalVelocities(state_.v));
+  if (hasInternalDofs() && !integrator_->internalDofsRefusal().empty())
+    for (const MechanicalState* body : bodies_)
+      if (body->internalVelocityCount() > 0 || body->internalPositionCount() > 0) {
+        std::string expected = integrator_->internalDofsRefusal();
+        expected += " for ";
+        expected += body->describe();
+        throw SceneError(body->origin(), expected, integrator_->typeName());
+      }
   if (hasInternalDofs() && integrator_->needsJacobians())
     for (const MechanicalState* body : bodies_)
       if (!body->supportsImplicitInternal())

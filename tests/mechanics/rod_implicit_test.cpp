@@ -10,6 +10,7 @@
 #include "filum/all_components.hpp"
 #include "filum/core/jacobian_accumulator.hpp"
 #include "filum/core/scene.hpp"
+#include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/mechanics/framed_chain.hpp"
 #include "support/rod_statics.hpp"
@@ -169,6 +170,15 @@ TEST(RodImplicit, BackwardEulerKeepsMomentumAndCreatesNoEnergy) {
     energy = next;
   }
   EXPECT_LE((momentum() - p0).norm(), 1e-12 * p0.norm());
+}
+
+TEST(RodImplicit, TheMidpointRuleRefusesARod) {
+  try {
+    load(rodDocument(5, 3e7, 9.81, {{"type", "ImplicitMidpoint"}}, json::array(), 1e-3, 1e-3));
+    ADD_FAILURE() << "ImplicitMidpoint accepted a FramedChain";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("ImplicitEuler or an explicit integrator"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

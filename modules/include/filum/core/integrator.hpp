@@ -3,6 +3,8 @@
 // (Scene::computeForce, Scene::addForceJacobian, Scene::addMassMatrix, Scene::applyConstraints).
 #pragma once
 
+#include <string>
+
 #include "filum/core/component.hpp"
 #include "filum/core/scene_state.hpp"
 
@@ -19,6 +21,9 @@ class Integrator : public Component {
   /// True for schemes that use the force Jacobian (ForceField::addJacobian): the scene then
   /// refuses, at init, force fields that do not provide one.
   virtual bool needsJacobians() const { return false; }
+  /// Why this scheme does not step bodies with internal DOFs (the scene refuses them at init),
+  /// or "" when it does.
+  virtual std::string internalDofsRefusal() const { return ""; }
 };
 
 }  // namespace filum
