@@ -3,7 +3,7 @@
 //
 // Material: a soft polymer rod (E = 1 MPa, ν = 0.5, ρ = 1000 kg/m³, r = 1 mm); segments of 1 cm.
 // Its shear modes are the stiffest (ω ~ √(4κG/ρ) / r ≈ 3.5e4 rad/s: thin frames have little
-// rotary inertia); RK4 steps of 1e-8 to 1e-7 s keep ω dt <= 3.5e-3, deep in the asymptotic range.
+// rotary inertia); RK4 steps of 1e-7 to 4e-7 s keep ω dt <= 1.4e-2, deep in the asymptotic range.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
