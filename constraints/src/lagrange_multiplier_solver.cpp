@@ -242,11 +242,11 @@ void LagrangeMultiplierSolver::prepareColumns(const Scene& scene, const Constrai
       for (int k = rows.anchorBegin(i); k < rows.anchorEnd(i); ++k) {
         col.points.push_back(rows.anchorPoint(k));
         col.weights.push_back(rows.anchorWeight(k));
-        addBody(col, scene.bodyOfPoint(rows.anchorPoint(k)));
+        addBody(col, point_body_[rows.anchorPoint(k)]);
       }
       col.hash = hashAnchor(col.points, col.weights);
     } else {
-      for (int t = rows.begin(i); t < rows.end(i); ++t) addBody(col, scene.bodyOfPoint(rows.point(t)));
+      for (int t = rows.begin(i); t < rows.end(i); ++t) addBody(col, point_body_[rows.point(t)]);
     }
     layoutColumn(scene, col, width);
     for (int b : col.bodies) body_touched_[b] = 1;
@@ -365,7 +365,7 @@ void LagrangeMultiplierSolver::assembleSeparable(const Scene& scene, const Const
       double sum = 0.0;
       for (std::size_t j = 0; j < ca.points.size(); ++j) {
         const int p = ca.points[j];
-        const int body = scene.bodyOfPoint(p);
+        const int body = point_body_[p];
         for (std::size_t seg = 0; seg < cb.bodies.size(); ++seg)
           if (cb.bodies[seg] == body) sum += ca.weights[j] * cb.y[cb.starts[seg] + p - bodies[body]->offset()];
       }
@@ -396,7 +396,7 @@ double LagrangeMultiplierSolver::generalEntry(const Scene& scene, const Constrai
   double sum = 0.0;
   for (int t = rows.begin(r); t < rows.end(r); ++t) {
     const int p = rows.point(t);
-    const int body = scene.bodyOfPoint(p);
+    const int body = point_body_[p];
     for (std::size_t seg = 0; seg < col.bodies.size(); ++seg)
       if (col.bodies[seg] == body)
         sum += rows.coeff(t).dot(col.y.segment<3>(col.starts[seg] + 3 * (p - bodies[body]->offset())));
@@ -833,8 +833,21 @@ void LagrangeMultiplierSolver::scatterForces(const Scene& scene, const Constrain
   }
 }
 
+void LagrangeMultiplierSolver::mapPointsToBodies(const Scene& scene) {
+  if (point_body_scene_ == &scene && point_body_revision_ == scene.layoutRevision() &&
+      static_cast<int>(point_body_.size()) == scene.dofPointCount())
+    return;
+  point_body_.assign(scene.dofPointCount(), 0);
+  const auto& bodies = scene.bodies();
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    std::fill_n(point_body_.begin() + bodies[b]->offset(), bodies[b]->pointCount(), static_cast<int>(b));
+  point_body_scene_ = &scene;
+  point_body_revision_ = scene.layoutRevision();
+}
+
 void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse,
                                      VecX& a) {
+  mapPointsToBodies(scene);
   const int c = rows.rows();
   const bool separable = inverse.sameOnEveryAxis() && !inverse.coupled();
   stats_ = Statistics();

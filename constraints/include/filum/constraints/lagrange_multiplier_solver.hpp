@@ -255,6 +255,13 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   VecX diagonal_;
   std::vector<int> bucket_, bucket_start_, cursor_;  // columns to solve, grouped by body
   std::vector<char> body_touched_;
+  // The body of each scene point, rebuilt when the scene's layout changes (refine, cut): the
+  // O(c²) loops look a term's body up here instead of scanning the bodies (Scene::bodyOfPoint).
+  std::vector<int> point_body_;
+  long point_body_revision_ = -1;
+  const Scene* point_body_scene_ = nullptr;
+  /// Brings point_body_ up to date with the scene.
+  void mapPointsToBodies(const Scene& scene);
   int c_ = 0;                 // rows of the current (last) call
   VecX u_;  // A⁻¹ Lᵀ λ (FactoredDelassus)
   std::vector<std::pair<int, int>> body_span_;  // FactoredDelassus: (3 · offset, 3 · points) per body
