@@ -1,6 +1,7 @@
 // Rotations as rotation vectors (the exponential coordinates of SO(3)): what a body with a
 // rotation per segment (a rod) needs to move its frames and to differentiate energies of
-// relative rotations (a Cosserat rod's bending and twist). With φ̂ the cross-product matrix of φ and θ = |φ|:
+// relative rotations (a Cosserat rod's bending and twist). With φ̂ the cross-product matrix of
+// φ and θ = |φ|:
 //   exp(φ) = the turn by θ about φ/θ  (as a unit quaternion),   log = its inverse (θ <= π),
 //   right Jacobian inverse  J_r⁻¹(φ) = I + ½ φ̂ + c(θ) φ̂²,   left  J_l⁻¹(φ) = J_r⁻¹(−φ),
 //   c(θ) = 1/θ² − (1 + cos θ) / (2 θ sin θ)   (→ 1/12 as θ → 0),
