@@ -21,11 +21,7 @@ namespace {
 using nlohmann::json;
 using mechanics::FramedChain;
 
-constexpr double kLength = 0.2, kRadius = 1e-3, kDensity = 1100.0;
-constexpr double kArea = std::numbers::pi * kRadius * kRadius, kSecond = kArea * kRadius * kRadius / 4.0;
-
-/// E for the load parameter Γ = ρ A g L³ / (E I).
-double modulusFor(double gamma) { return kDensity * kArea * 9.81 * std::pow(kLength, 3) / (gamma * kSecond); }
+using namespace test::rod;  // kLength, kRadius, kDensity, kArea, kSecond, modulusFor
 
 json rodDocument(int nodes, double youngs_modulus, double gravity, const json& integrator, const json& more, double dt,
                  double duration) {

@@ -33,15 +33,12 @@ using mechanics::FramedChain;
 using test::equilibrium;
 using test::rodForces;
 
-constexpr double kLength = 0.2, kRadius = 1e-3, kDensity = 1100.0, kGravity = 9.81;
-constexpr double kArea = std::numbers::pi * kRadius * kRadius, kSecond = kArea * kRadius * kRadius / 4.0;
+using namespace test::rod;  // kLength, kRadius, kDensity, kGravity, kArea, kSecond, modulusFor
 
 /// The rod's stiffnesses for the reference: EI, E A and κ G A with κ = 0.9 and G = E/3 (ν = ½),
 /// as ChainElasticity defines them.
 test::RodStiffness stiffnessOf(double E) { return {E * kSecond, E * kArea, 0.9 * E / 3.0 * kArea}; }
 
-/// E (Pa) of the rod whose load parameter ρ A g L³ / (E I) is gamma.
-double modulusFor(double gamma) { return kDensity * kArea * kGravity * std::pow(kLength, 3) / (gamma * kSecond); }
 
 struct RodCase {
   int nodes = 21;

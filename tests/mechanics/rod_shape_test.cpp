@@ -24,7 +24,8 @@ namespace {
 using nlohmann::json;
 using mechanics::FramedChain;
 
-constexpr double kLength = 0.2, kRadius = 1e-3, kDensity = 1100.0, kModulus = 3e7;  // polyurethane
+using namespace test::rod;  // kLength, kRadius, kDensity
+constexpr double kModulus = 3e7;  // polyurethane
 
 std::unique_ptr<Scene> load(const json& chain, const json& elasticity, const json& more = json::array(),
                             double gravity = 0.0) {

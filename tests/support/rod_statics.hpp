@@ -10,11 +10,21 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "filum/core/scene.hpp"
 
 namespace filum::test {
+
+/// The rod of the rod tests: a polymer catheter-like rod, L = 0.2 m, r = 1 mm, ρ = 1100 kg/m³
+/// (A = π r², I = π r⁴/4), and E set from the load parameter Γ = ρ A g L³ / (E I).
+namespace rod {
+constexpr double kLength = 0.2, kRadius = 1e-3, kDensity = 1100.0, kGravity = 9.81;
+constexpr double kArea = std::numbers::pi * kRadius * kRadius, kSecond = kArea * kRadius * kRadius / 4.0;
+inline double modulusFor(double gamma) { return kDensity * kArea * kGravity * std::pow(kLength, 3) / (gamma * kSecond); }
+}  // namespace rod
 
 /// The generalized forces at s (points and frames, velocity layout), the loads scaled by load.
 inline VecX rodForces(const Scene& scene, const SceneState& s, double load) {
