@@ -6,6 +6,7 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/haptics/haptic_session.hpp"
+#include "filum/haptics/instrument_set.hpp"
 #include "filum/output_settings.hpp"
 #include "filum/run_command.hpp"
 #include "filum/visual/camera.hpp"
@@ -21,6 +22,7 @@ int checkScene(const std::string& path, std::ostream& out) {
     visual::readCamera(document, path);  // read by --render and `filum view`
     // The "haptics" block, read by `filum run` (a Phantom is opened, then closed, to check it).
     haptics::HapticSession::fromScene(document, path, *scene, 0.0);  // (no run: the shortest servo log)
+    haptics::InstrumentSet::fromScene(document, path, *scene);  // the "instruments", read by `filum run`
     visual::VisualScene visuals(*scene);  // binds what the visual models follow (--meshes, --render, view)
     visuals.update(scene->state());
     out << path << ": ok (" << scene->bodies().size() << " bodies, " << scene->dofPointCount() << " control points, "

@@ -14,10 +14,12 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/haptics/haptic_session.hpp"
+#include "filum/haptics/instrument_set.hpp"
 #include "filum/output_settings.hpp"
 #include "filum/run_output.hpp"
 #include "filum/run_visual.hpp"
 #include "filum/timing_summary.hpp"
+#include "filum/visual/instrument_visual.hpp"
 #include "filum/visual/interactive_probe.hpp"
 
 namespace filum::app {
@@ -44,6 +46,13 @@ std::string checkOverrides(const RunOptions& options, const Scene& scene, double
   if (steps.empty()) return "";
   return options.scene + ": /dt (with --duration " + describeJson(duration) + "): expected a run of 1 to " +
          std::to_string(kMaxSteps) + " steps of dt = " + describeJson(scene.settings().dt) + " s, found " + steps;
+}
+
+/// metrics.json written, the metrics and the instruments' events logged.
+void finishInstruments(const haptics::InstrumentSet& instruments, const std::string& directory, std::ostream& log) {
+  instruments.writeSummary(directory + "/metrics.json");
+  for (const std::string& e : instruments.events()) log << "  " << e << '\n';
+  log << instruments.metrics().text() << "  -> metrics.csv, metrics.json\n";
 }
 
 /// Forces off, haptics.csv written, the servo's summary logged.
@@ -99,6 +108,19 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     return kRunSceneError;
   }
 
+  // The instruments (the scene's "instruments" list): their parts and holds join the scene, their
+  // jaws act between the steps (haptics/instrument_set.hpp).
+  std::unique_ptr<haptics::InstrumentSet> instruments;
+  try {
+    instruments = haptics::InstrumentSet::fromScene(document, options.scene, *scene);
+  } catch (const SceneError& e) {
+    log << "error: " << e.what() << '\n';
+    return kRunSceneError;
+  } catch (const std::exception& e) {
+    log << "error: " << options.scene << ": /instruments: " << e.what() << '\n';
+    return kRunSceneError;
+  }
+
   // Visual outputs (on request): bind the visual models, open the renderer.
   std::unique_ptr<RunVisual> visuals;
   if (options.meshes || options.render) {
@@ -119,6 +141,15 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   if (haptic && visuals) {
     tool_visual = std::make_unique<visual::ProbeVisual>(haptic->sharedTool());
     visuals->addOverlay(*tool_visual);
+  }
+  // The instruments as drawn: shaft and jaws of each.
+  std::vector<std::unique_ptr<visual::InstrumentVisual>> instrument_visuals;
+  if (instruments && visuals) {
+    for (int i = 0; i < instruments->size(); ++i)
+      for (auto part : {visual::InstrumentVisual::Part::kShaft, visual::InstrumentVisual::Part::kJaws}) {
+        instrument_visuals.push_back(std::make_unique<visual::InstrumentVisual>(instruments->instrument(i), part));
+        visuals->addOverlay(*instrument_visuals.back());
+      }
   }
 
   const long steps = std::lround(duration / dt);
@@ -141,6 +172,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   // The run stops: what happened, the frames kept, the summary (exit 3).
   auto diverged = [&](const std::string& message) {
     if (haptic) finishHaptics(*haptic, directory, log);
+    if (instruments) finishInstruments(*instruments, directory, log);
     log << "error: " << message << '\n'
         << "the " << (output_files ? output_files->frames() : 0) << " frames written so far in " << directory
         << " are intact\n";
@@ -151,6 +183,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   try {
     output_files = std::make_unique<RunOutput>(directory, samples);
     RunOutput& out = *output_files;
+    if (instruments) instruments->openCsv(directory + "/metrics.csv");
     out.writeFrame(*scene);
     if (visuals) {
       visuals->writeMeshes(*scene);
@@ -168,7 +201,9 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
         haptic->beforeStep(*scene);
       }
       const auto before = Clock::now();
+      if (instruments) instruments->beforeStep(*scene);
       const StepReport report = scene->step();
+      if (instruments && report.ok) instruments->afterStep(*scene);
       const auto after = Clock::now();
       if (!report.ok) return diverged(report.message);
       if (haptic) {
@@ -202,6 +237,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
       }
     }
     if (haptic) finishHaptics(*haptic, directory, log);
+    if (instruments) finishInstruments(*instruments, directory, log);
     if (visuals) visuals->finish(*scene);
     log << "wrote " << out.frames() << " frames to " << directory
         << " (control_points.csv, curve.csv, energy.csv, curve.pvd, timing.json" << (visuals ? visuals->summary() : "")

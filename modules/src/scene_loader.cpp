@@ -96,8 +96,15 @@ void addRoleComponent(const Params& top, const std::string& key, const std::stri
     std::unique_ptr<Component> component = createComponent(block, factory);
     if (!dynamic_cast<Role*>(component.get())) {
       const std::string example = factory.defaultFor(role);
-      block.fail("type", "a component of role " + role + (example.empty() ? "" : " (e.g. \"" + example + "\")"),
-                 "\"" + component->typeName() + "\", which is not a " + role);
+      // Built with += (GCC 12's -Wrestrict misfires at LTO on chains of temporaries).
+      std::string expected = "a component of role ";
+      expected += role;
+      if (!example.empty()) expected += " (e.g. \"" + example + "\")";
+      std::string found = "\"";
+      found += component->typeName();
+      found += "\", which is not a ";
+      found += role;
+      block.fail("type", expected, found);
     }
     scene.root().addComponent(std::move(component));
     return;
@@ -164,6 +171,8 @@ std::unique_ptr<Scene> loadScene(const json& document, const std::string& source
   top.has("output");  // read by the applications (filum run), not by the kernel
   top.has("camera");  // read by the visual side
   top.has("haptics");  // read by the applications (haptics/haptic_session.hpp)
+  top.has("instruments");  // read by the applications (haptics/instrument_set.hpp)
+  top.has("metrics");  // the instruments' trainee metrics (haptics/instrument_set.hpp)
 
   addRoleComponent<Integrator>(top, "integrator", "Integrator", *scene, factory);
   addRoleComponent<ConstraintSolver>(top, "constraint_solver", "ConstraintSolver", *scene, factory);

@@ -1,0 +1,155 @@
+// Instrument: one surgical instrument of a scene's "instruments" list — its kind, shape and
+// driver (the model), where it is and what its jaws hold (the state), and its parts as obstacles
+// of the collision pipeline. InstrumentSet (instrument_set.hpp) runs them between the steps.
+//
+//   {"name": "left", "type": "Grasper" | "Scissors" | "BipolarForceps",
+//    "path": [keyframes: instrument_path.hpp],
+//    "shaft_length": m, "shaft_radius": m, "jaw_length": m, "jaw_radius": m, "max_angle": rad,
+//    "close_below": 0.15,       the jaws act when their opening falls to this (grasp, cut, clamp)
+//    "holding_force": N,        Grasper: the pull along the thread the jaws hold (default 2 N)
+//    "grasp_stiffness": N/m, "grasp_damping": N·s/m   the jaws' hold on the point (500; critical)
+//    "coagulation_time": s,     BipolarForceps: closed this long on a tube, the span is coagulated
+//    "require_coagulation": true | ["node", ...]   Scissors: a cut outside a coagulated span (of
+//                               every body, or of the named nodes' bodies) is refused (an error)
+//    "force_limit": N,          the force on tissue above which the metrics count the time
+//    "collide": true}           the shaft and jaws push threads (needs a collision pipeline)
+//
+// What the jaws do (instrument_set.cpp). At every step in which they close (the opening falls),
+// the jaws catch the thread that was between them (betweenJaws at the previous step's opening,
+// instrument_shape.hpp) once they have closed onto it (jawsClosedOn: the gap between their
+// surfaces at its place is down to its diameter) — the point of it nearest to their midline:
+//   Grasper: holds that point: the coupling F = k (X − P(s*)) + c (Ẋ − Ṗ(s*)) of haptics/tool.hpp
+//     to the point X of the jaws' midline where it was caught; a spring–slider: when the pull
+//     along the thread |F·t̂| exceeds the holding force, the thread slips through the jaws, s*
+//     moving by (|F·t̂| − F_hold) / (k |P'(s*)|) so that the jaws again bear F_hold (t̂ = P'/|P'|);
+//     pulled past the thread's end, it is let go. Opening the jaws (wider than when they caught)
+//     lets go.
+//   BipolarForceps: clamps the point the same way, without slipping; closed for coagulation_time,
+//     the span under its jaws (s* ± jaw_length / 2 |P'|) is coagulated.
+//   Scissors: cut the thread at s* (Scene::cut) at that step; once per closing (they cut again
+//     after opening).
+// Jaws that reach close_below holding nothing have missed (a grasper's missed grasp). Collision:
+// the shaft always pushes threads; the jaws of a grasper or forceps only when closed (at or
+// below close_below) on nothing — open, the space between them is where a thread is caught, and
+// holding, the hold is their contact; scissors' blades never push (they cut what is between them).
+#pragma once
+
+#include <limits>
+#include <optional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "filum/core/params.hpp"
+#include "filum/core/scene.hpp"
+#include "filum/haptics/instrument_capsule.hpp"
+#include "filum/haptics/instrument_path.hpp"
+#include "filum/haptics/instrument_shape.hpp"
+#include "filum/haptics/tool.hpp"
+
+namespace filum::haptics {
+
+enum class InstrumentKind { kGrasper, kScissors, kBipolarForceps };
+const char* instrumentKindName(InstrumentKind kind);
+
+struct InstrumentSettings {
+  std::string name;
+  InstrumentKind kind = InstrumentKind::kGrasper;
+  InstrumentShape shape;
+  InstrumentPath path;
+  double close_below = 0.15;
+  double holding_force = 2.0;          // N (Grasper)
+  double grasp_stiffness = 500.0;      // N/m
+  double grasp_damping = -1.0;         // N·s/m (negative: critical, tool.hpp)
+  double coagulation_time = 1.0;       // s (BipolarForceps)
+  bool require_coagulation = false;    // Scissors: on every body, or on those named
+  std::vector<std::string> coagulation_objects;  // node paths (empty with require_coagulation: all)
+  double force_limit = std::numeric_limits<double>::infinity();  // N (metrics)
+  bool collide = true;
+
+  /// From one entry of "instruments" (see above); throws SceneError at the faulty field.
+  static InstrumentSettings fromParams(const Params& p);
+};
+
+/// A point of a curve body between an instrument's jaws.
+struct JawCatch {
+  const CurveBody* body = nullptr;
+  double abscissa = 0.0;
+  double distance = 0.0;  // from the jaws' midline (m)
+  double along = 0.0;     // from the hinge along the shaft's axis (m)
+};
+
+/// The thread point nearest to the jaws' midline, over the scene's curve bodies, that lay between
+/// the jaws at opening `before` and that jaws at opening `now` have closed onto, if any: sampled
+/// at 8 abscissas per control point, then refined by golden-section search on the distance to the
+/// midline.
+std::optional<JawCatch> catchBetweenJaws(const Scene& scene, const InstrumentShape& shape, const InstrumentPose& pose,
+                                         double before, double now);
+
+class Instrument {
+ public:
+  explicit Instrument(InstrumentSettings settings);
+
+  const InstrumentSettings& settings() const { return settings_; }
+  const std::string& name() const { return settings_.name; }
+  InstrumentKind kind() const { return settings_.kind; }
+
+  /// The pose and opening now (the last setTime) and at the end of the coming step.
+  const InstrumentPose& pose() const { return pose_; }
+  double opening() const { return opening_; }
+  Vec3 tip() const { return settings_.shape.tip(pose_, opening_); }
+  /// Moves the instrument to time t (from its driver) and its parts over [t, t + h].
+  void setTime(double t, double h);
+  /// The opening at the previous setTime (the current one at the first).
+  double previousOpening() const { return previous_opening_; }
+  /// The jaws close (the opening fell since the previous setTime), open (it rose).
+  bool closing() const { return opening_ < previous_opening_; }
+  bool opening_up() const { return opening_ > previous_opening_; }
+  /// The opening fell to close_below at this step.
+  bool reachedClosed() const {
+    return previous_opening_ > settings_.close_below && opening_ <= settings_.close_below;
+  }
+  /// Acted (caught, cut) since the jaws last opened: they act once per closing.
+  bool latched() const { return latched_; }
+  void latch() { latched_ = true; }
+
+  /// The hold on a thread: the tool state the coupling force fields read.
+  const std::shared_ptr<ToolState>& hold() const { return hold_; }
+  bool holding() const { return hold_->grasping; }
+  /// Holds `point` from now on, caught at `along` from the hinge on the jaws' midline.
+  void startHolding(const CurveBody& body, double abscissa, double along);
+  /// The jaws have opened wider than when they caught what they hold.
+  bool letsGo() const { return holding() && opening_ > hold_opening_; }
+  void stopHolding();
+  /// Seconds the jaws have held their current point (BipolarForceps coagulation).
+  double heldFor() const { return held_for_; }
+  void addHeldTime(double h) { held_for_ += h; }
+
+  /// The parts (shaft, jaw +, jaw −) as the collision pipeline's obstacles: created here, owned
+  /// by the scene node they are added to.
+  std::unique_ptr<InstrumentCapsule> makePart(int index);
+  InstrumentCapsule* part(int index) const { return parts_[index]; }
+  static constexpr int kParts = 3;
+  /// The parts where they are now (drawn, tool-tool contact).
+  Capsule partNow(int index) const;
+
+ private:
+  /// The point of the jaws' midline where the held point was caught.
+  Vec3 anchor(const InstrumentPose& pose) const { return pose.hinge + anchor_along_ * pose.axis(); }
+  /// The hold's target and its velocity over the coming step, from the jaws' poses.
+  void aimHold();
+  InstrumentSettings settings_;
+  InstrumentPose pose_, next_;  // now and at the end of the coming step
+  double h_ = 1.0;
+  double opening_ = 0.0;
+  double previous_opening_ = -1.0;  // before the first setTime: none
+  double hold_opening_ = 0.0;       // the opening at which the jaws caught what they hold
+  bool latched_ = false;
+  /// The jaws push threads (see above).
+  bool jawsCollide() const;
+  std::shared_ptr<ToolState> hold_ = std::make_shared<ToolState>();
+  double anchor_along_ = 0.0, held_for_ = 0.0;
+  InstrumentCapsule* parts_[kParts] = {nullptr, nullptr, nullptr};
+};
+
+}  // namespace filum::haptics

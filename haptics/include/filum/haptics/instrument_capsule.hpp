@@ -1,0 +1,37 @@
+// InstrumentCapsule: one rigid part of an instrument (its shaft, a jaw, a blade) as an obstacle
+// of the collision pipeline, so that a shaft pushes a thread aside with the same contact rows,
+// friction and solver as any other obstacle. The instrument sets where the part is at the start
+// and at the end of the coming step; in between the part moves linearly, with the velocity
+// (end − start) / h at every point of its axis (the surface velocity of the contacts).
+#pragma once
+
+#include "filum/collision/obstacle.hpp"
+#include "filum/haptics/instrument_shape.hpp"
+
+namespace filum::haptics {
+
+class InstrumentCapsule final : public collision::Obstacle {
+ public:
+  std::string typeName() const override { return "InstrumentCapsule"; }
+
+  /// The part at time t0 (`start`) and at t0 + h (`end`), h > 0; the radius is start's.
+  void setMotion(const Capsule& start, const Capsule& end, double t0, double h);
+  /// A part that does not collide (jaws holding a thread: the grasp holds it instead).
+  void setEnabled(bool enabled) { enabled_ = enabled; }
+  bool enabled() const { return enabled_; }
+
+  void moveTo(double t) override;
+  bool sample(const Vec3& x, double max_distance, collision::SurfaceSample& out) const override;
+  double speed() const override { return enabled_ ? std::max(velocity_a_.norm(), velocity_b_.norm()) : 0.0; }
+
+  /// Where the part is (at the last moveTo).
+  const Capsule& capsule() const { return now_; }
+
+ private:
+  Capsule start_, end_, now_;
+  Vec3 velocity_a_ = Vec3::Zero(), velocity_b_ = Vec3::Zero();
+  double t0_ = 0.0, h_ = 1.0;
+  bool enabled_ = true;
+};
+
+}  // namespace filum::haptics

@@ -1,0 +1,52 @@
+// InstrumentPath: an instrument driven by a script — its pose and jaw opening over time, from
+// keyframes, at rest before the first and after the last:
+//   "path": [{"time": t, "position": [x, y, z], "direction": [dx, dy, dz], "roll": r, "jaw": o}, ...]
+// position: the jaws' hinge (m); direction: the shaft's axis towards the tip; roll: the turn of
+// the jaws' plane about it (rad, instrument_shape.hpp); jaw: the opening o in [0, 1] (0 closed).
+// direction, roll and jaw default to the previous keyframe's (the first's: roll 0, jaw 0); the
+// first keyframe needs a direction.
+// Interpolation, all C1 in time:
+//   position: cubic Hermite with Catmull-Rom velocities (geometry::ScriptedPath "smooth": the
+//             hand moves through the keyframes without stopping, at rest at the first and last);
+//   rotation: q(t) = slerp(q_k, q_{k+1}, σ(u)), σ(u) = 3u² − 2u³ (the shortest turn between the
+//             keyframes' frames, starting and ending at rest);
+//   jaw:      o(t) = o_k + (o_{k+1} − o_k) σ(u).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "filum/core/params.hpp"
+#include "filum/geometry/scripted_path.hpp"
+#include "filum/haptics/instrument_shape.hpp"
+
+namespace filum::haptics {
+
+class InstrumentPath {
+ public:
+  struct Keyframe {
+    double time = 0.0;
+    Vec3 position = Vec3::Zero();
+    Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+    double jaw = 0.0;
+  };
+
+  InstrumentPath() = default;
+  /// Keyframes with strictly increasing times (at least one).
+  explicit InstrumentPath(std::vector<Keyframe> keyframes);
+  /// From p[key] (see above); throws SceneError at the faulty keyframe.
+  static InstrumentPath fromParams(const Params& p, const std::string& key);
+
+  InstrumentPose pose(double t) const;
+  double jaw(double t) const;
+  double endTime() const { return keyframes_.back().time; }
+
+ private:
+  /// Segment k holding t and σ(u) in it; k = −1 before the first keyframe, size − 1 after the last.
+  int segment(double t, double& sigma) const;
+  std::vector<Keyframe> keyframes_;
+  geometry::ScriptedPath positions_;
+};
+
+}  // namespace filum::haptics

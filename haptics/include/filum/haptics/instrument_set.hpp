@@ -1,0 +1,93 @@
+// InstrumentSet: a scene's "instruments" at run time — the instruments (instrument.hpp), what
+// their jaws do between the steps, and the trainee metrics (trainee_metrics.hpp).
+//
+//   "instruments": [ {"name": ..., "type": "Grasper", "path": [...], ...}, ... ],
+//   "metrics": {"idle_speed": 0.005}     (m/s; optional)
+//
+// Building it adds to the scene, for each instrument, its parts as obstacles of the collision
+// pipeline (InstrumentCapsule; with "collide", the default) and on every curve body a coupling
+// force field (haptics/tool.hpp) that holds the jaws' point while they hold one; the scene is
+// bound again. Per step (the run loop, as for a HapticSession):
+//   beforeStep: each instrument to the step's start (its driver), then its jaws: opened, they let
+//     go; closed to close_below, they act on the thread between them (grasp, clamp, cut: a cut
+//     is a Scene::cut between the steps);
+//   afterStep: slips through a grasper's jaws, coagulation under bipolar forceps, the metrics,
+//     one row of metrics.csv.
+// Instruments are processed in their order in the list: two closing on one step act in that order.
+#pragma once
+
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "filum/core/scene.hpp"
+#include "filum/haptics/instrument.hpp"
+#include "filum/haptics/trainee_metrics.hpp"
+
+namespace filum::haptics {
+
+class InstrumentSet {
+ public:
+  /// Reads document["instruments"] (null when the scene has none) of the scene file `source`,
+  /// adds the instruments' parts and force fields to `scene` and binds it again. Throws
+  /// SceneError at the faulty JSON path.
+  static std::unique_ptr<InstrumentSet> fromScene(const nlohmann::json& document, const std::string& source,
+                                                  Scene& scene);
+
+  void beforeStep(Scene& scene);
+  void afterStep(const Scene& scene);
+
+  int size() const { return static_cast<int>(instruments_.size()); }
+  const Instrument& instrument(int i) const { return *instruments_[i]; }
+  const TraineeMetrics& metrics() const { return metrics_; }
+
+  /// Whether s lies in a span of `body` coagulated by bipolar forceps.
+  bool coagulated(const CurveBody& body, double s) const;
+
+  /// What happened, one line per event ("t = 0.512 s: 'right' grasped 'thread' at s = 0.4").
+  const std::vector<std::string>& events() const { return events_; }
+
+  /// metrics.csv from now on: time, then per instrument tip x y z (m), jaw, speed (m/s), force on
+  /// tissue (N), holding (0/1); one row per step. Throws std::runtime_error when it cannot open.
+  void openCsv(const std::string& path);
+  /// metrics.json (summary and events).
+  void writeSummary(const std::string& path) const;
+
+  /// The coupling force the hold of instrument i exerts on its thread at the scene's state (N;
+  /// zero when it holds nothing).
+  Vec3 holdForce(int i, const Scene& scene) const;
+
+ private:
+  InstrumentSet() = default;
+  struct Span {
+    const CurveBody* body;
+    double from, to;
+  };
+  void attach(Scene& scene, const std::string& source);
+  /// The jaws of instrument i closed on the thread between them (or on air).
+  void closeJaws(int i, Scene& scene);
+  void cut(int i, Scene& scene, const JawCatch& c);
+  /// A grasper's thread slipping through its jaws (spring–slider, instrument.hpp).
+  void slip(int i, const Scene& scene, const Vec3& force);
+  void coagulate(int i, const Scene& scene);
+  /// |Σ contact forces on instrument i's parts| at the scene's state (N).
+  double partsForce(int i, const Scene& scene) const;
+  void countToolContacts();
+  void event(double t, const std::string& what);
+
+  std::vector<std::unique_ptr<Instrument>> instruments_;
+  std::vector<std::vector<ToolForceField*>> fields_;       // per instrument, one per curve body
+  std::vector<std::vector<const CurveBody*>> released_;   // per instrument: bodies it let go of
+  std::vector<char> coagulating_done_;                    // per instrument: this hold coagulated
+  std::vector<Span> coagulated_;
+  std::vector<char> touching_;                            // per instrument pair: parts in contact
+  TraineeMetrics metrics_;
+  std::vector<std::string> events_;
+  std::ofstream csv_;
+  double dt_ = 1e-3;
+};
+
+}  // namespace filum::haptics

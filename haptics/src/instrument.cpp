@@ -1,0 +1,191 @@
+#include "filum/haptics/instrument.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "filum/core/curve_body.hpp"
+
+namespace filum::haptics {
+
+const char* instrumentKindName(InstrumentKind kind) {
+  switch (kind) {
+    case InstrumentKind::kGrasper: return "Grasper";
+    case InstrumentKind::kScissors: return "Scissors";
+    case InstrumentKind::kBipolarForceps: return "BipolarForceps";
+  }
+  return "?";
+}
+
+InstrumentSettings InstrumentSettings::fromParams(const Params& p) {
+  InstrumentSettings s;
+  s.name = p.string("name");
+  const std::string type = p.string("type");
+  if (type == "Grasper") {
+    s.kind = InstrumentKind::kGrasper;
+  } else if (type == "Scissors") {
+    s.kind = InstrumentKind::kScissors;
+  } else if (type == "BipolarForceps") {
+    s.kind = InstrumentKind::kBipolarForceps;
+  } else {
+    p.fail("type", "\"Grasper\", \"Scissors\" or \"BipolarForceps\"", "\"" + type + "\"");
+  }
+  s.shape.shaft_length = p.positive("shaft_length", s.shape.shaft_length);
+  s.shape.shaft_radius = p.positive("shaft_radius", s.shape.shaft_radius);
+  s.shape.jaw_length = p.positive("jaw_length", s.shape.jaw_length);
+  s.shape.jaw_radius = p.positive("jaw_radius", s.shape.jaw_radius);
+  s.shape.max_angle = p.positive("max_angle", s.shape.max_angle);
+  // Jaws wider than a straight angle would fold back onto the shaft.
+  if (s.shape.max_angle > M_PI) p.fail("max_angle", "an angle in (0, π] (rad) between the jaws fully open");
+  s.close_below = p.number("close_below", s.close_below);
+  if (!(s.close_below > 0.0 && s.close_below < 1.0)) p.fail("close_below", "an opening in (0, 1)");
+  s.holding_force = p.positive("holding_force", s.holding_force);
+  s.grasp_stiffness = p.positive("grasp_stiffness", s.grasp_stiffness);
+  s.grasp_damping = p.nonNegative("grasp_damping", -1.0);
+  if (!p.has("grasp_damping")) s.grasp_damping = -1.0;
+  s.coagulation_time = p.positive("coagulation_time", s.coagulation_time);
+  if (p.has("require_coagulation") && p.raw("require_coagulation").is_array()) {
+    const nlohmann::json& list = p.raw("require_coagulation");
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      if (!list[k].is_string())
+        p.fail("require_coagulation", "true, false, or a list of node paths (\"tube\")", describeJson(list[k]));
+      s.coagulation_objects.push_back(list[k].get<std::string>());
+    }
+    s.require_coagulation = !s.coagulation_objects.empty();
+  } else {
+    s.require_coagulation = p.boolean("require_coagulation", false);
+  }
+  s.force_limit = p.positive("force_limit", s.force_limit);
+  s.collide = p.boolean("collide", true);
+  s.path = InstrumentPath::fromParams(p, "path");
+  if (s.kind != InstrumentKind::kGrasper && p.has("holding_force"))
+    p.fail("holding_force", "no holding force on a " + type + " (only a Grasper's jaws let a thread slip)", "one");
+  if (s.kind != InstrumentKind::kBipolarForceps && p.has("coagulation_time"))
+    p.fail("coagulation_time", "no coagulation time on a " + type + " (only BipolarForceps coagulate)", "one");
+  if (s.kind != InstrumentKind::kScissors && p.has("require_coagulation"))
+    p.fail("require_coagulation", "require_coagulation only on Scissors", type);
+  p.finish();
+  return s;
+}
+
+std::optional<JawCatch> catchBetweenJaws(const Scene& scene, const InstrumentShape& shape, const InstrumentPose& pose,
+                                         double before, double now) {
+  std::optional<JawCatch> best;
+  const VecX& q = scene.state().q;
+  for (const MechanicalState* body : scene.bodies()) {
+    const CurveBody* curve = body->curve();
+    if (!curve) continue;
+    const double r = curve->radius();
+    // Caught: between the jaws before this step, closed onto now; the distance to the midline.
+    auto caught = [&](double s) {
+      const Vec3 x = curve->position(q, s);
+      const double d = betweenJaws(shape, pose, before, x, r);
+      if (d < 0.0 || !jawsClosedOn(shape, now, jawCoordinates(pose, x).along, r)) return -1.0;
+      return d;
+    };
+    const int m = std::max(64, 8 * curve->pointCount());
+    const double step = 1.0 / (m - 1);
+    int found = -1;
+    double nearest = 0.0;
+    for (int k = 0; k < m; ++k) {
+      const double d = caught(k * step);
+      if (d >= 0.0 && (found < 0 || d < nearest)) {
+        found = k;
+        nearest = d;
+      }
+    }
+    if (found < 0) continue;
+    // Golden-section search of the distance to the midline on the sample's neighbourhood
+    // (unimodal there for a thread straighter than the sampling: 8 samples per control point).
+    auto midline = [&](double s) {
+      const JawCoordinates c = jawCoordinates(pose, curve->position(q, s));
+      return std::hypot(c.lateral, c.across);
+    };
+    double lo = std::max(0.0, (found - 1) * step), hi = std::min(1.0, (found + 1) * step);
+    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+    for (int it = 0; it < 40; ++it) {  // 0.618^40 ≈ 4e-9 of the bracket
+      const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+      if (midline(a) < midline(b)) {
+        hi = b;
+      } else {
+        lo = a;
+      }
+    }
+    double s = 0.5 * (lo + hi);
+    double d = caught(s);
+    if (d < 0.0) {  // the refined point left the jaws (at their edge): keep the sample
+      s = found * step;
+      d = nearest;
+    }
+    if (!best || d < best->distance) best = JawCatch{curve, s, d, jawCoordinates(pose, curve->position(q, s)).along};
+  }
+  return best;
+}
+
+Instrument::Instrument(InstrumentSettings settings) : settings_(std::move(settings)) {
+  hold_->touching = false;  // the jaws act by their hold only; pushing is the parts' contact
+  hold_->grasp_stiffness = settings_.grasp_stiffness;
+  hold_->grasp_damping = settings_.grasp_damping;
+  hold_->radius = settings_.shape.jaw_radius;
+}
+
+std::unique_ptr<InstrumentCapsule> Instrument::makePart(int index) {
+  auto part = std::make_unique<InstrumentCapsule>();
+  part->setName(settings_.name + (index == 0 ? " shaft" : index == 1 ? " jaw +" : " jaw -"));
+  parts_[index] = part.get();
+  return part;
+}
+
+Capsule Instrument::partNow(int index) const {
+  if (index == 0) return settings_.shape.shaft(pose_);
+  return settings_.shape.jaw(pose_, opening_, index == 1 ? 1 : -1);
+}
+
+bool Instrument::jawsCollide() const {
+  return settings_.collide && settings_.kind != InstrumentKind::kScissors && !holding() &&
+         opening_ <= settings_.close_below;
+}
+
+void Instrument::setTime(double t, double h) {
+  pose_ = settings_.path.pose(t);
+  previous_opening_ = previous_opening_ < 0.0 ? settings_.path.jaw(t) : opening_;
+  opening_ = settings_.path.jaw(t);
+  if (opening_ > previous_opening_) latched_ = false;
+  next_ = settings_.path.pose(t + h);
+  h_ = h;
+  const double next_opening = settings_.path.jaw(t + h);
+  const InstrumentShape& shape = settings_.shape;
+  for (int i = 0; i < kParts; ++i) {
+    if (!parts_[i]) continue;
+    const Capsule now = partNow(i);
+    const Capsule end = i == 0 ? shape.shaft(next_) : shape.jaw(next_, next_opening, i == 1 ? 1 : -1);
+    parts_[i]->setMotion(now, end, t, h);
+    parts_[i]->setEnabled(settings_.collide && (i == 0 || jawsCollide()));
+  }
+  hold_->time = t;
+  aimHold();
+}
+
+void Instrument::aimHold() {
+  // The held point's target X moves with the jaws: X(t') = X + Ẋ (t' − t) over the step.
+  hold_->position = anchor(pose_);
+  hold_->velocity = (anchor(next_) - hold_->position) / h_;
+}
+
+void Instrument::startHolding(const CurveBody& body, double abscissa, double along) {
+  anchor_along_ = std::clamp(along, 0.0, settings_.shape.jaw_length);
+  hold_opening_ = opening_;
+  held_for_ = 0.0;
+  grasp(*hold_, body, abscissa);
+  aimHold();
+  for (int i = 1; i < kParts; ++i)
+    if (parts_[i]) parts_[i]->setEnabled(false);
+}
+
+void Instrument::stopHolding() {
+  release(*hold_);
+  held_for_ = 0.0;
+  for (int i = 1; i < kParts; ++i)
+    if (parts_[i]) parts_[i]->setEnabled(jawsCollide());
+}
+
+}  // namespace filum::haptics

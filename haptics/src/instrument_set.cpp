@@ -1,0 +1,306 @@
+#include "filum/haptics/instrument_set.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "filum/collision/contact_pipeline.hpp"
+#include "filum/collision/segment_closest_points.hpp"
+#include "filum/core/curve_body.hpp"
+#include "filum/core/scene_error.hpp"
+
+namespace filum::haptics {
+
+namespace {
+
+std::string number(double x) {
+  std::ostringstream out;
+  out.precision(4);
+  out << x;
+  return out.str();
+}
+
+/// The curve body of the scene that `body` is, for a layout change (Scene::cut needs it mutable).
+CurveBody* mutableCurve(Scene& scene, const CurveBody* body) {
+  for (MechanicalState* state : scene.bodies())
+    if (state->curve() == body) return state->curve();
+  return nullptr;
+}
+
+}  // namespace
+
+std::unique_ptr<InstrumentSet> InstrumentSet::fromScene(const nlohmann::json& document, const std::string& source,
+                                                        Scene& scene) {
+  if (!document.is_object() || !document.contains("instruments")) return nullptr;
+  const Params top(document, source, "");
+  std::unique_ptr<InstrumentSet> set(new InstrumentSet());
+  if (top.has("metrics")) {
+    const Params m = top.object("metrics").withOwner("metrics");
+    set->metrics_ = TraineeMetrics(m.positive("idle_speed", 5e-3));
+    m.finish();
+  }
+  const std::vector<Params> items = top.objects("instruments");
+  if (items.empty()) top.fail("instruments", "a list of at least one instrument ({\"name\", \"type\", \"path\"})");
+  for (const Params& item : items) {
+    const Params p = item.withOwner("instruments");
+    InstrumentSettings settings = InstrumentSettings::fromParams(p);
+    for (const auto& other : set->instruments_)
+      if (other->name() == settings.name) p.fail("name", "a name no other instrument has", "\"" + settings.name + "\" again");
+    if (settings.collide && !scene.collisionPipeline())
+      p.fail("collide",
+             "false, or a collision pipeline in the scene (\"collision\": {\"type\": \"ContactPipeline\"} and "
+             "collision models on the threads) for the instrument's shaft and jaws to touch them",
+             "true");
+    for (const std::string& path : settings.coagulation_objects) {
+      const MechanicalState* named = scene.bodyAt(path);
+      if (!named || !named->curve())
+        p.fail("require_coagulation", "paths of nodes holding curve bodies (e.g. \"tube\")", "\"" + path + "\"");
+    }
+    set->metrics_.addInstrument(settings.name, instrumentKindName(settings.kind));
+    set->instruments_.push_back(std::make_unique<Instrument>(std::move(settings)));
+  }
+  set->attach(scene, source);
+  return set;
+}
+
+void InstrumentSet::attach(Scene& scene, const std::string& source) {
+  dt_ = scene.settings().dt;
+  const int count = size();
+  fields_.assign(count, {});
+  released_.assign(count, {});
+  coagulating_done_.assign(count, 0);
+  touching_.assign(count * count, 0);
+  for (int i = 0; i < count; ++i) {
+    Instrument& inst = *instruments_[i];
+    const std::string origin = source + ": /instruments/" + std::to_string(i);
+    if (inst.settings().collide) {
+      for (int k = 0; k < Instrument::kParts; ++k) {
+        auto part = inst.makePart(k);
+        part->setOrigin(origin);
+        scene.root().addComponent(std::move(part));
+      }
+    }
+    for (MechanicalState* body : scene.bodies()) {
+      if (!body->curve()) continue;
+      auto field = std::make_unique<ToolForceField>(inst.hold());
+      field->setName(inst.name() + " hold");
+      field->setOrigin(origin + " (on " + body->describe() + ")");
+      fields_[i].push_back(field.get());
+      body->node()->addComponent(std::move(field));
+    }
+  }
+  scene.init();
+  // Parts where they are at the start (drawn before the first step; the first beforeStep moves them).
+  for (auto& inst : instruments_) inst->setTime(scene.state().time, dt_);
+}
+
+void InstrumentSet::event(double t, const std::string& what) {
+  events_.push_back("t = " + number(t) + " s: " + what);
+}
+
+void InstrumentSet::beforeStep(Scene& scene) {
+  const double t = scene.state().time;
+  for (int i = 0; i < size(); ++i) {
+    Instrument& inst = *instruments_[i];
+    inst.setTime(t, dt_);
+    if (inst.letsGo()) {
+      released_[i].push_back(inst.hold()->grasp.body());
+      event(t, "'" + inst.name() + "' let go at s = " + number(inst.hold()->grasp.abscissa()));
+      inst.stopHolding();
+    }
+    if (!inst.holding() && inst.closing() && !inst.latched()) closeJaws(i, scene);
+    if (inst.reachedClosed() && !inst.holding() && !inst.latched()) {
+      if (inst.kind() != InstrumentKind::kScissors) ++metrics_.instrument(i).missed_grasps;
+      event(t, "'" + inst.name() + "' closed on nothing");
+    }
+  }
+}
+
+void InstrumentSet::closeJaws(int i, Scene& scene) {
+  Instrument& inst = *instruments_[i];
+  const std::optional<JawCatch> c =
+      catchBetweenJaws(scene, inst.settings().shape, inst.pose(), inst.previousOpening(), inst.opening());
+  if (!c) return;
+  inst.latch();
+  if (inst.kind() == InstrumentKind::kScissors) {
+    cut(i, scene, *c);
+    return;
+  }
+  InstrumentTally& tally = metrics_.instrument(i);
+  ++tally.grasps;
+  const auto& released = released_[i];
+  if (std::find(released.begin(), released.end(), c->body) != released.end()) ++tally.regrasps;
+  coagulating_done_[i] = 0;
+  inst.startHolding(*c->body, c->abscissa, c->along);
+  event(scene.state().time, "'" + inst.name() + "' " +
+                                (inst.kind() == InstrumentKind::kGrasper ? "grasped" : "clamped") + " at s = " +
+                                number(c->abscissa));
+}
+
+void InstrumentSet::cut(int i, Scene& scene, const JawCatch& c) {
+  const Instrument& inst = *instruments_[i];
+  InstrumentTally& tally = metrics_.instrument(i);
+  const double t = scene.state().time;
+  const bool coagulated_here = coagulated(*c.body, c.abscissa);
+  bool required = inst.settings().require_coagulation;
+  if (required && !inst.settings().coagulation_objects.empty()) {
+    required = false;
+    for (const std::string& path : inst.settings().coagulation_objects) {
+      const MechanicalState* named = scene.bodyAt(path);
+      required = required || (named && named->curve() == c.body);
+    }
+  }
+  if (required && !coagulated_here) {
+    ++tally.cuts_refused;
+    event(t, "'" + inst.name() + "' refused to cut at s = " + number(c.abscissa) + ": the span is not coagulated");
+    return;
+  }
+  CurveBody* body = mutableCurve(scene, c.body);
+  try {
+    scene.cut(*body, c.abscissa);
+  } catch (const SceneError& e) {
+    ++tally.cuts_refused;
+    event(t, "'" + inst.name() + "' could not cut at s = " + number(c.abscissa) + ": " + e.what());
+    return;
+  }
+  ++tally.cuts;
+  if (coagulated_here) ++tally.cuts_coagulated;
+  event(t, "'" + inst.name() + "' cut at s = " + number(c.abscissa) + (coagulated_here ? " (coagulated)" : ""));
+}
+
+Vec3 InstrumentSet::holdForce(int i, const Scene& scene) const {
+  const Instrument& inst = *instruments_[i];
+  if (!inst.holding()) return Vec3::Zero();
+  for (const ToolForceField* field : fields_[i]) {
+    if (field->body().curve() != inst.hold()->grasp.body()) continue;
+    const SceneState& s = scene.state();
+    const BodyPoint& point = inst.hold()->grasp;
+    // The coupling of haptics/tool.hpp: F = k (X(t) − P(s*)) + c (Ẋ − Ṗ(s*)).
+    return field->graspStiffness() * (toolPosition(*inst.hold(), s.time) - point.map(s.q)) +
+           field->graspDamping() * (inst.hold()->velocity - point.map(s.v));
+  }
+  return Vec3::Zero();
+}
+
+void InstrumentSet::slip(int i, const Scene& scene, const Vec3& force) {
+  Instrument& inst = *instruments_[i];
+  const BodyPoint& point = inst.hold()->grasp;
+  const Vec3 tangent = point.mapTangent(scene.state().q);  // P'(s*), m per unit of s
+  const double speed = tangent.norm();
+  if (!(speed > 0.0)) return;
+  const double pull = force.dot(tangent) / speed;  // F · t̂
+  const double excess = std::abs(pull) - inst.settings().holding_force;
+  if (excess <= 0.0) return;
+  double k = 0.0;
+  for (const ToolForceField* field : fields_[i])
+    if (field->body().curve() == point.body()) k = field->graspStiffness();
+  // The jaws move along the thread by the stretch of the coupling beyond what F_hold bears.
+  const double ds = std::copysign(excess / (k * speed), pull);
+  const double s = point.abscissa() + ds;
+  metrics_.instrument(i).slip_length += std::abs(ds) * speed;
+  const double t = scene.state().time;
+  if (s <= 0.0 || s >= 1.0) {
+    released_[i].push_back(point.body());
+    event(t, "thread pulled out of '" + inst.name() + "'");
+    inst.stopHolding();
+    return;
+  }
+  inst.hold()->grasp.moveTo(s);
+}
+
+void InstrumentSet::coagulate(int i, const Scene& scene) {
+  Instrument& inst = *instruments_[i];
+  inst.addHeldTime(dt_);
+  if (coagulating_done_[i] || inst.heldFor() < inst.settings().coagulation_time) return;
+  coagulating_done_[i] = 1;
+  const BodyPoint& point = inst.hold()->grasp;
+  // The span under the jaws: half a jaw's length either side, in abscissa through |P'(s*)|.
+  const double half = 0.5 * inst.settings().shape.jaw_length / point.mapTangent(scene.state().q).norm();
+  coagulated_.push_back({point.body(), point.abscissa() - half, point.abscissa() + half});
+  ++metrics_.instrument(i).coagulations;
+  event(scene.state().time, "'" + inst.name() + "' coagulated s in [" + number(point.abscissa() - half) + ", " +
+                                number(point.abscissa() + half) + "]");
+}
+
+bool InstrumentSet::coagulated(const CurveBody& body, double s) const {
+  for (const Span& span : coagulated_)
+    if (span.body == &body && s >= span.from && s <= span.to) return true;
+  return false;
+}
+
+double InstrumentSet::partsForce(int i, const Scene& scene) const {
+  const auto* pipeline = dynamic_cast<const collision::ContactPipeline*>(scene.collisionPipeline());
+  const Instrument& inst = *instruments_[i];
+  if (!pipeline || !inst.part(0)) return 0.0;
+  const auto& obstacles = pipeline->obstacles();
+  Vec3 sum = Vec3::Zero();
+  for (int o = 0; o < static_cast<int>(obstacles.size()); ++o)
+    for (int k = 0; k < Instrument::kParts; ++k)
+      if (obstacles[o] == inst.part(k)) sum -= pipeline->obstacleForce(o, scene.state());  // on the tissue
+  return sum.norm();
+}
+
+void InstrumentSet::countToolContacts() {
+  const int count = size();
+  for (int i = 0; i < count; ++i) {
+    for (int j = i + 1; j < count; ++j) {
+      bool touching = false;
+      for (int a = 0; a < Instrument::kParts && !touching; ++a) {
+        for (int b = 0; b < Instrument::kParts && !touching; ++b) {
+          const Capsule p = instruments_[i]->partNow(a), q = instruments_[j]->partNow(b);
+          touching = collision::closestPointsOnSegments(p.a, p.b, q.a, q.b).distance < p.radius + q.radius;
+        }
+      }
+      char& was = touching_[i * count + j];
+      if (touching && !was) metrics_.countToolContact();
+      was = touching;
+    }
+  }
+}
+
+void InstrumentSet::afterStep(const Scene& scene) {
+  const double t = scene.state().time;
+  if (csv_.is_open()) csv_ << t;
+  for (int i = 0; i < size(); ++i) {
+    Instrument& inst = *instruments_[i];
+    const Vec3 hold = holdForce(i, scene);
+    if (inst.holding()) {
+      if (inst.kind() == InstrumentKind::kGrasper) slip(i, scene, hold);
+      if (inst.kind() == InstrumentKind::kBipolarForceps) coagulate(i, scene);
+    }
+    const double force = hold.norm() + partsForce(i, scene);
+    const InstrumentPath& path = inst.settings().path;
+    const Vec3 tip = inst.settings().shape.tip(path.pose(t), path.jaw(t));
+    const Vec3 before = metrics_.instrument(i).sampled ? metrics_.instrument(i).last : tip;
+    metrics_.sample(i, t, dt_, tip, path.jaw(t), force, inst.settings().force_limit);
+    if (csv_.is_open())
+      csv_ << ',' << tip.x() << ',' << tip.y() << ',' << tip.z() << ',' << path.jaw(t) << ','
+           << (tip - before).norm() / dt_ << ',' << force << ',' << (inst.holding() ? 1 : 0);
+  }
+  if (csv_.is_open()) csv_ << '\n';
+  countToolContacts();
+  metrics_.endStep(t);
+}
+
+void InstrumentSet::openCsv(const std::string& path) {
+  csv_.open(path);
+  if (!csv_) throw std::runtime_error(path + ": cannot write");
+  csv_.precision(9);
+  csv_ << "time";
+  for (const auto& inst : instruments_)
+    for (const char* column : {"x", "y", "z", "jaw", "speed", "force", "holding"})
+      csv_ << ',' << inst->name() << '_' << column;
+  csv_ << '\n';
+}
+
+void InstrumentSet::writeSummary(const std::string& path) const {
+  nlohmann::json out = metrics_.summary();
+  out["events"] = events_;
+  std::ofstream file(path);
+  file << out.dump(2) << '\n';
+  file.close();
+  if (!file) throw std::runtime_error(path + ": write failed");
+}
+
+}  // namespace filum::haptics
