@@ -7,20 +7,30 @@
 
 namespace filum::haptics {
 
-namespace {
-
-geometry::ScriptedPath positionPath(const std::vector<InstrumentPath::Keyframe>& keyframes) {
-  std::vector<geometry::ScriptedPath::Keyframe> points;
-  points.reserve(keyframes.size());
-  for (const InstrumentPath::Keyframe& k : keyframes) points.push_back({k.time, k.position});
-  return geometry::ScriptedPath(std::move(points), geometry::ScriptedPath::Interpolation::kSmooth);
+InstrumentPath::InstrumentPath(std::vector<Keyframe> keyframes) : keyframes_(std::move(keyframes)) {
+  if (keyframes_.empty()) throw std::invalid_argument("InstrumentPath: at least one keyframe");
+  const int n = static_cast<int>(keyframes_.size());
+  velocities_.assign(n, Vec3::Zero());
+  for (int k = 1; k + 1 < n; ++k) {
+    const double h0 = keyframes_[k].time - keyframes_[k - 1].time, h1 = keyframes_[k + 1].time - keyframes_[k].time;
+    for (int c = 0; c < 3; ++c) {
+      const double d0 = (keyframes_[k].position[c] - keyframes_[k - 1].position[c]) / h0;
+      const double d1 = (keyframes_[k + 1].position[c] - keyframes_[k].position[c]) / h1;
+      if (d0 * d1 > 0.0) velocities_[k][c] = 3.0 * (h0 + h1) / ((2.0 * h1 + h0) / d0 + (h1 + 2.0 * h0) / d1);
+    }
+  }
 }
 
-}  // namespace
-
-InstrumentPath::InstrumentPath(std::vector<Keyframe> keyframes)
-    : keyframes_(std::move(keyframes)), positions_(positionPath(keyframes_)) {
-  if (keyframes_.empty()) throw std::invalid_argument("InstrumentPath: at least one keyframe");
+Vec3 InstrumentPath::position(double t) const {
+  double sigma = 0.0;
+  const int k = segment(t, sigma);
+  if (k < 0) return keyframes_.front().position;
+  if (k + 1 >= static_cast<int>(keyframes_.size())) return keyframes_.back().position;
+  const double h = keyframes_[k + 1].time - keyframes_[k].time;
+  const double u = (t - keyframes_[k].time) / h, u2 = u * u, u3 = u2 * u;
+  // X = (2u³−3u²+1) x_k + (u³−2u²+u) h m_k + (−2u³+3u²) x_{k+1} + (u³−u²) h m_{k+1}.
+  return (2 * u3 - 3 * u2 + 1) * keyframes_[k].position + (u3 - 2 * u2 + u) * h * velocities_[k] +
+         (-2 * u3 + 3 * u2) * keyframes_[k + 1].position + (u3 - u2) * h * velocities_[k + 1];
 }
 
 InstrumentPath InstrumentPath::fromParams(const Params& p, const std::string& key) {
@@ -78,7 +88,7 @@ InstrumentPose InstrumentPath::pose(double t) const {
     q = keyframes_[k].rotation.slerp(sigma, keyframes_[k + 1].rotation);
   }
   InstrumentPose pose;
-  pose.hinge = positions_.position(t);
+  pose.hinge = position(t);
   pose.frame = q.normalized().toRotationMatrix();
   return pose;
 }

@@ -241,19 +241,25 @@ double InstrumentSet::partsForce(int i, const Scene& scene) const {
   return sum.norm();
 }
 
-void InstrumentSet::countToolContacts() {
+void InstrumentSet::countToolContacts(double t) {
   const int count = size();
   for (int i = 0; i < count; ++i) {
     for (int j = i + 1; j < count; ++j) {
+      // In contact when two parts overlap; apart again only beyond 10 % more than their radii (a
+      // graze at the limit counts once, not at every step it flickers across it).
+      char& was = touching_[i * count + j];
+      const double reach = was ? 1.1 : 1.0;
       bool touching = false;
       for (int a = 0; a < Instrument::kParts && !touching; ++a) {
         for (int b = 0; b < Instrument::kParts && !touching; ++b) {
           const Capsule p = instruments_[i]->partNow(a), q = instruments_[j]->partNow(b);
-          touching = collision::closestPointsOnSegments(p.a, p.b, q.a, q.b).distance < p.radius + q.radius;
+          touching = collision::closestPointsOnSegments(p.a, p.b, q.a, q.b).distance < reach * (p.radius + q.radius);
         }
       }
-      char& was = touching_[i * count + j];
-      if (touching && !was) metrics_.countToolContact();
+      if (touching && !was) {
+        metrics_.countToolContact();
+        event(t, "'" + instruments_[i]->name() + "' touched '" + instruments_[j]->name() + "'");
+      }
       was = touching;
     }
   }
@@ -279,7 +285,7 @@ void InstrumentSet::afterStep(const Scene& scene) {
            << (tip - before).norm() / dt_ << ',' << force << ',' << (inst.holding() ? 1 : 0);
   }
   if (csv_.is_open()) csv_ << '\n';
-  countToolContacts();
+  countToolContacts(t);
   metrics_.endStep(t);
 }
 

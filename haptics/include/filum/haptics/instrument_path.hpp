@@ -6,8 +6,15 @@
 // direction, roll and jaw default to the previous keyframe's (the first's: roll 0, jaw 0); the
 // first keyframe needs a direction.
 // Interpolation, all C1 in time:
-//   position: cubic Hermite with Catmull-Rom velocities (geometry::ScriptedPath "smooth": the
-//             hand moves through the keyframes without stopping, at rest at the first and last);
+//   position: cubic Hermite per coordinate with the monotone velocities of Fritsch & Butland
+//             ("A method for constructing local monotone piecewise cubic interpolants", SIAM J.
+//             Sci. Stat. Comput. 5 (1984) 300): at keyframe k, with the chords' slopes δ₀, δ₁ and
+//             the intervals h₀, h₁ on either side,
+//               m_k = 3 (h₀ + h₁) / ((2h₁ + h₀)/δ₀ + (h₁ + 2h₀)/δ₁)  if δ₀ δ₁ > 0, else 0,
+//             and 0 at the first and last keyframes. The hand moves through keyframes on one
+//             straight run without stopping, but never overshoots one: a pause (two equal
+//             keyframes) is a true stop, and a straight move stays on its segment (Catmull-Rom's
+//             velocities would carry the jaws past a keyframe before a pause);
 //   rotation: q(t) = slerp(q_k, q_{k+1}, σ(u)), σ(u) = 3u² − 2u³ (the shortest turn between the
 //             keyframes' frames, starting and ending at rest);
 //   jaw:      o(t) = o_k + (o_{k+1} − o_k) σ(u).
@@ -18,7 +25,6 @@
 #include <Eigen/Geometry>
 
 #include "filum/core/params.hpp"
-#include "filum/geometry/scripted_path.hpp"
 #include "filum/haptics/instrument_shape.hpp"
 
 namespace filum::haptics {
@@ -45,8 +51,10 @@ class InstrumentPath {
  private:
   /// Segment k holding t and σ(u) in it; k = −1 before the first keyframe, size − 1 after the last.
   int segment(double t, double& sigma) const;
+  /// The hinge at t (cubic Hermite on the segment holding it).
+  Vec3 position(double t) const;
   std::vector<Keyframe> keyframes_;
-  geometry::ScriptedPath positions_;
+  std::vector<Vec3> velocities_;  // m_k per keyframe (Fritsch–Butland)
 };
 
 }  // namespace filum::haptics

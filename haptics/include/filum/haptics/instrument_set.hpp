@@ -75,7 +75,7 @@ class InstrumentSet {
   void coagulate(int i, const Scene& scene);
   /// |Σ contact forces on instrument i's parts| at the scene's state (N).
   double partsForce(int i, const Scene& scene) const;
-  void countToolContacts();
+  void countToolContacts(double t);
   void event(double t, const std::string& what);
 
   std::vector<std::unique_ptr<Instrument>> instruments_;

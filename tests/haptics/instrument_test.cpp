@@ -1,0 +1,314 @@
+// Instruments (haptics/instrument_set.hpp): a grasp holds below its holding force and slips
+// above it, to where the spring–slider puts it; scissors cut at the abscissa between their blades
+// at the step their gap closes onto the thread, and cut nothing in the air; a cut that needs
+// coagulation is refused until bipolar forceps have coagulated the span; the trainee metrics of a
+// scripted path against values worked out by hand; every instrument field refused at its JSON path.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "filum/collision/register_components.hpp"
+#include "filum/constraints/register_components.hpp"
+#include "filum/core/curve_body.hpp"
+#include "filum/core/scene_error.hpp"
+#include "filum/core/scene_loader.hpp"
+#include "filum/haptics/instrument_set.hpp"
+#include "filum/mechanics/register_components.hpp"
+
+namespace filum::haptics {
+namespace {
+
+using nlohmann::json;
+
+// The test thread: 3-0 braided silk (radius 0.11 mm, 1300 kg/m³, E = 8.7 GPa; bending 5e8 Pa as
+// in apps/scenes/knot.json), 10 cm along x from the origin, held at s = 0, no gravity; 40 control
+// points: P(s) = (0.1 s, 0, 0) exactly (a uniform B-spline reproduces a line).
+constexpr double kLength = 0.1, kRadius = 1.1e-4, kModulus = 8.7e9;
+const double kAxialStiffness = kModulus * M_PI * kRadius * kRadius;  // E A (N)
+
+json threadScene(const json& instruments, bool collision = true) {
+  const json points = {{"from", {0, 0, 0}}, {"to", {kLength, 0, 0}}, {"count", 40}};
+  json components = json::array({{{"type", "DynamicSpline"}, {"control_points", points}, {"radius", kRadius},
+                                  {"density", 1300}},
+                                 {{"type", "GreenLagrangeStretching"}, {"youngs_modulus", kModulus}},
+                                 {{"type", "CurvatureBending"}, {"youngs_modulus", 5e8}},
+                                 {{"type", "ViscousDamping"}, {"coefficient", 1.0}},
+                                 {{"type", "FixedPointConstraint"}, {"abscissa", 0.0}}});
+  if (collision)
+    components.push_back({{"type", "SphereCollisionModel"}, {"spacing", 2 * kRadius}, {"self_collision", false}});
+  json scene{{"name", "instrument test"}, {"dt", 1e-3}, {"duration", 2.0}, {"gravity", {0, 0, 0}},
+             {"integrator", {{"type", "ImplicitEuler"}}},
+             {"nodes", json::array({{{"name", "thread"}, {"components", components}}})},
+             {"instruments", instruments}};
+  if (collision) scene["collision"] = {{"type", "ContactPipeline"}, {"response", "unilateral"}};
+  return scene;
+}
+
+struct InstrumentRun {
+  std::unique_ptr<Scene> scene;
+  std::unique_ptr<InstrumentSet> instruments;
+  explicit InstrumentRun(const json& document) {
+    Factory factory;
+    mechanics::register_components(factory);
+    constraints::register_components(factory);
+    collision::register_components(factory);
+    scene = loadScene(document, "instrument test", factory);
+    instruments = InstrumentSet::fromScene(document, "instrument test", *scene);
+  }
+  /// One step with the instruments' work around it; false when the step failed.
+  bool step() {
+    instruments->beforeStep(*scene);
+    const StepReport report = scene->step();
+    if (report.ok) instruments->afterStep(*scene);
+    return report.ok;
+  }
+  const CurveBody& thread() const { return *scene->bodies().front()->curve(); }
+  int strands() const { return static_cast<int>(strandsOf(thread().basis()).size()); }
+  static std::vector<Strand> strandsOf(const CurveBasis& basis) { return filum::strands(basis); }
+};
+
+/// A grasper from −y (shaft along +y), jaws opening up and down (roll 0): caught at x = 0.05
+/// (s = 0.5) as the jaws close over 0–0.1 s, then the jaws are carried `pull` metres along +x over
+/// 0.1–1.1 s and held there.
+json pullingGrasper(double holding_force, double pull) {
+  return json::array({{{"name", "grasper"}, {"type", "Grasper"}, {"holding_force", holding_force},
+                       {"path", json::array({{{"time", 0.0}, {"position", {0.05, -0.01, 0}}, {"direction", {0, 1, 0}},
+                                              {"jaw", 1}},
+                                             {{"time", 0.1}, {"position", {0.05, -0.01, 0}}, {"jaw", 0}},
+                                             {{"time", 1.1}, {"position", {0.05 + pull, -0.01, 0}}}})}}});
+}
+
+TEST(Grasp, HoldsBelowItsHoldingForce) {
+  // A 0.5 mm pull stretches the coupling (k = 500 N/m) in series with the held 5 cm of thread
+  // (EA/0.05 = 6.6e3 N/m): 0.23 N, far below a 5 N hold. The held abscissa never moves.
+  InstrumentRun run(threadScene(pullingGrasper(5.0, 5e-4)));
+  double caught = -1.0, largest = 0.0;
+  for (int k = 0; k < 1300; ++k) {
+    ASSERT_TRUE(run.step()) << "step " << k;
+    const Instrument& grasper = run.instruments->instrument(0);
+    if (grasper.holding() && caught < 0.0) caught = grasper.hold()->grasp.abscissa();
+    if (grasper.holding()) {
+      EXPECT_EQ(grasper.hold()->grasp.abscissa(), caught) << "t = " << run.scene->state().time;
+      largest = std::max(largest, run.instruments->holdForce(0, *run.scene).norm());
+    }
+  }
+  // Caught where the thread crosses the jaws' midline: P(s) = (0.1 s, 0, 0) meets x = 0.05 at
+  // s = 0.5; the golden-section search stops within 1e-8 of the bracket (40 steps).
+  EXPECT_NEAR(caught, 0.5, 1e-6);
+  // At rest the coupling bears the whole stretch: k_series Δx with 1/k_series = 1/k + 0.05/EA.
+  const double k_series = 1.0 / (1.0 / 500.0 + 0.05 / kAxialStiffness);
+  const double at_rest = run.instruments->holdForce(0, *run.scene).norm();
+  // The thread's viscous damping (1/s) has let the pull settle for 0.2 s past the end of the
+  // motion: the remaining transient is below 1e-3 of the force (the thread's axial modes, at
+  // kHz, are gone; the coupling's own relaxation time c/k is 0.1 ms).
+  EXPECT_NEAR(at_rest, k_series * 5e-4, 1e-3 * k_series * 5e-4);
+  EXPECT_LT(largest, 5.0);
+  EXPECT_EQ(run.instruments->metrics().instrument(0).grasps, 1);
+  EXPECT_EQ(run.instruments->metrics().instrument(0).slip_length, 0.0);
+}
+
+TEST(Grasp, SlipsAboveItsHoldingForceToWhereTheSliderStops) {
+  // A 2 cm pull against a 0.5 N hold: once the coupling's pull along the thread reaches 0.5 N the
+  // thread slides through the jaws. At rest the jaws bear exactly F_hold (the last slip left the
+  // coupling stretched by F_hold/k along the thread) and the held 5–7 cm of thread carries F_hold:
+  //   X_end − P(s_end) = F_hold/k,  P(s) = s L (1 + F_hold/EA)  ⇒  s_end = (X_end − F_hold/k) / (L (1 + F_hold/EA)).
+  constexpr double hold = 0.5, pull = 0.02, k = 500.0;
+  InstrumentRun run(threadScene(pullingGrasper(hold, pull)));
+  for (int step = 0; step < 1400; ++step) ASSERT_TRUE(run.step()) << "step " << step;
+  const Instrument& grasper = run.instruments->instrument(0);
+  ASSERT_TRUE(grasper.holding());
+  const double predicted = (0.05 + pull - hold / k) / (kLength * (1.0 + hold / kAxialStiffness));
+  // The slider stops within one step of the jaws' travel of its rest (the force at rest lies in
+  // [F_hold − k v h, F_hold] for the last jaw speed v; the path ends at rest, v → 0), i.e. well
+  // within one jaw step at the path's top speed, 1.5 pull/T · h = 3e-5 m: 3e-4 in s.
+  EXPECT_NEAR(grasper.hold()->grasp.abscissa(), predicted, 1.5 * pull / 1.0 * 1e-3 / kLength);
+  // The tangential force never exceeds F_hold by more than one step of jaw travel at top speed.
+  const Vec3 force = run.instruments->holdForce(0, *run.scene);
+  EXPECT_LE(force.norm(), hold * (1.0 + 1e-3));
+  // The length of thread that went through the jaws, on the thread stretched by F_hold/EA: from
+  // the caught point, 0.05 (1 + ε), to the held one, X_end − F_hold/k.
+  const double strain = hold / kAxialStiffness;
+  EXPECT_NEAR(run.instruments->metrics().instrument(0).slip_length, 0.05 + pull - hold / k - 0.05 * (1 + strain),
+              2 * 1.5 * pull * 1e-3);
+}
+
+/// Scissors from −y (blades opening up and down) at x = `x`, `height` above the thread, closing
+/// from fully open to shut over 0.1–0.3 s.
+json scissorsAt(double x, double height, bool require_coagulation = false) {
+  json s = {{"name", "scissors"}, {"type", "Scissors"},
+            {"path", json::array({{{"time", 0.0}, {"position", {x, -0.01, height}}, {"direction", {0, 1, 0}},
+                                   {"jaw", 1}},
+                                  {{"time", 0.1}, {"position", {x, -0.01, height}}, {"jaw", 1}},
+                                  {{"time", 0.3}, {"position", {x, -0.01, height}}, {"jaw", 0}}})}};
+  if (require_coagulation) s["require_coagulation"] = true;
+  return s;
+}
+
+TEST(Scissors, CutBetweenTheBladesAtTheStepTheyCloseOntoTheThread) {
+  InstrumentRun run(threadScene(json::array({scissorsAt(0.03, 0.0)})));
+  // The gap between the blades' surfaces at the thread (10 mm from the hinge) falls to its
+  // diameter when 0.01 sin φ − r_jaw = r, φ = o · 0.45 rad: o* = asin((r_jaw + r)/0.01)/0.45; the
+  // opening follows o(t) = 1 − σ((t − 0.1)/0.2), σ(u) = 3u² − 2u³ (instrument_path.hpp), so the
+  // cut comes at the first step whose start time t_k = k h has o(t_k) <= o*.
+  const double o_star = std::asin((1e-3 + kRadius) / 0.01) / 0.45;
+  double lo = 0.0, hi = 1.0;  // σ(u) = 1 − o* by bisection (σ increases on [0, 1])
+  for (int it = 0; it < 60; ++it) {
+    const double u = 0.5 * (lo + hi);
+    (u * u * (3 - 2 * u) < 1 - o_star ? lo : hi) = u;
+  }
+  const long expected_step = static_cast<long>(std::ceil((0.1 + 0.2 * hi) / 1e-3 - 1e-9));
+  long cut_step = -1;
+  for (int k = 0; k < 400 && cut_step < 0; ++k) {
+    const long before = run.scene->stepCount();
+    run.instruments->beforeStep(*run.scene);
+    if (run.strands() == 2) cut_step = before;
+    ASSERT_TRUE(run.scene->step().ok);
+    run.instruments->afterStep(*run.scene);
+  }
+  EXPECT_EQ(cut_step, expected_step);
+  const std::vector<Strand> strands = InstrumentRun::strandsOf(run.thread().basis());
+  ASSERT_EQ(strands.size(), 2u);
+  // The blades' midline crosses the straight thread at x = 0.03: s = 0.3 (golden section: 1e-8).
+  EXPECT_NEAR(strands[0].end, 0.3, 1e-6);
+  EXPECT_EQ(run.instruments->metrics().instrument(0).cuts, 1);
+}
+
+TEST(Scissors, CutNothingWhenTheyCloseOnAir) {
+  // The same scissors 5 mm above the thread: it is never between the blades (their plane's
+  // thickness is r_jaw + r = 1.1 mm about the hinge's height).
+  InstrumentRun run(threadScene(json::array({scissorsAt(0.03, 0.005)})));
+  for (int k = 0; k < 400; ++k) ASSERT_TRUE(run.step());
+  EXPECT_EQ(run.strands(), 1);
+  EXPECT_EQ(run.instruments->metrics().instrument(0).cuts, 0);
+  ASSERT_FALSE(run.instruments->events().empty());
+  EXPECT_NE(run.instruments->events().back().find("closed on nothing"), std::string::npos);
+}
+
+TEST(Scissors, RefuseAnUncoagulatedCutAndCutAfterBipolarForceps) {
+  // Scissors that need coagulation close on the thread at x = 0.03 first (refused), then, after
+  // bipolar forceps held x = 0.07 for their 0.2 s of coagulation, at x = 0.07 (cut, coagulated).
+  json scissors = scissorsAt(0.03, 0.0, true);
+  scissors["path"].push_back({{"time", 0.4}, {"position", {0.03, -0.01, 0}}, {"jaw", 1}});
+  scissors["path"].push_back({{"time", 0.6}, {"position", {0.072, -0.01, 0}}, {"jaw", 1}});
+  scissors["path"].push_back({{"time", 0.9}, {"position", {0.072, -0.01, 0}}, {"jaw", 1}});
+  scissors["path"].push_back({{"time", 1.1}, {"position", {0.072, -0.01, 0}}, {"jaw", 0}});
+  const json bipolar = {
+      {"name", "bipolar"}, {"type", "BipolarForceps"}, {"coagulation_time", 0.2},
+      {"path", json::array({{{"time", 0.0}, {"position", {0.07, 0.01, 0}}, {"direction", {0, -1, 0}}, {"jaw", 1}},
+                            {{"time", 0.2}, {"position", {0.07, 0.01, 0}}, {"jaw", 0}},
+                            {{"time", 0.6}, {"position", {0.07, 0.01, 0}}, {"jaw", 0}},
+                            {{"time", 0.7}, {"position", {0.07, 0.01, 0}}, {"jaw", 1}},
+                            {{"time", 0.8}, {"position", {0.07, 0.05, 0}}, {"jaw", 1}}})}};
+  InstrumentRun run(threadScene(json::array({scissors, bipolar})));
+  for (int k = 0; k < 1300; ++k) ASSERT_TRUE(run.step()) << "step " << k;
+  const InstrumentTally& m = run.instruments->metrics().instrument(0);
+  EXPECT_EQ(m.cuts_refused, 1);
+  EXPECT_EQ(m.cuts, 1);
+  EXPECT_EQ(m.cuts_coagulated, 1);
+  EXPECT_EQ(run.instruments->metrics().instrument(1).coagulations, 1);
+  // Coagulated: x = 0.07 ± half a jaw (9 mm) on the straight thread, s = 0.7 ± 0.09.
+  EXPECT_TRUE(run.instruments->coagulated(run.thread(), 0.72));
+  EXPECT_FALSE(run.instruments->coagulated(run.thread(), 0.5));
+  const std::vector<Strand> strands = InstrumentRun::strandsOf(run.thread().basis());
+  ASSERT_EQ(strands.size(), 2u);
+  EXPECT_NEAR(strands[0].end, 0.72, 2e-3);  // the thread moved little: held at 0.7 for a while
+}
+
+TEST(TraineeMetrics, PathLengthIdleTimeAndTaskTimeOfAScriptedPath) {
+  // A grasper far from the thread (no collision) rests at A for 0.2 s, moves 5 cm to B in 0.5 s,
+  // rests 0.5 s, comes back in 0.5 s and rests to 2 s. Each move is the Hermite cubic with zero
+  // end velocities (Fritsch–Butland velocities vanish at a pause), x = A + (B − A) σ(u): the tip
+  // runs the straight segment twice, path length 2 |AB| = 0.1 m (to round-off), and moves slower
+  // than v_idle = 5 mm/s while 6u(1−u) |AB|/T < v_idle: u(1−u) < v_idle T/(6|AB|), at each end
+  // of each move.
+  const json grasper = {
+      {"name", "g"}, {"type", "Grasper"}, {"collide", false},
+      {"path", json::array({{{"time", 0.0}, {"position", {0.05, -0.05, 0.05}}, {"direction", {0, 1, 0}}, {"jaw", 1}},
+                            {{"time", 0.2}, {"position", {0.05, -0.05, 0.05}}},
+                            {{"time", 0.7}, {"position", {0.10, -0.05, 0.05}}},
+                            {{"time", 1.2}, {"position", {0.10, -0.05, 0.05}}},
+                            {{"time", 1.7}, {"position", {0.05, -0.05, 0.05}}}})}};
+  InstrumentRun run(threadScene(json::array({grasper}), false));
+  for (int k = 0; k < 2000; ++k) ASSERT_TRUE(run.step());
+  const InstrumentTally& m = run.instruments->metrics().instrument(0);
+  EXPECT_NEAR(m.path_length, 0.1, 1e-12);
+  EXPECT_NEAR(m.economy(), 0.0, 1e-12);  // back where it started
+  const double v_idle = 5e-3, T = 0.5, d = 0.05;
+  const double c = v_idle * T / (6 * d);
+  const double u_slow = 0.5 * (1 - std::sqrt(1 - 4 * c));  // u(1−u) = c
+  const double slow = 4 * u_slow * T;  // two ends of two moves
+  // Rests: [0, 0.2] (0.2 s), [0.7, 1.2] (0.5 s), [1.7, 2.0] (0.3 s). A step is idle when its
+  // displacement is below v_idle h: each of the 4 boundaries of a slow interval is found to
+  // within one step (h = 1 ms).
+  EXPECT_NEAR(m.idle_time, 1.0 + slow, 4e-3 + 1e-9);
+  // Task time: from the first to the last step that moved faster than v_idle.
+  const double first = 0.2 + u_slow * T, last = 1.7 - u_slow * T;
+  EXPECT_NEAR(run.instruments->metrics().taskTime(), last - first, 2e-3 + 1e-9);
+}
+
+struct BadField {
+  const char* what;
+  json instrument;  // merged into a valid grasper
+  const char* pointer;
+};
+
+TEST(Instruments, EveryFieldIsRefusedAtItsJsonPath) {
+  const json valid = {{"name", "g"}, {"type", "Grasper"},
+                      {"path", json::array({{{"time", 0.0}, {"position", {0.05, -0.01, 0}}, {"direction", {0, 1, 0}}}})}};
+  const std::vector<BadField> cases = {
+      {"unknown type", {{"type", "Stapler"}}, "/instruments/0/type"},
+      {"empty path", {{"path", json::array()}}, "/instruments/0/path"},
+      {"jaw above 1", {{"path", json::array({{{"time", 0.0}, {"position", {0, 0, 0}}, {"direction", {0, 1, 0}}, {"jaw", 1.5}}})}},
+       "/instruments/0/path/0/jaw"},
+      {"zero direction", {{"path", json::array({{{"time", 0.0}, {"position", {0, 0, 0}}, {"direction", {0, 0, 0}}}})}},
+       "/instruments/0/path/0/direction"},
+      {"no direction", {{"path", json::array({{{"time", 0.0}, {"position", {0, 0, 0}}}})}}, "/instruments/0/path/0/direction"},
+      {"times not increasing",
+       {{"path", json::array({{{"time", 0.5}, {"position", {0, 0, 0}}, {"direction", {0, 1, 0}}},
+                              {{"time", 0.5}, {"position", {0, 0, 0}}}})}},
+       "/instruments/0/path/1/time"},
+      {"close_below outside (0, 1)", {{"close_below", 1.5}}, "/instruments/0/close_below"},
+      {"negative holding force", {{"holding_force", -1.0}}, "/instruments/0/holding_force"},
+      {"zero jaw length", {{"jaw_length", 0.0}}, "/instruments/0/jaw_length"},
+      {"jaws wider than a straight angle", {{"max_angle", 4.0}}, "/instruments/0/max_angle"},
+      {"coagulation time on a grasper", {{"coagulation_time", 1.0}}, "/instruments/0/coagulation_time"},
+      {"holding force on scissors", {{"type", "Scissors"}, {"holding_force", 1.0}}, "/instruments/0/holding_force"},
+      {"coagulation demanded by a grasper", {{"require_coagulation", true}}, "/instruments/0/require_coagulation"},
+      {"coagulation of an unknown node", {{"type", "Scissors"}, {"require_coagulation", {"tube"}}},
+       "/instruments/0/require_coagulation"},
+      {"a misspelt field", {{"holding_forc", 1.0}}, "/instruments/0/holding_forc"},
+      {"no name", {{"name", nullptr}}, "/instruments/0/name"},
+  };
+  for (const BadField& c : cases) {
+    json instrument = valid;
+    for (const auto& [key, value] : c.instrument.items()) {
+      if (value.is_null()) {
+        instrument.erase(key);
+      } else {
+        instrument[key] = value;
+      }
+    }
+    try {
+      InstrumentRun run(threadScene(json::array({instrument})));
+      ADD_FAILURE() << c.what << ": accepted";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(c.pointer), std::string::npos) << c.what << ": " << e.what();
+    }
+  }
+  // Two instruments of one name; a colliding instrument in a scene without collision.
+  try {
+    InstrumentRun run(threadScene(json::array({valid, valid})));
+    ADD_FAILURE() << "a repeated name: accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("/instruments/1/name"), std::string::npos) << e.what();
+  }
+  try {
+    InstrumentRun run(threadScene(json::array({valid}), false));
+    ADD_FAILURE() << "collide without a collision pipeline: accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("/instruments/0/collide"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace filum::haptics
