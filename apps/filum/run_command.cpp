@@ -55,6 +55,12 @@ void finishInstruments(const haptics::InstrumentSet& instruments, const std::str
   log << instruments.metrics().text() << "  -> metrics.csv, metrics.json\n";
 }
 
+/// The threads that tore (ForceField::tearsAt), one line each; the instruments' events list them too.
+void logRuptures(const Scene& scene, std::ostream& log) {
+  for (const Scene::Rupture& r : scene.ruptures())
+    log << "  t = " << r.time << " s: " << r.body << " tore at s = " << r.abscissa << " under " << r.tension << " N\n";
+}
+
 /// Forces off, haptics.csv written, the servo's summary logged.
 void finishHaptics(haptics::HapticSession& haptic, const std::string& directory, std::ostream& log) {
   haptic.finish();
@@ -173,6 +179,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   auto diverged = [&](const std::string& message) {
     if (haptic) finishHaptics(*haptic, directory, log);
     if (instruments) finishInstruments(*instruments, directory, log);
+    else logRuptures(*scene, log);
     log << "error: " << message << '\n'
         << "the " << (output_files ? output_files->frames() : 0) << " frames written so far in " << directory
         << " are intact\n";
@@ -238,6 +245,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     }
     if (haptic) finishHaptics(*haptic, directory, log);
     if (instruments) finishInstruments(*instruments, directory, log);
+    else logRuptures(*scene, log);
     if (visuals) visuals->finish(*scene);
     log << "wrote " << out.frames() << " frames to " << directory
         << " (control_points.csv, curve.csv, energy.csv, curve.pvd, timing.json" << (visuals ? visuals->summary() : "")

@@ -279,13 +279,18 @@ void InstrumentSet::afterStep(const Scene& scene) {
     const InstrumentPath& path = inst.settings().path;
     const Vec3 tip = inst.settings().shape.tip(path.pose(t), path.jaw(t));
     const Vec3 before = metrics_.instrument(i).sampled ? metrics_.instrument(i).last : tip;
-    metrics_.sample(i, t, dt_, tip, path.jaw(t), force, inst.settings().force_limit);
+    metrics_.sample(i, dt_, tip, path.jaw(t), force, inst.settings().force_limit);
     if (csv_.is_open())
       csv_ << ',' << tip.x() << ',' << tip.y() << ',' << tip.z() << ',' << path.jaw(t) << ','
            << (tip - before).norm() / dt_ << ',' << force << ',' << (inst.holding() ? 1 : 0);
   }
   if (csv_.is_open()) csv_ << '\n';
   countToolContacts(t);
+  for (; ruptures_seen_ < scene.ruptures().size(); ++ruptures_seen_) {
+    const Scene::Rupture& r = scene.ruptures()[ruptures_seen_];
+    metrics_.countBreak();
+    event(r.time, r.body + " broke at s = " + number(r.abscissa) + " under " + number(r.tension) + " N");
+  }
   metrics_.endStep(t);
 }
 

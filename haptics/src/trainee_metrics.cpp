@@ -17,9 +17,7 @@ void TraineeMetrics::addInstrument(const std::string& name, const std::string& k
   instruments_.push_back(tally);
 }
 
-void TraineeMetrics::sample(int i, double t, double h, const Vec3& tip, double opening, double force,
-                            double force_limit) {
-  (void)t;
+void TraineeMetrics::sample(int i, double h, const Vec3& tip, double opening, double force, double force_limit) {
   InstrumentTally& m = instruments_[i];
   if (!m.sampled) {
     m.start = m.last = tip;

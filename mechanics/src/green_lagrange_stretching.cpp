@@ -1,6 +1,7 @@
 #include "filum/mechanics/green_lagrange_stretching.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "filum/geometry/spline_curve.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
@@ -21,7 +22,38 @@ void pairBlock(const double* m, Eigen::Matrix3d& block) {
 std::unique_ptr<GreenLagrangeStretching> GreenLagrangeStretching::fromParams(const Params& p) {
   const std::string jacobian = p.string("jacobian", "exact");
   if (jacobian != "exact" && jacobian != "definite") p.fail("jacobian", "\"exact\" or \"definite\"", "\"" + jacobian + "\"");
-  return std::make_unique<GreenLagrangeStretching>(ElasticParameters::fromParams(p), jacobian == "definite");
+  auto field = std::make_unique<GreenLagrangeStretching>(ElasticParameters::fromParams(p), jacobian == "definite");
+  if (p.has("break_force") && p.has("tensile_strength"))
+    p.fail("tensile_strength", "either \"break_force\" (N) or \"tensile_strength\" (Pa), not both", "both");
+  if (p.has("break_force")) field->setBreakForce(p.positive("break_force"));
+  if (p.has("tensile_strength")) field->setTensileStrength(p.positive("tensile_strength"));
+  return field;
+}
+
+bool GreenLagrangeStretching::tearsAt(const SceneState& s, double& abscissa, double& tension) const {
+  if (!std::isfinite(break_force_)) return false;
+  // N = E A ε |P'|/|P0'| at each node (the header); the largest, if above the break force.
+  const double* q = body().block(s.q).data();
+  double largest = -std::numeric_limits<double>::infinity();
+  int at = -1;
+  for (const QuadraturePiece& piece : quadrature_.pieces()) {
+    const double* points = q + 3 * piece.first;
+    for (int g = piece.begin; g < piece.end; ++g) {
+      const Node& node = nodes_[g];
+      Vec3 x = Vec3::Zero();
+      for (int j = 0; j < piece.count; ++j) x += node.d1[j] * Vec3(points[3 * j], points[3 * j + 1], points[3 * j + 2]);
+      const double speed_sq = x.squaredNorm();
+      const double n = axial_stiffness_ * (speed_sq - node.a0sq) / (2.0 * node.a0sq) * std::sqrt(speed_sq / node.a0sq);
+      if (n > largest) {
+        largest = n;
+        at = g;
+      }
+    }
+  }
+  if (at < 0 || !(largest > break_force_)) return false;
+  abscissa = node_abscissas_[at];
+  tension = largest;
+  return true;
 }
 
 void GreenLagrangeStretching::init(const Scene&) {
@@ -30,9 +62,12 @@ void GreenLagrangeStretching::init(const Scene&) {
   const int k = parameters_.quadrature_nodes > 0 ? parameters_.quadrature_nodes
                                                  : defaultNodesPerPiece(spline.basis().degree());
   quadrature_ = CurveQuadrature(spline.basis(), k, spline.initialPositions(), parameters_.rest_length);
+  if (std::isfinite(tensile_strength_)) break_force_ = tensile_strength_ * crossSectionArea(spline.radius());
   c_.clear();
   nodes_.clear();
+  node_abscissas_.clear();
   for (const QuadratureNode& node : quadrature_.nodes()) {
+    node_abscissas_.push_back(node.s);
     c_.push_back(axial_stiffness_ * node.weight / node.rest_speed);
     nodes_.push_back({node.row.d1, c_.back(), node.rest_speed * node.rest_speed});
   }

@@ -353,6 +353,7 @@ StepReport Scene::step() {
 void Scene::beginStep() {
   fault_.clear();
   applyScheduledLayoutChanges();
+  applyRuptures();
   // endStep needs the last good state: copied into preallocated storage (no allocation).
   last_good_ = state_;
   // Scheduled releases (cuts) take effect at the first step that starts at or after their time.
@@ -381,6 +382,29 @@ void Scene::applyScheduledLayoutChanges() {
           return;
         }
       }
+}
+
+void Scene::applyRuptures() {
+  // One tear per body and step at most: its tension is measured again after the cut's step.
+  for (ForceField* field : force_fields_) {
+    double s = 0.0, tension = 0.0;
+    if (!field->tearsAt(state_, s, tension)) continue;
+    CurveBody* curve = field->body().curve();
+    if (!curve) continue;
+    try {
+      cut(*curve, s);
+    } catch (const std::exception& e) {
+      std::string message = field->describe();
+      message += ": the thread tore at s = ";
+      message += std::to_string(s);
+      message += " but cannot be cut there: ";
+      message += e.what();
+      noteFault(message);
+      return;
+    }
+    ruptures_.push_back({state_.time, curve->describe(), s, tension});
+    return;  // the cut laid the scene out anew: the fields are bound again, checked next step
+  }
 }
 
 long Scene::unconvergedContactSolves() const {

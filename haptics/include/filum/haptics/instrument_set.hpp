@@ -88,6 +88,7 @@ class InstrumentSet {
   std::vector<std::string> events_;
   std::ofstream csv_;
   double dt_ = 1e-3;
+  std::size_t ruptures_seen_ = 0;  // Scene::ruptures() already counted
 };
 
 }  // namespace filum::haptics

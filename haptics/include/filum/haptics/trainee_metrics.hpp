@@ -49,9 +49,9 @@ class TraineeMetrics {
   const InstrumentTally& instrument(int i) const { return instruments_[i]; }
   int instrumentCount() const { return static_cast<int>(instruments_.size()); }
 
-  /// One step of length h ending at time t: instrument i's tip, jaw opening, force on tissue
-  /// and force limit.
-  void sample(int i, double t, double h, const Vec3& tip, double opening, double force, double force_limit);
+  /// One step of length h: instrument i's tip and jaw opening at its end, force on tissue and
+  /// force limit.
+  void sample(int i, double h, const Vec3& tip, double opening, double force, double force_limit);
   /// After every instrument's sample of the step ending at t.
   void endStep(double t) {
     if (moving_) {

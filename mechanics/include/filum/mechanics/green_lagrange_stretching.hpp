@@ -25,12 +25,17 @@
 // so a converged Newton step is the same; the linearized step is Baraff & Witkin's on the
 // definite part. Default "exact": the full Hessian.
 //
+// Rupture: with "break_force" (N), or "tensile_strength" (Pa: the break force σ_u A), the thread
+// tears where N first exceeds it (tearsAt: the largest N over the quadrature nodes at the end of a
+// step; Scene::step cuts it there before the next).
+//
 // Stiffness derivative (for RayleighDamping): with ω = Σ_j b'_j w_j at a node,
 //   ∂(∂²E_g/∂x² ω)/∂x = (c / a0²) (ω xᵀ + (x·ω) I + x ωᵀ),
 //   ∂(K w)_i/∂q_k = −Σ_g b'_i b'_k (c / a0²) (ω xᵀ + (x·ω) I + x ωᵀ).
 #pragma once
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -46,6 +51,11 @@ class GreenLagrangeStretching final : public ForceField, public StiffnessDerivat
  public:
   explicit GreenLagrangeStretching(ElasticParameters parameters, bool definite_jacobian = false)
       : parameters_(parameters), definite_jacobian_(definite_jacobian) {}
+  /// The tension at which the thread tears (N; infinite: never), or its tensile strength (Pa).
+  void setBreakForce(double force) { break_force_ = force; }
+  void setTensileStrength(double stress) { tensile_strength_ = stress; }
+  double breakForce() const { return break_force_; }
+  bool tearsAt(const SceneState& s, double& abscissa, double& tension) const override;
   /// "youngs_modulus": Pa, "rest_length": m (default: the initial curve's arc length),
   /// "quadrature_nodes": per piece (default 2d − 1), "jacobian": "exact" (default) or
   /// "definite" (no negative transverse stiffness in compression, see above).
@@ -69,6 +79,9 @@ class GreenLagrangeStretching final : public ForceField, public StiffnessDerivat
   ElasticParameters parameters_;
   bool definite_jacobian_ = false;
   double axial_stiffness_ = 0.0;  // E A (N)
+  double break_force_ = std::numeric_limits<double>::infinity();     // N
+  double tensile_strength_ = std::numeric_limits<double>::infinity();  // Pa (sets break_force_ at init)
+  std::vector<double> node_abscissas_;  // s_g of the quadrature nodes (tearsAt)
   /// What a force evaluation reads of a quadrature node, packed (the node's BasisRow also holds
   /// values and second derivatives): b'_j, c and a0².
   struct Node {

@@ -35,6 +35,11 @@ class ForceField : public BodyComponent {
   /// True when K and D do not depend on the state (parametric bending, viscous damping): the
   /// step matrix then adds them once per step size into its constant part, not at every step.
   virtual bool jacobianIsConstant() const { return false; }
+
+  /// Where the material this field models tears at state s: the abscissa of its largest tension
+  /// and that tension (N), when it exceeds the material's strength (a stretching field with a
+  /// break force); false otherwise. Scene::step cuts the body there before the next step.
+  virtual bool tearsAt(const SceneState& /*s*/, double& /*abscissa*/, double& /*tension*/) const { return false; }
 };
 
 }  // namespace filum

@@ -143,6 +143,16 @@ class Scene {
   /// point held on either side stays held. Throws SceneError when the body cannot be cut there
   /// (nothing changed then).
   void cut(CurveBody& body, double abscissa);
+  /// A body torn where its tension exceeded its strength (ForceField::tearsAt), cut at the start
+  /// of the step after.
+  struct Rupture {
+    double time = 0.0;      // s (the start of the step that applied the cut)
+    std::string body;       // its description
+    double abscissa = 0.0;
+    double tension = 0.0;   // N, at the end of the step before
+  };
+  /// Every rupture since init, in order.
+  const std::vector<Rupture>& ruptures() const { return ruptures_; }
   /// Counts layout changes (refine, coarsen, cut): 0 for a scene that never changed its points.
   long layoutRevision() const { return layout_revision_; }
   /// Steps redone in halves because the contact set of their start missed a contact
@@ -219,6 +229,9 @@ class Scene {
   void beginStep();
   /// Control points scheduled for insertion, and cuts (CurveBody::layoutChangeDue), at this step.
   void applyScheduledLayoutChanges();
+  /// Bodies whose tension exceeds their strength (ForceField::tearsAt) cut where it does.
+  void applyRuptures();
+  std::vector<Rupture> ruptures_;
   /// Advances state_ by h (detection at its start, then the integrator); redone as two halves,
   /// recursively, while the collision pipeline finds a contact the step's contact set missed.
   void advance(double h, int depth);
