@@ -56,7 +56,21 @@ InstrumentSettings InstrumentSettings::fromParams(const Params& p) {
   }
   s.force_limit = p.positive("force_limit", s.force_limit);
   s.collide = p.boolean("collide", true);
-  s.path = InstrumentPath::fromParams(p, "path");
+  if (p.has("trocar")) s.trocar = p.vec3("trocar");
+  s.path = InstrumentPath::fromParams(p, "path", s.trocar ? &*s.trocar : nullptr);
+  if (s.trocar) {
+    // The hinge within the shaft's reach of the port over the whole path (1 ms samples, and the
+    // keyframes' times, where the farthest points of a monotone Hermite path lie).
+    const double end = s.path.endTime();
+    for (long k = 0; k <= static_cast<long>(end * 1e3) + 1; ++k) {
+      const double t = std::min(end, 1e-3 * k);
+      const double reach = (s.path.hinge(t) - *s.trocar).norm();
+      if (reach > s.shape.shaft_length)
+        p.fail("trocar", "a port within shaft_length (" + describeJson(s.shape.shaft_length) +
+                             " m) of the hinge all along the path (the shaft passes through it)",
+               "the hinge " + describeJson(reach) + " m away at t = " + describeJson(t) + " s");
+    }
+  }
   if (s.kind != InstrumentKind::kGrasper && p.has("holding_force"))
     p.fail("holding_force", "no holding force on a " + type + " (only a Grasper's jaws let a thread slip)", "one");
   if (s.kind != InstrumentKind::kBipolarForceps && p.has("coagulation_time"))
@@ -145,12 +159,22 @@ bool Instrument::jawsCollide() const {
          opening_ <= settings_.close_below;
 }
 
+InstrumentPose Instrument::poseAt(double t) const {
+  InstrumentPose pose = settings_.path.pose(t);
+  if (settings_.trocar) {
+    // Laparoscopy: the axis through the port, by the least rotation of the path's frame.
+    const Vec3 axis = (pose.hinge - *settings_.trocar).normalized();
+    pose.frame = Eigen::Quaterniond::FromTwoVectors(pose.axis(), axis).toRotationMatrix() * pose.frame;
+  }
+  return pose;
+}
+
 void Instrument::setTime(double t, double h) {
-  pose_ = settings_.path.pose(t);
+  pose_ = poseAt(t);
   previous_opening_ = previous_opening_ < 0.0 ? settings_.path.jaw(t) : opening_;
   opening_ = settings_.path.jaw(t);
   if (opening_ > previous_opening_) latched_ = false;
-  next_ = settings_.path.pose(t + h);
+  next_ = poseAt(t + h);
   h_ = h;
   const double next_opening = settings_.path.jaw(t + h);
   const InstrumentShape& shape = settings_.shape;

@@ -33,7 +33,7 @@ Vec3 InstrumentPath::position(double t) const {
          (-2 * u3 + 3 * u2) * keyframes_[k + 1].position + (u3 - u2) * h * velocities_[k + 1];
 }
 
-InstrumentPath InstrumentPath::fromParams(const Params& p, const std::string& key) {
+InstrumentPath InstrumentPath::fromParams(const Params& p, const std::string& key, const Vec3* port) {
   const std::vector<Params> items = p.objects(key);
   if (items.empty())
     p.fail(key, "at least one keyframe {\"time\": t, \"position\": [x, y, z], \"direction\": [x, y, z], \"jaw\": o}");
@@ -47,7 +47,12 @@ InstrumentPath InstrumentPath::fromParams(const Params& p, const std::string& ke
     if (!keyframes.empty() && !(k.time > keyframes.back().time))
       item.fail("time", "a time later than the previous keyframe's (" + describeJson(keyframes.back().time) + " s)");
     k.position = item.vec3("position");
-    if (keyframes.empty() || item.has("direction")) {
+    if (port) {
+      if (item.has("direction"))
+        item.fail("direction", "no direction with a trocar (the shaft runs from the port to the hinge)", "one");
+      direction = k.position - *port;
+      if (!(direction.norm() > 0.0)) item.fail("position", "a hinge away from the trocar's port");
+    } else if (keyframes.empty() || item.has("direction")) {
       direction = item.vec3("direction");
       if (!(direction.norm() > 0.0)) item.fail("direction", "a non-zero vector (the shaft's axis towards the tip)");
     }

@@ -277,7 +277,7 @@ void InstrumentSet::afterStep(const Scene& scene) {
     }
     const double force = hold.norm() + partsForce(i, scene);
     const InstrumentPath& path = inst.settings().path;
-    const Vec3 tip = inst.settings().shape.tip(path.pose(t), path.jaw(t));
+    const Vec3 tip = inst.settings().shape.tip(inst.poseAt(t), path.jaw(t));
     const Vec3 before = metrics_.instrument(i).sampled ? metrics_.instrument(i).last : tip;
     metrics_.sample(i, dt_, tip, path.jaw(t), force, inst.settings().force_limit);
     if (csv_.is_open())

@@ -246,6 +246,34 @@ TEST(TraineeMetrics, PathLengthIdleTimeAndTaskTimeOfAScriptedPath) {
   EXPECT_NEAR(run.instruments->metrics().taskTime(), last - first, 2e-3 + 1e-9);
 }
 
+TEST(Trocar, TheShaftPassesThroughItsPortAtEveryStep) {
+  // A grasper through a port 5 cm above and 5 cm before the thread, its hinge swept over a 3 cm
+  // square above the thread: the shaft's axis (the segment from hinge − L d to the hinge) holds
+  // the port at every step, to round-off (the frame is turned onto the port's direction exactly).
+  const Vec3 port(0.05, -0.05, 0.05);
+  const json grasper = {
+      {"name", "g"}, {"type", "Grasper"}, {"trocar", {port.x(), port.y(), port.z()}}, {"shaft_length", 0.12},
+      {"path", json::array({{{"time", 0.0}, {"position", {0.035, -0.01, 0.01}}, {"jaw", 1}},
+                            {{"time", 0.3}, {"position", {0.065, -0.01, 0.01}}},
+                            {{"time", 0.6}, {"position", {0.065, 0.02, 0.01}}, {"roll", 0.5}},
+                            {{"time", 0.9}, {"position", {0.035, 0.02, 0.02}}}})}};
+  InstrumentRun run(threadScene(json::array({grasper})));
+  const Instrument& g = run.instruments->instrument(0);
+  double worst = 0.0;
+  for (int k = 0; k < 1000; ++k) {
+    ASSERT_TRUE(run.step());
+    const Capsule shaft = g.partNow(0);
+    const Vec3 axis = (shaft.b - shaft.a).normalized();
+    const Vec3 off = (port - shaft.a) - (port - shaft.a).dot(axis) * axis;  // the port's offset from the axis
+    const double along = (port - shaft.a).dot(axis);
+    EXPECT_GE(along, 0.0);
+    EXPECT_LE(along, 0.12);
+    worst = std::max(worst, off.norm());
+  }
+  // Round-off of a rotation of 0.1 m: a few ulps of 0.1 m.
+  EXPECT_LT(worst, 1e-15 * 0.1 * 64);
+}
+
 struct BadField {
   const char* what;
   json instrument;  // merged into a valid grasper
@@ -278,6 +306,10 @@ TEST(Instruments, EveryFieldIsRefusedAtItsJsonPath) {
        "/instruments/0/require_coagulation"},
       {"a misspelt field", {{"holding_forc", 1.0}}, "/instruments/0/holding_forc"},
       {"no name", {{"name", nullptr}}, "/instruments/0/name"},
+      {"a direction through a trocar", {{"trocar", {0.05, -0.05, 0.05}}}, "/instruments/0/path/0/direction"},
+      {"a trocar out of the shaft's reach",
+       {{"trocar", {0.05, -0.5, 0.05}}, {"path", json::array({{{"time", 0.0}, {"position", {0.05, -0.01, 0}}}})}},
+       "/instruments/0/trocar"},
   };
   for (const BadField& c : cases) {
     json instrument = valid;

@@ -43,7 +43,7 @@ void InstrumentVisual::appendCapsule(const haptics::Capsule& c, TriangleMesh& ou
 
 void InstrumentVisual::update(const SceneState& s) {
   const haptics::InstrumentSettings& settings = instrument_.settings();
-  const haptics::InstrumentPose pose = settings.path.pose(s.time);
+  const haptics::InstrumentPose pose = instrument_.poseAt(s.time);
   const double opening = settings.path.jaw(s.time);
   mesh_.vertices.resize(0, 3);
   mesh_.normals.resize(0, 3);

@@ -12,7 +12,12 @@
 //    "require_coagulation": true | ["node", ...]   Scissors: a cut outside a coagulated span (of
 //                               every body, or of the named nodes' bodies) is refused (an error)
 //    "force_limit": N,          the force on tissue above which the metrics count the time
-//    "collide": true}           the shaft and jaws push threads (needs a collision pipeline)
+//    "collide": true,           the shaft and jaws push threads (needs a collision pipeline)
+//    "trocar": [x, y, z]}       a fixed port the shaft passes through (laparoscopy): the path's
+//                               keyframes then give no direction, the shaft's axis runs from the
+//                               port to the hinge at every instant (the frame turned from the
+//                               path's by the least rotation that does it), and the hinge stays
+//                               within shaft_length of the port
 //
 // What the jaws do (instrument_set.cpp). At every step in which they close (the opening falls),
 // the jaws catch the thread that was between them (betweenJaws at the previous step's opening,
@@ -66,6 +71,7 @@ struct InstrumentSettings {
   std::vector<std::string> coagulation_objects;  // node paths (empty with require_coagulation: all)
   double force_limit = std::numeric_limits<double>::infinity();  // N (metrics)
   bool collide = true;
+  std::optional<Vec3> trocar;  // the port (m)
 
   /// From one entry of "instruments" (see above); throws SceneError at the faulty field.
   static InstrumentSettings fromParams(const Params& p);
@@ -98,6 +104,8 @@ class Instrument {
   const InstrumentPose& pose() const { return pose_; }
   double opening() const { return opening_; }
   Vec3 tip() const { return settings_.shape.tip(pose_, opening_); }
+  /// Where its driver has it at time t (through the trocar's port if it has one).
+  InstrumentPose poseAt(double t) const;
   /// Moves the instrument to time t (from its driver) and its parts over [t, t + h].
   void setTime(double t, double h);
   /// The opening at the previous setTime (the current one at the first).

@@ -41,10 +41,13 @@ class InstrumentPath {
   InstrumentPath() = default;
   /// Keyframes with strictly increasing times (at least one).
   explicit InstrumentPath(std::vector<Keyframe> keyframes);
-  /// From p[key] (see above); throws SceneError at the faulty keyframe.
-  static InstrumentPath fromParams(const Params& p, const std::string& key);
+  /// From p[key] (see above); throws SceneError at the faulty keyframe. With a trocar `port`,
+  /// the keyframes take no direction: the shaft's axis runs from the port to the hinge.
+  static InstrumentPath fromParams(const Params& p, const std::string& key, const Vec3* port = nullptr);
 
   InstrumentPose pose(double t) const;
+  /// The hinge at t.
+  Vec3 hinge(double t) const { return position(t); }
   double jaw(double t) const;
   double endTime() const { return keyframes_.back().time; }
 
