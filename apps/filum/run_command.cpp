@@ -49,7 +49,9 @@ std::string checkOverrides(const RunOptions& options, const Scene& scene, double
 }
 
 /// metrics.json written, the metrics and the instruments' events logged.
-void finishInstruments(const haptics::InstrumentSet& instruments, const std::string& directory, std::ostream& log) {
+void finishInstruments(haptics::InstrumentSet& instruments, const std::string& directory, std::ostream& log) {
+  instruments.finish();  // devices' forces off
+  log << instruments.writeDeviceLogs(directory);
   instruments.writeSummary(directory + "/metrics.json");
   for (const std::string& e : instruments.events()) log << "  " << e << '\n';
   log << instruments.metrics().text() << "  -> metrics.csv, metrics.json\n";
@@ -118,7 +120,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   // jaws act between the steps (haptics/instrument_set.hpp).
   std::unique_ptr<haptics::InstrumentSet> instruments;
   try {
-    instruments = haptics::InstrumentSet::fromScene(document, options.scene, *scene);
+    instruments = haptics::InstrumentSet::fromScene(document, options.scene, *scene, duration);
   } catch (const SceneError& e) {
     log << "error: " << e.what() << '\n';
     return kRunSceneError;
@@ -198,30 +200,28 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     }
     auto last_progress = start;
     if (haptic) haptic->start();
+    if (instruments) instruments->start();
     const auto haptic_start = Clock::now();
     for (long k = 1; k <= steps; ++k) {
-      if (haptic) {
-        // A device on the wall clock: the simulation keeps pace with it (never ahead of it).
-        if (haptic->threaded())
-          std::this_thread::sleep_until(haptic_start + std::chrono::duration_cast<Clock::duration>(
-                                                           std::chrono::duration<double>(scene->state().time)));
-        haptic->beforeStep(*scene);
-      }
+      // A device on the wall clock: the simulation keeps pace with it (never ahead of it).
+      if ((haptic && haptic->threaded()) || (instruments && instruments->threaded()))
+        std::this_thread::sleep_until(haptic_start + std::chrono::duration_cast<Clock::duration>(
+                                                         std::chrono::duration<double>(scene->state().time)));
+      if (haptic) haptic->beforeStep(*scene);
       const auto before = Clock::now();
       if (instruments) instruments->beforeStep(*scene);
       const StepReport report = scene->step();
       if (instruments && report.ok) instruments->afterStep(*scene);
       const auto after = Clock::now();
       if (!report.ok) return diverged(report.message);
-      if (haptic) {
-        haptic->afterStep(*scene);
-        if (haptic->interrupted()) {
-          finishHaptics(*haptic, directory, log);
-          log << "interrupted (Ctrl-C) at t = " << scene->state().time << " s: forces off\n";
-          if (visuals) visuals->finish(*scene);
-          writeSummary(directory, summary(), log);
-          return kRunInterrupted;
-        }
+      if (haptic) haptic->afterStep(*scene);
+      if ((haptic && haptic->interrupted()) || (instruments && instruments->interrupted())) {
+        if (haptic) finishHaptics(*haptic, directory, log);
+        if (instruments) finishInstruments(*instruments, directory, log);
+        log << "interrupted (Ctrl-C) at t = " << scene->state().time << " s: forces off\n";
+        if (visuals) visuals->finish(*scene);
+        writeSummary(directory, summary(), log);
+        return kRunInterrupted;
       }
       step_seconds.push_back(seconds(after - before));
       render_wall += seconds(after - before);

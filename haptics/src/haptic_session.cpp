@@ -66,6 +66,31 @@ std::unique_ptr<HapticSession> HapticSession::fromScene(const nlohmann::json& do
   const Params p = top.object("haptics").withOwner("haptics");
   std::unique_ptr<HapticSession> session(new HapticSession());
   HapticSession& s = *session;
+  s.configure(p);
+  const Params tool = p.object("tool");
+  s.readTool(tool, scene);
+  tool.finish();
+  p.finish();
+  s.servo_ = std::make_unique<ServoLoop>(*s.device_, s.settings_, logCapacity(duration, s.settings_.rate));
+  s.attachTool(scene);
+  return session;
+}
+
+std::unique_ptr<HapticSession> HapticSession::forInstrument(const Params& p, std::shared_ptr<ToolState> hold,
+                                                            double duration) {
+  std::unique_ptr<HapticSession> session(new HapticSession());
+  HapticSession& s = *session;
+  s.configure(p);
+  s.tool_ = std::move(hold);
+  // The coupling the hand feels through is the instrument's hold on the thread.
+  s.tool_->grasp_stiffness = s.coupling_.stiffness;
+  s.tool_->grasp_damping = s.coupling_.damping;
+  s.servo_ = std::make_unique<ServoLoop>(*s.device_, s.settings_, logCapacity(duration, s.settings_.rate));
+  return session;
+}
+
+void HapticSession::configure(const Params& p) {
+  HapticSession& s = *this;
   const Params device = p.object("device");
   const DeviceLimits limits = readLimits(p, device);
   s.settings_ = readServoSettings(p);
@@ -83,13 +108,30 @@ std::unique_ptr<HapticSession> HapticSession::fromScene(const nlohmann::json& do
   if (mode == "lockstep" && !s.device_->canRunLockstep())
     p.fail("mode", "\"thread\" for " + s.device_->name() + " (a physical device runs on the wall clock)", "\"lockstep\"");
   s.threaded_ = mode == "thread";
-  const Params tool = p.object("tool");
-  s.readTool(tool, scene);
-  tool.finish();
-  p.finish();
-  s.servo_ = std::make_unique<ServoLoop>(*s.device_, s.settings_, logCapacity(duration, s.settings_.rate));
-  s.attachTool(scene);
-  return session;
+}
+
+bool HapticSession::stylus(const Scene& scene, ServoSample& sample) {
+  if (!threaded_) servo_->runLockstepUntil(scene.state().time);
+  if (!servo_->latestSample(sample)) return false;
+  // On the wall clock the sample is taken as the stylus now, at the step's start.
+  if (threaded_) sample.time = scene.state().time;
+  return true;
+}
+
+void HapticSession::publishInstrument(const Scene& scene, const Vec3& contact_force, const Vec3& position,
+                                      const Vec3& velocity, bool mirrored) {
+  const ToolReaction reaction = this->reaction(scene);
+  LocalLinearModel model;
+  // Through a trocar the hand holds the lever's other end: F_hand = −F_tip, while x_tip = 2p − x_hand
+  // leaves ∂F_hand/∂x_hand = ∂F_tip/∂x_tip (two sign changes).
+  model.force = (mirrored ? -1.0 : 1.0) * (reaction.force + contact_force);
+  model.stiffness = reaction.stiffness;
+  model.damping = reaction.damping;
+  model.position = position;
+  model.velocity = velocity;
+  model.time = scene.state().time;
+  limitStiffness(model);
+  servo_->publish(model);
 }
 
 void HapticSession::readTool(const Params& tool, const Scene& scene) {

@@ -57,8 +57,10 @@ InstrumentSettings InstrumentSettings::fromParams(const Params& p) {
   s.force_limit = p.positive("force_limit", s.force_limit);
   s.collide = p.boolean("collide", true);
   if (p.has("trocar")) s.trocar = p.vec3("trocar");
-  s.path = InstrumentPath::fromParams(p, "path", s.trocar ? &*s.trocar : nullptr);
-  if (s.trocar) {
+  s.device = p.has("device");  // read by InstrumentSet (it builds the device)
+  if (s.device && p.has("path")) p.fail("path", "a path or a device driving the instrument, not both", "both");
+  if (!s.device) s.path = InstrumentPath::fromParams(p, "path", s.trocar ? &*s.trocar : nullptr);
+  if (s.trocar && !s.device) {
     // The hinge within the shaft's reach of the port over the whole path (1 ms samples, and the
     // keyframes' times, where the farthest points of a monotone Hermite path lie).
     const double end = s.path.endTime();
@@ -159,8 +161,38 @@ bool Instrument::jawsCollide() const {
          opening_ <= settings_.close_below;
 }
 
+void Instrument::driveByDevice(const Eigen::Matrix3d& frame, unsigned buttons, double jaw_speed) {
+  drive_ = DeviceDrive{};
+  drive_->frame = frame;
+  drive_->buttons = buttons;
+  drive_->jaw_speed = jaw_speed;
+}
+
+void Instrument::setStylus(const Vec3& position, const Vec3& velocity, double time, unsigned buttons) {
+  DeviceDrive& d = *drive_;
+  d.jaw = jawAt(time);
+  d.jaw_time = time;
+  d.closing = (buttons & d.buttons) != 0;
+  d.position = position;
+  d.velocity = velocity;
+  d.time = time;
+}
+
+double Instrument::jawAt(double t) const {
+  if (!drive_) return settings_.path.jaw(t);
+  const DeviceDrive& d = *drive_;
+  return std::clamp(d.jaw + (d.closing ? -1.0 : 1.0) * d.jaw_speed * (t - d.jaw_time), 0.0, 1.0);
+}
+
 InstrumentPose Instrument::poseAt(double t) const {
-  InstrumentPose pose = settings_.path.pose(t);
+  InstrumentPose pose;
+  if (drive_) {
+    const Vec3 hand = drive_->position + drive_->velocity * (t - drive_->time);
+    pose.hinge = settings_.trocar ? Vec3(2.0 * *settings_.trocar - hand) : hand;
+    pose.frame = drive_->frame;
+  } else {
+    pose = settings_.path.pose(t);
+  }
   if (settings_.trocar) {
     // Laparoscopy: the axis through the port, by the least rotation of the path's frame.
     const Vec3 axis = (pose.hinge - *settings_.trocar).normalized();
@@ -171,12 +203,12 @@ InstrumentPose Instrument::poseAt(double t) const {
 
 void Instrument::setTime(double t, double h) {
   pose_ = poseAt(t);
-  previous_opening_ = previous_opening_ < 0.0 ? settings_.path.jaw(t) : opening_;
-  opening_ = settings_.path.jaw(t);
+  previous_opening_ = previous_opening_ < 0.0 ? jawAt(t) : opening_;
+  opening_ = jawAt(t);
   if (opening_ > previous_opening_) latched_ = false;
   next_ = poseAt(t + h);
   h_ = h;
-  const double next_opening = settings_.path.jaw(t + h);
+  const double next_opening = jawAt(t + h);
   const InstrumentShape& shape = settings_.shape;
   for (int i = 0; i < kParts; ++i) {
     if (!parts_[i]) continue;

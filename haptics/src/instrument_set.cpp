@@ -31,7 +31,7 @@ CurveBody* mutableCurve(Scene& scene, const CurveBody* body) {
 }  // namespace
 
 std::unique_ptr<InstrumentSet> InstrumentSet::fromScene(const nlohmann::json& document, const std::string& source,
-                                                        Scene& scene) {
+                                                        Scene& scene, double duration) {
   if (!document.is_object() || !document.contains("instruments")) return nullptr;
   const Params top(document, source, "");
   std::unique_ptr<InstrumentSet> set(new InstrumentSet());
@@ -58,7 +58,20 @@ std::unique_ptr<InstrumentSet> InstrumentSet::fromScene(const nlohmann::json& do
         p.fail("require_coagulation", "paths of nodes holding curve bodies (e.g. \"tube\")", "\"" + path + "\"");
     }
     set->metrics_.addInstrument(settings.name, instrumentKindName(settings.kind));
+    const bool device = settings.device;
     set->instruments_.push_back(std::make_unique<Instrument>(std::move(settings)));
+    set->devices_.emplace_back();
+    if (device) {
+      // A "haptics" block without "tool", and the instrument's own fields.
+      const Params d = p.object("device").withOwner("instruments");
+      Instrument& inst = *set->instruments_.back();
+      set->devices_.back() = HapticSession::forInstrument(d, inst.hold(), duration);
+      const Vec3 direction = d.vec3("direction", Vec3(0, 0, -1));
+      if (!(direction.norm() > 0.0)) d.fail("direction", "a non-zero vector (the shaft's axis towards the tip)");
+      const unsigned button = 1u << (d.integer("button", 1, 16, 1, "a button of the stylus, 1 to 16") - 1);
+      inst.driveByDevice(instrumentFrame(direction, d.number("roll", 0.0)), button, d.positive("jaw_speed", 5.0));
+      d.finish();
+    }
   }
   set->attach(scene, source);
   return set;
@@ -89,6 +102,7 @@ void InstrumentSet::attach(Scene& scene, const std::string& source) {
       fields_[i].push_back(field.get());
       body->node()->addComponent(std::move(field));
     }
+    if (devices_[i]) devices_[i]->setFields({fields_[i].begin(), fields_[i].end()});
   }
   scene.init();
   // Parts where they are at the start (drawn before the first step; the first beforeStep moves them).
@@ -103,6 +117,9 @@ void InstrumentSet::beforeStep(Scene& scene) {
   const double t = scene.state().time;
   for (int i = 0; i < size(); ++i) {
     Instrument& inst = *instruments_[i];
+    ServoSample sample;
+    if (devices_[i] && devices_[i]->stylus(scene, sample))
+      inst.setStylus(sample.position, sample.velocity, sample.time, sample.buttons);
     inst.setTime(t, dt_);
     if (inst.letsGo()) {
       released_[i].push_back(inst.hold()->grasp.body());
@@ -229,16 +246,20 @@ bool InstrumentSet::coagulated(const CurveBody& body, double s) const {
   return false;
 }
 
-double InstrumentSet::partsForce(int i, const Scene& scene) const {
+Vec3 InstrumentSet::contactOnParts(int i, const Scene& scene) const {
   const auto* pipeline = dynamic_cast<const collision::ContactPipeline*>(scene.collisionPipeline());
   const Instrument& inst = *instruments_[i];
-  if (!pipeline || !inst.part(0)) return 0.0;
+  if (!pipeline || !inst.part(0)) return Vec3::Zero();
   const auto& obstacles = pipeline->obstacles();
   Vec3 sum = Vec3::Zero();
   for (int o = 0; o < static_cast<int>(obstacles.size()); ++o)
     for (int k = 0; k < Instrument::kParts; ++k)
-      if (obstacles[o] == inst.part(k)) sum -= pipeline->obstacleForce(o, scene.state());  // on the tissue
-  return sum.norm();
+      if (obstacles[o] == inst.part(k)) sum += pipeline->obstacleForce(o, scene.state());
+  return sum;
+}
+
+double InstrumentSet::partsForce(int i, const Scene& scene) const {
+  return contactOnParts(i, scene).norm();  // on the tissue: the same magnitude
 }
 
 void InstrumentSet::countToolContacts(double t) {
@@ -275,13 +296,22 @@ void InstrumentSet::afterStep(const Scene& scene) {
       if (inst.kind() == InstrumentKind::kGrasper) slip(i, scene, hold);
       if (inst.kind() == InstrumentKind::kBipolarForceps) coagulate(i, scene);
     }
+    if (devices_[i]) {
+      // The hand feels the hold and the contacts on the parts, around where the step assumed the
+      // stylus at its end (the servo's K (x − x0) adds what the hand did beyond that).
+      const Vec3 hand = inst.poseAt(t).hinge;
+      const bool mirrored = inst.settings().trocar.has_value();
+      const Vec3 stylus = mirrored ? Vec3(2.0 * *inst.settings().trocar - hand) : hand;
+      const Vec3 velocity = (inst.poseAt(t + dt_).hinge - hand) / dt_ * (mirrored ? -1.0 : 1.0);
+      devices_[i]->publishInstrument(scene, contactOnParts(i, scene), stylus, velocity, mirrored);
+    }
     const double force = hold.norm() + partsForce(i, scene);
-    const InstrumentPath& path = inst.settings().path;
-    const Vec3 tip = inst.settings().shape.tip(inst.poseAt(t), path.jaw(t));
+    const double jaw = inst.jawAt(t);
+    const Vec3 tip = inst.settings().shape.tip(inst.poseAt(t), jaw);
     const Vec3 before = metrics_.instrument(i).sampled ? metrics_.instrument(i).last : tip;
-    metrics_.sample(i, dt_, tip, path.jaw(t), force, inst.settings().force_limit);
+    metrics_.sample(i, dt_, tip, jaw, force, inst.settings().force_limit);
     if (csv_.is_open())
-      csv_ << ',' << tip.x() << ',' << tip.y() << ',' << tip.z() << ',' << path.jaw(t) << ','
+      csv_ << ',' << tip.x() << ',' << tip.y() << ',' << tip.z() << ',' << jaw << ','
            << (tip - before).norm() / dt_ << ',' << force << ',' << (inst.holding() ? 1 : 0);
   }
   if (csv_.is_open()) csv_ << '\n';
@@ -292,6 +322,41 @@ void InstrumentSet::afterStep(const Scene& scene) {
     event(r.time, r.body + " broke at s = " + number(r.abscissa) + " under " + number(r.tension) + " N");
   }
   metrics_.endStep(t);
+}
+
+InstrumentSet::~InstrumentSet() { finish(); }
+
+void InstrumentSet::start() {
+  for (auto& d : devices_)
+    if (d) d->start();
+}
+
+void InstrumentSet::finish() {
+  for (auto& d : devices_)
+    if (d) d->finish();
+}
+
+bool InstrumentSet::threaded() const {
+  for (const auto& d : devices_)
+    if (d && d->threaded()) return true;
+  return false;
+}
+
+bool InstrumentSet::interrupted() const {
+  for (const auto& d : devices_)
+    if (d && d->interrupted()) return true;
+  return false;
+}
+
+std::string InstrumentSet::writeDeviceLogs(const std::string& directory) const {
+  std::string lines;
+  for (int i = 0; i < size(); ++i) {
+    if (!devices_[i]) continue;
+    const std::string file = "haptics_" + instruments_[i]->name() + ".csv";
+    devices_[i]->writeCsv(directory + "/" + file);
+    lines += "'" + instruments_[i]->name() + "' " + devices_[i]->summary() + " -> " + file + "\n";
+  }
+  return lines;
 }
 
 void InstrumentSet::openCsv(const std::string& path) {

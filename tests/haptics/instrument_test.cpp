@@ -274,6 +274,59 @@ TEST(Trocar, TheShaftPassesThroughItsPortAtEveryStep) {
   EXPECT_LT(worst, 1e-15 * 0.1 * 64);
 }
 
+/// A grasper on a scripted device (device frame = scene frame): from y = side · 6 cm to 1 cm of the
+/// hanging thread at height z, button held from 0.3 s (the jaws close at 5/s), then drawn `pull`
+/// along x over 0.5–1.0 s; `peak` its device's peak force (N).
+json deviceGrasper(const std::string& name, double side, double z, double pull, double peak) {
+  const json waypoints = json::array({{{"time", 0.0}, {"position", {0, side * 0.06, z}}},
+                                      {{"time", 0.2}, {"position", {0, side * 0.01, z}}},
+                                      {{"time", 0.3}, {"position", {0, side * 0.01, z}}, {"buttons", 1}},
+                                      {{"time", 0.5}, {"position", {0, side * 0.01, z}}, {"buttons", 1}},
+                                      {{"time", 1.0}, {"position", {pull, side * 0.01, z}}, {"buttons", 1}}});
+  return {{"name", name}, {"type", "Grasper"}, {"holding_force", 1.5},
+          {"device", {{"device", {{"type", "ScriptedDevice"}, {"model", "Touch"}, {"waypoints", waypoints}}},
+                      {"limits", {{"peak_force", peak}, {"continuous_force", std::min(0.88, 0.8 * peak)}}},
+                      {"direction", {0, -side, 0}}, {"roll", 1.5708}}}};
+}
+
+/// The test thread hanging from its top end (the x-aligned scene turned to hang along −z).
+json hangingThreadScene(const json& instruments) {
+  json scene = threadScene(instruments);
+  scene["gravity"] = {0, 0, -9.81};
+  scene["nodes"][0]["components"][0]["control_points"] = {{"from", {0, 0, 0}}, {"to", {0, 0, -kLength}}, {"count", 40}};
+  return scene;
+}
+
+TEST(InstrumentDevices, TwoDevicesEachFeelTheirOwnForceWithinTheirOwnLimits) {
+  // Two hands grasp the hanging thread at 3 and 7 cm and draw apart along x, 15 mm each: the 4 cm
+  // between their grasps is stretched until it slips at the 1.5 N hold. Each hand feels the
+  // thread pull it back (left, drawn to −x, is pulled to +x; right the opposite), through its own
+  // coupling, clamped by its own device: the left's peak force is 0.3 N, the right's 3.3 N (a Touch).
+  InstrumentRun run(hangingThreadScene(json::array({deviceGrasper("left", -1.0, -0.03, -0.015, 0.3),
+                                                    deviceGrasper("right", 1.0, -0.07, 0.015, 3.3)})));
+  for (int k = 0; k < 1200; ++k) ASSERT_TRUE(run.step()) << "step " << k;
+  const InstrumentSet& set = *run.instruments;
+  ASSERT_TRUE(set.instrument(0).holding());
+  ASSERT_TRUE(set.instrument(1).holding());
+  double left_peak = 0.0, right_peak = 0.0, left_commanded = 0.0, left_x = 0.0, right_x = 0.0;
+  for (const ServoSample& s : set.device(0)->servo().log()) {
+    left_peak = std::max(left_peak, s.sent.norm());
+    left_commanded = std::max(left_commanded, s.commanded.norm());
+    if (s.time > 0.6) left_x += s.sent.x();
+  }
+  for (const ServoSample& s : set.device(1)->servo().log()) {
+    right_peak = std::max(right_peak, s.sent.norm());
+    if (s.time > 0.6) right_x += s.sent.x();
+  }
+  // ForceSafety clamps |F| to the peak force exactly (a scaling of the vector).
+  EXPECT_LE(left_peak, 0.3 * (1 + 1e-12));
+  EXPECT_GT(left_commanded, 0.3);   // the left's own limit did the clamping
+  EXPECT_GT(right_peak, 0.3);       // the right is not held to the left's limit
+  EXPECT_LE(right_peak, 3.3 * (1 + 1e-12));
+  EXPECT_GT(left_x, 0.0);  // each hand pulled back towards the other
+  EXPECT_LT(right_x, 0.0);
+}
+
 struct BadField {
   const char* what;
   json instrument;  // merged into a valid grasper

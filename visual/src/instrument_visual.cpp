@@ -44,7 +44,7 @@ void InstrumentVisual::appendCapsule(const haptics::Capsule& c, TriangleMesh& ou
 void InstrumentVisual::update(const SceneState& s) {
   const haptics::InstrumentSettings& settings = instrument_.settings();
   const haptics::InstrumentPose pose = instrument_.poseAt(s.time);
-  const double opening = settings.path.jaw(s.time);
+  const double opening = instrument_.jawAt(s.time);
   mesh_.vertices.resize(0, 3);
   mesh_.normals.resize(0, 3);
   mesh_.triangles.resize(0, 3);

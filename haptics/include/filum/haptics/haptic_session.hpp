@@ -49,7 +49,23 @@ class HapticSession {
   /// JSON path.
   static std::unique_ptr<HapticSession> fromScene(const nlohmann::json& document, const std::string& source,
                                                   Scene& scene, double duration);
+  /// The device, servo loop and coupling of an instrument's "device" block (a "haptics" block
+  /// without "tool"): the stylus drives the instrument (InstrumentSet) and `hold`, the
+  /// instrument's hold on a thread, takes the coupling's gains. Throws SceneError at p's fields.
+  static std::unique_ptr<HapticSession> forInstrument(const Params& p, std::shared_ptr<ToolState> hold,
+                                                      double duration);
   ~HapticSession();
+
+  /// For an instrument, before a step: the ticks due (lockstep) and the newest stylus sample
+  /// (false: no tick since the last step).
+  bool stylus(const Scene& scene, ServoSample& sample);
+  /// For an instrument, after a step: the hold's reaction (the fields of setFields) and the
+  /// threads' contact force on its parts, around the stylus at `position`, `velocity`.
+  /// `mirrored`: the stylus is the hand on the handle of an instrument through a trocar.
+  void publishInstrument(const Scene& scene, const Vec3& contact_force, const Vec3& position, const Vec3& velocity,
+                         bool mirrored);
+  /// The force fields whose reaction the hand feels (an instrument's holds).
+  void setFields(std::vector<const ToolForceField*> fields) { fields_ = std::move(fields); }
 
   /// Starts the servo loop (thread mode) and the Ctrl-C handler.
   void start();
@@ -83,6 +99,8 @@ class HapticSession {
 
  private:
   HapticSession() = default;
+  /// Device, limits, servo settings, coupling and mode of the block p.
+  void configure(const Params& p);
   /// The "tool" block: a Grasper's radius, capture, button, push; an Attachment's body point.
   void readTool(const Params& tool, const Scene& scene);
   void attachTool(Scene& scene);

@@ -3,7 +3,11 @@
 // of the collision pipeline. InstrumentSet (instrument_set.hpp) runs them between the steps.
 //
 //   {"name": "left", "type": "Grasper" | "Scissors" | "BipolarForceps",
-//    "path": [keyframes: instrument_path.hpp],
+//    "path": [keyframes: instrument_path.hpp]     a script, or
+//    "device": {a "haptics" block without "tool" (haptic_session.hpp): "device", "frame", "limits",
+//               "coupling", "rate", "mode", ...; and "button": 1 (held: the jaws close),
+//               "jaw_speed": 5 (1/s), "direction": [x, y, z] and "roll": rad (the shaft's fixed
+//               orientation: a 3-DOF stylus gives the hinge's position only)},
 //    "shaft_length": m, "shaft_radius": m, "jaw_length": m, "jaw_radius": m, "max_angle": rad,
 //    "close_below": 0.15,       the jaws act when their opening falls to this (grasp, cut, clamp)
 //    "holding_force": N,        Grasper: the pull along the thread the jaws hold (default 2 N)
@@ -72,6 +76,7 @@ struct InstrumentSettings {
   double force_limit = std::numeric_limits<double>::infinity();  // N (metrics)
   bool collide = true;
   std::optional<Vec3> trocar;  // the port (m)
+  bool device = false;         // driven by a haptic device (InstrumentSet builds it), not a path
 
   /// From one entry of "instruments" (see above); throws SceneError at the faulty field.
   static InstrumentSettings fromParams(const Params& p);
@@ -104,8 +109,18 @@ class Instrument {
   const InstrumentPose& pose() const { return pose_; }
   double opening() const { return opening_; }
   Vec3 tip() const { return settings_.shape.tip(pose_, opening_); }
-  /// Where its driver has it at time t (through the trocar's port if it has one).
+  /// Where its driver has it at time t (through the trocar's port if it has one), and the jaws'
+  /// opening then.
   InstrumentPose poseAt(double t) const;
+  double jawAt(double t) const;
+  /// Driven by a haptic device: the shaft's orientation `frame`, the buttons that close the jaws,
+  /// and how fast they move (1/s).
+  void driveByDevice(const Eigen::Matrix3d& frame, unsigned buttons, double jaw_speed);
+  bool drivenByDevice() const { return drive_.has_value(); }
+  /// The stylus sampled at `time` (scene frame): X(t) = X + Ẋ (t − time) from now on; the jaws
+  /// close while one of the driving buttons is held, open otherwise. With a trocar the stylus is
+  /// the hand on the handle: the hinge is its mirror through the port (the fulcrum effect).
+  void setStylus(const Vec3& position, const Vec3& velocity, double time, unsigned buttons);
   /// Moves the instrument to time t (from its driver) and its parts over [t, t + h].
   void setTime(double t, double h);
   /// The opening at the previous setTime (the current one at the first).
@@ -158,6 +173,16 @@ class Instrument {
   std::shared_ptr<ToolState> hold_ = std::make_shared<ToolState>();
   double anchor_along_ = 0.0, held_for_ = 0.0;
   InstrumentCapsule* parts_[kParts] = {nullptr, nullptr, nullptr};
+  struct DeviceDrive {
+    Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
+    unsigned buttons = 1;
+    double jaw_speed = 5.0;
+    Vec3 position = Vec3::Zero(), velocity = Vec3::Zero();
+    double time = 0.0;
+    double jaw = 1.0, jaw_time = 0.0;  // the opening at jaw_time
+    bool closing = false;
+  };
+  std::optional<DeviceDrive> drive_;
 };
 
 }  // namespace filum::haptics

@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "filum/core/scene.hpp"
+#include "filum/haptics/haptic_session.hpp"
 #include "filum/haptics/instrument.hpp"
 #include "filum/haptics/trainee_metrics.hpp"
 
@@ -34,8 +35,23 @@ class InstrumentSet {
   /// Reads document["instruments"] (null when the scene has none) of the scene file `source`,
   /// adds the instruments' parts and force fields to `scene` and binds it again. Throws
   /// SceneError at the faulty JSON path.
+  /// `duration`: the run's length (s), for the servo logs of device-driven instruments.
   static std::unique_ptr<InstrumentSet> fromScene(const nlohmann::json& document, const std::string& source,
-                                                  Scene& scene);
+                                                  Scene& scene, double duration = 0.0);
+  ~InstrumentSet();
+
+  /// Starts the servo loops of device-driven instruments (thread mode) and the Ctrl-C handler.
+  void start();
+  /// Stops them: forces off. Idempotent.
+  void finish();
+  /// Whether some device runs on its own thread on the wall clock (the run paces itself).
+  bool threaded() const;
+  /// Whether Ctrl-C arrived or a servo loop stopped (the run should stop after its step).
+  bool interrupted() const;
+  /// The device of instrument i, or nullptr for a scripted one.
+  HapticSession* device(int i) const { return devices_[i].get(); }
+  /// haptics_<name>.csv per device-driven instrument in `directory`; one summary line each.
+  std::string writeDeviceLogs(const std::string& directory) const;
 
   void beforeStep(Scene& scene);
   void afterStep(const Scene& scene);
@@ -79,6 +95,9 @@ class InstrumentSet {
   void event(double t, const std::string& what);
 
   std::vector<std::unique_ptr<Instrument>> instruments_;
+  std::vector<std::unique_ptr<HapticSession>> devices_;   // per instrument; null: scripted
+  /// The threads' contact force on instrument i's parts (N; the reaction of partsForce's).
+  Vec3 contactOnParts(int i, const Scene& scene) const;
   std::vector<std::vector<ToolForceField*>> fields_;       // per instrument, one per curve body
   std::vector<std::vector<const CurveBody*>> released_;   // per instrument: bodies it let go of
   std::vector<char> coagulating_done_;                    // per instrument: this hold coagulated
