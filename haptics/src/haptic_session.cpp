@@ -81,6 +81,7 @@ std::unique_ptr<HapticSession> HapticSession::forInstrument(const Params& p, std
   std::unique_ptr<HapticSession> session(new HapticSession());
   HapticSession& s = *session;
   s.configure(p);
+  s.drives_instrument_ = true;
   s.tool_ = std::move(hold);
   // The coupling the hand feels through is the instrument's hold on the thread.
   s.tool_->grasp_stiffness = s.coupling_.stiffness;
@@ -261,7 +262,8 @@ std::string HapticSession::summary() const {
   out << "haptics: " << device_->name() << ", " << servo_->ticks() << " servo ticks at " << settings_.rate << " Hz ("
       << (threaded_ ? "thread" : "lockstep") << "), coupling k = " << coupling_.stiffness
       << " N/m, c = " << coupling_.damping << " N·s/m, largest force sent " << peak << " N, longest period "
-      << longest * 1e3 << " ms, " << grasps_ << " grasps";
+      << longest * 1e3 << " ms";
+  if (!drives_instrument_) out << ", " << grasps_ << " grasps";  // an instrument's are in its metrics
   if (servo_->safety().nonFiniteCount() > 0) out << ", " << servo_->safety().nonFiniteCount() << " non-finite forces refused";
   if (servo_->droppedSamples() > 0) out << ", " << servo_->droppedSamples() << " samples beyond the log dropped";
   if (const std::string note = device_->schedulingNote(); !note.empty()) out << "\n  note: " << note;

@@ -105,8 +105,15 @@ void InstrumentSet::attach(Scene& scene, const std::string& source) {
     if (devices_[i]) devices_[i]->setFields({fields_[i].begin(), fields_[i].end()});
   }
   scene.init();
-  // Parts where they are at the start (drawn before the first step; the first beforeStep moves them).
-  for (auto& inst : instruments_) inst->setTime(scene.state().time, dt_);
+  // Parts where they are at the start (drawn before the first step; the first beforeStep moves
+  // them): a device's stylus where its first tick has it (lockstep; a threaded servo has not
+  // started yet, and its instrument waits at the origin until it has).
+  for (int i = 0; i < count; ++i) {
+    ServoSample sample;
+    if (devices_[i] && devices_[i]->stylus(scene, sample))
+      instruments_[i]->setStylus(sample.position, sample.velocity, sample.time, sample.buttons);
+    instruments_[i]->setTime(scene.state().time, dt_);
+  }
 }
 
 void InstrumentSet::event(double t, const std::string& what) {

@@ -50,6 +50,11 @@ void InstrumentVisual::update(const SceneState& s) {
   mesh_.triangles.resize(0, 3);
   if (part_ == Part::kShaft) {
     appendCapsule(settings.shape.shaft(pose), mesh_);
+    // The trocar's cannula: 3 cm of a sleeve 1.6 times the shaft's radius, centred on the port.
+    if (settings.trocar) {
+      const Vec3 half = 0.015 * pose.axis();
+      appendCapsule({*settings.trocar - half, *settings.trocar + half, 1.6 * settings.shape.shaft_radius}, mesh_);
+    }
     return;
   }
   appendCapsule(settings.shape.jaw(pose, opening, 1), mesh_);

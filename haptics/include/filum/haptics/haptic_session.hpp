@@ -122,6 +122,7 @@ class HapticSession {
   double attach_abscissa_ = 0.0;
   long grasps_ = 0;
   bool started_ = false;
+  bool drives_instrument_ = false;  // built by forInstrument
 };
 
 }  // namespace filum::haptics
