@@ -20,6 +20,7 @@
 #include "filum/run_visual.hpp"
 #include "filum/timing_summary.hpp"
 #include "filum/visual/instrument_visual.hpp"
+#include "filum/visual/needle_visual.hpp"
 #include "filum/visual/interactive_probe.hpp"
 
 namespace filum::app {
@@ -152,12 +153,17 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   }
   // The instruments as drawn: shaft and jaws of each.
   std::vector<std::unique_ptr<visual::InstrumentVisual>> instrument_visuals;
+  std::vector<std::unique_ptr<visual::NeedleVisual>> needle_visuals;
   if (instruments && visuals) {
     for (int i = 0; i < instruments->size(); ++i)
       for (auto part : {visual::InstrumentVisual::Part::kShaft, visual::InstrumentVisual::Part::kJaws}) {
         instrument_visuals.push_back(std::make_unique<visual::InstrumentVisual>(instruments->instrument(i), part));
         visuals->addOverlay(*instrument_visuals.back());
       }
+    for (int k = 0; k < instruments->needleCount(); ++k) {
+      needle_visuals.push_back(std::make_unique<visual::NeedleVisual>(instruments->needle(k)));
+      visuals->addOverlay(*needle_visuals.back());
+    }
   }
 
   const long steps = std::lround(duration / dt);

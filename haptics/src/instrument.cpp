@@ -12,6 +12,7 @@ const char* instrumentKindName(InstrumentKind kind) {
     case InstrumentKind::kGrasper: return "Grasper";
     case InstrumentKind::kScissors: return "Scissors";
     case InstrumentKind::kBipolarForceps: return "BipolarForceps";
+    case InstrumentKind::kNeedleHolder: return "NeedleHolder";
   }
   return "?";
 }
@@ -26,8 +27,11 @@ InstrumentSettings InstrumentSettings::fromParams(const Params& p) {
     s.kind = InstrumentKind::kScissors;
   } else if (type == "BipolarForceps") {
     s.kind = InstrumentKind::kBipolarForceps;
+  } else if (type == "NeedleHolder") {
+    s.kind = InstrumentKind::kNeedleHolder;
+    s.holding_force = 5.0;
   } else {
-    p.fail("type", "\"Grasper\", \"Scissors\" or \"BipolarForceps\"", "\"" + type + "\"");
+    p.fail("type", "\"Grasper\", \"Scissors\", \"BipolarForceps\" or \"NeedleHolder\"", "\"" + type + "\"");
   }
   s.shape.shaft_length = p.positive("shaft_length", s.shape.shaft_length);
   s.shape.shaft_radius = p.positive("shaft_radius", s.shape.shaft_radius);
@@ -73,8 +77,9 @@ InstrumentSettings InstrumentSettings::fromParams(const Params& p) {
                "the hinge " + describeJson(reach) + " m away at t = " + describeJson(t) + " s");
     }
   }
-  if (s.kind != InstrumentKind::kGrasper && p.has("holding_force"))
-    p.fail("holding_force", "no holding force on a " + type + " (only a Grasper's jaws let a thread slip)", "one");
+  if (s.kind != InstrumentKind::kGrasper && s.kind != InstrumentKind::kNeedleHolder && p.has("holding_force"))
+    p.fail("holding_force", "no holding force on a " + type + " (only a Grasper's and a NeedleHolder's jaws let a thread slip)",
+           "one");
   if (s.kind != InstrumentKind::kBipolarForceps && p.has("coagulation_time"))
     p.fail("coagulation_time", "no coagulation time on a " + type + " (only BipolarForceps coagulate)", "one");
   if (s.kind != InstrumentKind::kScissors && p.has("require_coagulation"))
@@ -157,8 +162,21 @@ Capsule Instrument::partNow(int index) const {
 }
 
 bool Instrument::jawsCollide() const {
-  return settings_.collide && settings_.kind != InstrumentKind::kScissors && !holding() &&
+  return settings_.collide && settings_.kind != InstrumentKind::kScissors && !holding() && !holds_object_ &&
          opening_ <= settings_.close_below;
+}
+
+void Instrument::holdObject() {
+  holds_object_ = true;
+  hold_opening_ = opening_;
+  for (int i = 1; i < kParts; ++i)
+    if (parts_[i]) parts_[i]->setEnabled(false);
+}
+
+void Instrument::releaseObject() {
+  holds_object_ = false;
+  for (int i = 1; i < kParts; ++i)
+    if (parts_[i]) parts_[i]->setEnabled(jawsCollide());
 }
 
 void Instrument::driveByDevice(const Eigen::Matrix3d& frame, unsigned buttons, double jaw_speed) {

@@ -40,6 +40,19 @@ std::unique_ptr<InstrumentSet> InstrumentSet::fromScene(const nlohmann::json& do
     set->metrics_ = TraineeMetrics(m.positive("idle_speed", 5e-3));
     m.finish();
   }
+  if (top.has("needles")) {
+    for (const Params& item : top.objects("needles")) {
+      const Params p = item.withOwner("needles");
+      Needle::Settings settings = Needle::settingsFromParams(p);
+      for (const auto& other : set->needles_)
+        if (other->name() == settings.name) p.fail("name", "a name no other needle has", "\"" + settings.name + "\" again");
+      if (!settings.thread.empty()) {
+        const MechanicalState* body = scene.bodyAt(settings.thread);
+        if (!body || !body->curve()) p.fail("thread", "the path of a node holding a curve body (e.g. \"suture\")");
+      }
+      set->needles_.push_back(std::make_unique<Needle>(std::move(settings)));
+    }
+  }
   const std::vector<Params> items = top.objects("instruments");
   if (items.empty()) top.fail("instruments", "a list of at least one instrument ({\"name\", \"type\", \"path\"})");
   for (const Params& item : items) {
@@ -104,7 +117,22 @@ void InstrumentSet::attach(Scene& scene, const std::string& source) {
     }
     if (devices_[i]) devices_[i]->setFields({fields_[i].begin(), fields_[i].end()});
   }
+  // The swage's hold on each needle's thread, on that thread's body only.
+  for (std::size_t k = 0; k < needles_.size(); ++k) {
+    const Needle& needle = *needles_[k];
+    if (needle.settings().thread.empty()) continue;
+    MechanicalState* body = scene.bodyAt(needle.settings().thread);
+    auto field = std::make_unique<ToolForceField>(needle.swageHold());
+    field->setName(needle.name() + " swage");
+    field->setOrigin(source + ": /needles/" + std::to_string(k) + " (on " + body->describe() + ")");
+    body->node()->addComponent(std::move(field));
+  }
   scene.init();
+  for (auto& needle : needles_) {
+    if (needle->settings().thread.empty()) continue;
+    grasp(*needle->swageHold(), *scene.bodyAt(needle->settings().thread)->curve(), needle->settings().abscissa);
+    needle->move(needle->pose(), needle->pose(), scene.state().time, dt_);
+  }
   // Parts where they are at the start (drawn before the first step; the first beforeStep moves
   // them): a device's stylus where its first tick has it (lockstep; a threaded servo has not
   // started yet, and its instrument waits at the origin until it has).
@@ -122,27 +150,90 @@ void InstrumentSet::event(double t, const std::string& what) {
 
 void InstrumentSet::beforeStep(Scene& scene) {
   const double t = scene.state().time;
+  // Every instrument, and the needles they hold, to the step's start; then the jaws' events.
   for (int i = 0; i < size(); ++i) {
-    Instrument& inst = *instruments_[i];
     ServoSample sample;
     if (devices_[i] && devices_[i]->stylus(scene, sample))
-      inst.setStylus(sample.position, sample.velocity, sample.time, sample.buttons);
-    inst.setTime(t, dt_);
-    if (inst.letsGo()) {
+      instruments_[i]->setStylus(sample.position, sample.velocity, sample.time, sample.buttons);
+    instruments_[i]->setTime(t, dt_);
+  }
+  moveNeedles(t);
+  for (int i = 0; i < size(); ++i) {
+    Instrument& inst = *instruments_[i];
+    if (inst.letsGo() && inst.holdsObject()) {
+      for (auto& needle : needles_)
+        if (needle->holder == i) {
+          needle->holder = -1;
+          event(t, "'" + inst.name() + "' let go of '" + needle->name() + "'");
+        }
+      inst.releaseObject();
+    } else if (inst.letsGo()) {
       released_[i].push_back(inst.hold()->grasp.body());
       event(t, "'" + inst.name() + "' let go at s = " + number(inst.hold()->grasp.abscissa()));
       inst.stopHolding();
     }
-    if (!inst.holding() && inst.closing() && !inst.latched()) closeJaws(i, scene);
-    if (inst.reachedClosed() && !inst.holding() && !inst.latched()) {
+    if (!inst.holding() && !inst.holdsObject() && inst.closing() && !inst.latched()) closeJaws(i, scene);
+    if (inst.reachedClosed() && !inst.holding() && !inst.holdsObject() && !inst.latched()) {
       if (inst.kind() != InstrumentKind::kScissors) ++metrics_.instrument(i).missed_grasps;
       event(t, "'" + inst.name() + "' closed on nothing");
     }
+  }
+  moveNeedles(t);
+}
+
+bool InstrumentSet::catchNeedle(int i, double t) {
+  Instrument& inst = *instruments_[i];
+  const InstrumentShape& shape = inst.settings().shape;
+  // The wire point nearest to the jaws' midline that was between them and that they closed onto,
+  // over 64 samples of each needle's arc (a 135° arc of 8 mm: one sample per 0.3 mm).
+  Needle* best = nullptr;
+  double nearest = 0.0;
+  for (auto& needle : needles_) {
+    const double r = needle->settings().wire_radius;
+    for (int k = 0; k < 64; ++k) {
+      const Vec3 x = needle->point(needle->pose(), needle->settings().arc * k / 63.0);
+      const double d = betweenJaws(shape, inst.pose(), inst.previousOpening(), x, r);
+      if (d < 0.0 || !jawsClosedOn(shape, inst.opening(), jawCoordinates(inst.pose(), x).along, r)) continue;
+      if (!best || d < nearest) {
+        best = needle.get();
+        nearest = d;
+      }
+    }
+  }
+  if (!best) return false;
+  InstrumentTally& tally = metrics_.instrument(i);
+  ++tally.grasps;
+  if (best->ever_held) ++tally.regrasps;
+  if (best->holder >= 0 && best->holder != i) {
+    instruments_[best->holder]->releaseObject();
+    event(t, "'" + inst.name() + "' took '" + best->name() + "' from '" + instruments_[best->holder]->name() + "'");
+  } else {
+    event(t, "'" + inst.name() + "' took '" + best->name() + "'");
+  }
+  best->holder = i;
+  best->ever_held = true;
+  best->in_jaws = jawsPose(inst.pose()).inverse() * best->pose();
+  inst.holdObject();
+  return true;
+}
+
+void InstrumentSet::moveNeedles(double t) {
+  for (auto& needle : needles_) {
+    if (needle->holder < 0) {
+      needle->move(needle->pose(), needle->pose(), t, dt_);
+      continue;
+    }
+    const Instrument& inst = *instruments_[needle->holder];
+    needle->move(jawsPose(inst.pose()) * needle->in_jaws, jawsPose(inst.poseAt(t + dt_)) * needle->in_jaws, t, dt_);
   }
 }
 
 void InstrumentSet::closeJaws(int i, Scene& scene) {
   Instrument& inst = *instruments_[i];
+  if (inst.kind() == InstrumentKind::kNeedleHolder && catchNeedle(i, scene.state().time)) {
+    inst.latch();
+    return;
+  }
   const std::optional<JawCatch> c =
       catchBetweenJaws(scene, inst.settings().shape, inst.pose(), inst.previousOpening(), inst.opening());
   if (!c) return;
@@ -158,7 +249,7 @@ void InstrumentSet::closeJaws(int i, Scene& scene) {
   coagulating_done_[i] = 0;
   inst.startHolding(*c->body, c->abscissa, c->along);
   event(scene.state().time, "'" + inst.name() + "' " +
-                                (inst.kind() == InstrumentKind::kGrasper ? "grasped" : "clamped") + " at s = " +
+                                (inst.kind() == InstrumentKind::kBipolarForceps ? "clamped" : "grasped") + " at s = " +
                                 number(c->abscissa));
 }
 
@@ -300,7 +391,7 @@ void InstrumentSet::afterStep(const Scene& scene) {
     Instrument& inst = *instruments_[i];
     const Vec3 hold = holdForce(i, scene);
     if (inst.holding()) {
-      if (inst.kind() == InstrumentKind::kGrasper) slip(i, scene, hold);
+      if (inst.kind() == InstrumentKind::kGrasper || inst.kind() == InstrumentKind::kNeedleHolder) slip(i, scene, hold);
       if (inst.kind() == InstrumentKind::kBipolarForceps) coagulate(i, scene);
     }
     if (devices_[i]) {

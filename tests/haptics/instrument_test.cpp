@@ -327,6 +327,71 @@ TEST(InstrumentDevices, TwoDevicesEachFeelTheirOwnForceWithinTheirOwnLimits) {
   EXPECT_LT(right_x, 0.0);
 }
 
+TEST(NeedleHolder, CarriesTheNeedleRigidlyLetsGoAndAnotherTakesItOver) {
+  // A 3/8-circle needle of radius 8 mm swaged to the thread's free end (s = 1, at x = 0.1), lying
+  // in the horizontal plane. Holder A closes on its wire from above (0–0.1 s), carries it 2 cm
+  // along +y and 1 cm along −x (0.1–0.5 s), lets go (0.5–0.6 s) and withdraws; holder B closes
+  // on it where it was left (0.7–0.8 s) and carries it 1 cm further along −x (0.8–1.2 s).
+  const double R = 0.008, arc = 2.356;
+  const Vec3 centre(kLength - R, 0, 0);
+  const double mid = arc / 2;  // the wire's middle, where the jaws close
+  const Vec3 wire = centre + R * Vec3(std::cos(mid), std::sin(mid), 0);
+  // The jaws' plane (shaft down, opening direction n) must cross the wire: n ⊥ its tangent, with
+
+  const double roll = -std::atan2(std::cos(mid), std::sin(mid));
+  auto holder = [&](const std::string& name, const json& path) {
+    return json{{"name", name}, {"type", "NeedleHolder"}, {"path", path}};
+  };
+  const Vec3 a0 = wire + Vec3(0, 0, 0.01), a1 = a0 + Vec3(-0.01, 0.02, 0);
+  const json path_a = json::array(
+      {{{"time", 0.0}, {"position", {a0.x(), a0.y(), a0.z()}}, {"direction", {0, 0, -1}}, {"roll", roll}, {"jaw", 1}},
+       {{"time", 0.1}, {"position", {a0.x(), a0.y(), a0.z()}}, {"jaw", 0}},
+       {{"time", 0.5}, {"position", {a1.x(), a1.y(), a1.z()}}},
+       {{"time", 0.6}, {"position", {a1.x(), a1.y(), a1.z()}}, {"jaw", 1}},
+       {{"time", 0.8}, {"position", {a1.x(), a1.y(), a1.z() + 0.04}}}});
+  const Vec3 b0 = a1 + Vec3(0, 0, 0.05), b1 = a1, b2 = a1 + Vec3(-0.01, 0, 0);
+  const json path_b = json::array(
+      {{{"time", 0.0}, {"position", {b0.x(), b0.y(), b0.z()}}, {"direction", {0, 0, -1}}, {"roll", roll}, {"jaw", 1}},
+       {{"time", 0.6}, {"position", {b0.x(), b0.y(), b0.z()}}},
+       {{"time", 0.7}, {"position", {b1.x(), b1.y(), b1.z()}}},
+       {{"time", 0.8}, {"position", {b1.x(), b1.y(), b1.z()}}, {"jaw", 0}},
+       {{"time", 1.2}, {"position", {b2.x(), b2.y(), b2.z()}}}});
+  json document = threadScene(json::array({holder("A", path_a), holder("B", path_b)}));
+  document["needles"] = json::array({{{"name", "needle"}, {"radius", R}, {"arc", arc}, {"wire_radius", 2.5e-4},
+                                      {"center", {centre.x(), centre.y(), centre.z()}}, {"normal", {0, 0, 1}},
+                                      {"start", {1, 0, 0}}, {"thread", "thread"}, {"abscissa", 1.0}}});
+  InstrumentRun run(document);
+  const Needle& needle = run.instruments->needle(0);
+  const Vec3 swage0 = needle.swage(needle.pose());
+  double worst_follow = 0.0, worst_rigid = 0.0;
+  Vec3 left_at = Vec3::Zero();
+  for (int k = 0; k < 1400; ++k) {
+    ASSERT_TRUE(run.step()) << "step " << k;
+    const double t = run.scene->state().time;
+    const Vec3 swage = needle.swage(needle.pose());
+    // Held by A: the needle moves with A's hinge (a translation: A's frame is fixed), exactly.
+    if (needle.holder == 0) worst_rigid = std::max(worst_rigid, ((swage - swage0) - (run.instruments->instrument(0).pose().hinge - a0)).norm());
+    if (t > 0.62 && t < 0.69) {
+      if (left_at.isZero()) left_at = swage;
+      EXPECT_EQ(needle.holder, -1);
+      EXPECT_EQ(swage, left_at);  // let go, it stays
+    }
+    // The thread's end follows the swage through its stiff hold.
+    if (t > 0.2) worst_follow = std::max(worst_follow, (run.thread().position(run.scene->state().q, 1.0) - swage).norm());
+  }
+  // A pure translation composed with rigid placements: round-off of 0.1 m.
+  EXPECT_LT(worst_rigid, 1e-15 * 0.1 * 64);
+  EXPECT_EQ(needle.holder, 1);
+  // B carried it 1 cm along −x from where A left it.
+  EXPECT_NEAR((needle.swage(needle.pose()) - left_at - Vec3(-0.01, 0, 0)).norm(), 0.0, 1e-12);
+  // The swage moves at most 0.1 m/s: the thread's end trails it by about one step of that motion
+  // (v h = 1e-4 m); the forces on the slack thread stretch the 2000 N/m hold by far less.
+  EXPECT_LT(worst_follow, 1e-4);
+  EXPECT_EQ(run.instruments->metrics().instrument(0).grasps, 1);
+  EXPECT_EQ(run.instruments->metrics().instrument(1).grasps, 1);
+  EXPECT_EQ(run.instruments->metrics().instrument(1).regrasps, 1);
+}
+
 struct BadField {
   const char* what;
   json instrument;  // merged into a valid grasper

@@ -2,7 +2,7 @@
 // driver (the model), where it is and what its jaws hold (the state), and its parts as obstacles
 // of the collision pipeline. InstrumentSet (instrument_set.hpp) runs them between the steps.
 //
-//   {"name": "left", "type": "Grasper" | "Scissors" | "BipolarForceps",
+//   {"name": "left", "type": "Grasper" | "Scissors" | "BipolarForceps" | "NeedleHolder",
 //    "path": [keyframes: instrument_path.hpp]     a script, or
 //    "device": {a "haptics" block without "tool" (haptic_session.hpp): "device", "frame", "limits",
 //               "coupling", "rate", "mode", ...; and "button": 1 (held: the jaws close),
@@ -10,7 +10,8 @@
 //               orientation: a 3-DOF stylus gives the hinge's position only)},
 //    "shaft_length": m, "shaft_radius": m, "jaw_length": m, "jaw_radius": m, "max_angle": rad,
 //    "close_below": 0.15,       the jaws act when their opening falls to this (grasp, cut, clamp)
-//    "holding_force": N,        Grasper: the pull along the thread the jaws hold (default 2 N)
+//    "holding_force": N,        Grasper, NeedleHolder: the pull along a thread the jaws hold
+//                               (default 2 N; 5 N for a needle holder)
 //    "grasp_stiffness": N/m, "grasp_damping": N·s/m   the jaws' hold on the point (500; critical)
 //    "coagulation_time": s,     BipolarForceps: closed this long on a tube, the span is coagulated
 //    "require_coagulation": true | ["node", ...]   Scissors: a cut outside a coagulated span (of
@@ -37,6 +38,8 @@
 //     the span under its jaws (s* ± jaw_length / 2 |P'|) is coagulated.
 //   Scissors: cut the thread at s* (Scene::cut) at that step; once per closing (they cut again
 //     after opening).
+//   NeedleHolder: takes a needle (needle.hpp) whose wire is between its jaws, rigidly, from
+//     whoever held it; with no needle there, holds a thread as a grasper does. Opening lets go.
 // Jaws that reach close_below holding nothing have missed (a grasper's missed grasp). Collision:
 // the shaft always pushes threads; the jaws of a grasper or forceps only when closed (at or
 // below close_below) on nothing — open, the space between them is where a thread is caught, and
@@ -58,7 +61,7 @@
 
 namespace filum::haptics {
 
-enum class InstrumentKind { kGrasper, kScissors, kBipolarForceps };
+enum class InstrumentKind { kGrasper, kScissors, kBipolarForceps, kNeedleHolder };
 const char* instrumentKindName(InstrumentKind kind);
 
 struct InstrumentSettings {
@@ -142,7 +145,11 @@ class Instrument {
   /// Holds `point` from now on, caught at `along` from the hinge on the jaws' midline.
   void startHolding(const CurveBody& body, double abscissa, double along);
   /// The jaws have opened wider than when they caught what they hold.
-  bool letsGo() const { return holding() && opening_ > hold_opening_; }
+  bool letsGo() const { return (holding() || holds_object_) && opening_ > hold_opening_; }
+  /// A rigid object (a needle) is held between the jaws from now on, or no longer.
+  void holdObject();
+  void releaseObject();
+  bool holdsObject() const { return holds_object_; }
   void stopHolding();
   /// Seconds the jaws have held their current point (BipolarForceps coagulation).
   double heldFor() const { return held_for_; }
@@ -168,6 +175,7 @@ class Instrument {
   double previous_opening_ = -1.0;  // before the first setTime: none
   double hold_opening_ = 0.0;       // the opening at which the jaws caught what they hold
   bool latched_ = false;
+  bool holds_object_ = false;       // a needle
   /// The jaws push threads (see above).
   bool jawsCollide() const;
   std::shared_ptr<ToolState> hold_ = std::make_shared<ToolState>();

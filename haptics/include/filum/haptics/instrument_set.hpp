@@ -2,6 +2,7 @@
 // their jaws do between the steps, and the trainee metrics (trainee_metrics.hpp).
 //
 //   "instruments": [ {"name": ..., "type": "Grasper", "path": [...], ...}, ... ],
+//   "needles": [ {"name": ..., "radius": ..., "thread": ..., ...}, ... ]   (needle.hpp; optional)
 //   "metrics": {"idle_speed": 0.005}     (m/s; optional)
 //
 // Building it adds to the scene, for each instrument, its parts as obstacles of the collision
@@ -26,6 +27,7 @@
 #include "filum/core/scene.hpp"
 #include "filum/haptics/haptic_session.hpp"
 #include "filum/haptics/instrument.hpp"
+#include "filum/haptics/needle.hpp"
 #include "filum/haptics/trainee_metrics.hpp"
 
 namespace filum::haptics {
@@ -57,6 +59,8 @@ class InstrumentSet {
   void afterStep(const Scene& scene);
 
   int size() const { return static_cast<int>(instruments_.size()); }
+  int needleCount() const { return static_cast<int>(needles_.size()); }
+  const Needle& needle(int k) const { return *needles_[k]; }
   const Instrument& instrument(int i) const { return *instruments_[i]; }
   const TraineeMetrics& metrics() const { return metrics_; }
 
@@ -96,6 +100,11 @@ class InstrumentSet {
 
   std::vector<std::unique_ptr<Instrument>> instruments_;
   std::vector<std::unique_ptr<HapticSession>> devices_;   // per instrument; null: scripted
+  std::vector<std::unique_ptr<Needle>> needles_;
+  /// A needle holder's jaws closed on a needle's wire: takes it (true), else false.
+  bool catchNeedle(int i, double t);
+  /// The needles where their holders have them over the coming step.
+  void moveNeedles(double t);
   /// The threads' contact force on instrument i's parts (N; the reaction of partsForce's).
   Vec3 contactOnParts(int i, const Scene& scene) const;
   std::vector<std::vector<ToolForceField*>> fields_;       // per instrument, one per curve body
