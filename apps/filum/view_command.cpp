@@ -14,10 +14,13 @@
 #include "filum/core/scene_loader.hpp"
 #include "filum/geometry/spline_curve.hpp"
 #include "filum/haptics/haptic_session.hpp"
+#include "filum/haptics/instrument_set.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
 #include "filum/run_command.hpp"
 #include "filum/visual/heads_up_display.hpp"
 #include "filum/visual/image_file.hpp"
+#include "filum/visual/instrument_visual.hpp"
+#include "filum/visual/needle_visual.hpp"
 #include "filum/visual/offscreen_renderer.hpp"
 #include "filum/visual/visual_scene.hpp"
 
@@ -81,6 +84,7 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
   // one, a probe whose gains are the explicit step's caps (haptics/tool.hpp).
   std::shared_ptr<haptics::ToolState> probe;
   std::unique_ptr<haptics::HapticSession> haptic;
+  std::unique_ptr<haptics::InstrumentSet> instruments;  // on their scripts until a key gives one to the mouse
   std::unique_ptr<Scene> scene;
   nlohmann::json document;
   double capture_factor = 3.0;  // capture distance / probe radius
@@ -96,6 +100,7 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
       probe = std::make_shared<haptics::ToolState>();
       attachProbe(*scene, probe);
     }
+    instruments = haptics::InstrumentSet::fromScene(document, options.scene, *scene, 1.0);
   } catch (const SceneError& e) {
     log << "error: " << e.what() << '\n';
     return kRunSceneError;
@@ -118,6 +123,19 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
     visual::ProbeVisual probe_visual(probe);
     std::vector<visual::VisualModel*> models = visuals.models();
     models.push_back(&probe_visual);
+    // The instruments and needles, drawn as in `filum run --render`.
+    std::vector<std::unique_ptr<visual::VisualModel>> instrument_models;
+    if (instruments) {
+      for (int i = 0; i < instruments->size(); ++i)
+        for (auto part : {visual::InstrumentVisual::Part::kShaft, visual::InstrumentVisual::Part::kJaws})
+          instrument_models.push_back(std::make_unique<visual::InstrumentVisual>(instruments->instrument(i), part));
+      for (int k = 0; k < instruments->needleCount(); ++k)
+        instrument_models.push_back(std::make_unique<visual::NeedleVisual>(instruments->needle(k)));
+      for (auto& m : instrument_models) models.push_back(m.get());
+    }
+    int selected = -1;          // the instrument the mouse drives (keys 1-9; 0: back to the probe)
+    bool jaws_closed = false;   // its jaws (c: close, o: open)
+    double hinge_depth = 0.0;
 
     visual::OffscreenRenderer renderer(camera);
     visual::ViewerWindow window(camera.width, camera.height, "filum view: " + scene->settings().name);
@@ -142,13 +160,32 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
           if (e.key == "q" || e.key == "Escape") quit = true;
           if (e.key == "space") paused = !paused;
           if (e.key == "g") grab_mode = !grab_mode;
+          if (instruments && e.key.size() == 1 && e.key[0] >= '0' && e.key[0] <= '9') {
+            const int k = e.key[0] - '1';
+            selected = -1;
+            if (k >= 0 && k < instruments->size() && instruments->takeOver(k, scene->state().time)) {
+              selected = k;
+              jaws_closed = instruments->instrument(k).jawAt(scene->state().time) < 1.0;
+            }
+          }
+          if (selected >= 0 && (e.key == "c" || e.key == "o")) {
+            jaws_closed = e.key == "c";
+            instruments->steer(selected, instruments->instrument(selected).poseAt(scene->state().time).hinge,
+                               scene->state().time, jaws_closed);
+          }
           if (e.key == "r") {
             scene->setState(initial);
             probe->touching = false;
             haptics::release(*probe);
           }
         }
-        if (e.type == Type::kButtonPress && e.button == 1) {
+        if (e.type == Type::kButtonPress && e.button == 1 && selected >= 0) {
+          // The selected instrument's hinge to the pointer, at the hinge's depth.
+          left_down = true;
+          const double t = scene->state().time;
+          hinge_depth = visual::project(camera, instruments->instrument(selected).poseAt(t).hinge).depth;
+          instruments->steer(selected, visual::unproject(camera, e.x, e.y, hinge_depth), t, jaws_closed);
+        } else if (e.type == Type::kButtonPress && e.button == 1) {
           left_down = true;
           probe_depth = pickDepth(*scene, camera, e.x, e.y);
           probe->position = visual::unproject(camera, e.x, e.y, probe_depth);
@@ -168,7 +205,11 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
           renderer.setCamera(camera);
         }
         if (e.type == Type::kMotion) {
-          if (left_down) probe->position = visual::unproject(camera, e.x, e.y, probe_depth);
+          if (left_down && selected >= 0)
+            instruments->steer(selected, visual::unproject(camera, e.x, e.y, hinge_depth), scene->state().time,
+                               jaws_closed);
+          else if (left_down)
+            probe->position = visual::unproject(camera, e.x, e.y, probe_depth);
           if (right_down) {
             orbit(camera, -0.01 * (e.x - last_x), -0.01 * (e.y - last_y));
             renderer.setCamera(camera);
@@ -186,7 +227,9 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
         const long steps = std::max(1L, std::lround(advance / dt));
         const auto before = Clock::now();
         for (long k = 0; k < steps; ++k) {
+          if (instruments) instruments->beforeStep(*scene);
           const StepReport report = scene->step();
+          if (instruments && report.ok) instruments->afterStep(*scene);
           if (!report.ok) {
             log << "error: " << report.message << " (state rolled back; press r to restart)\n";
             paused = true;
@@ -198,10 +241,12 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
       // Draw.
       visuals.update(scene->state());
       probe_visual.update(scene->state());
+      for (auto& m : instrument_models) m->update(scene->state());
       frame = renderer.render(models);
       std::string hud = visual::headsUpText(scene->state().time, wall_per_ms, scene->energy(scene->state()).total());
       if (paused) hud += " | paused";
       if (grab_mode) hud += " | grab mode";
+      if (selected >= 0) hud += " | mouse: " + instruments->instrument(selected).name() + (jaws_closed ? " (jaws closing)" : "");
       if (haptic) {  // what a device's hand would feel: the tool's reaction
         std::ostringstream force;
         force.precision(3);
@@ -209,9 +254,11 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
         hud += force.str();
       }
       visual::drawHeadsUp(frame, hud);
-      visual::drawFooter(frame, "left: push | shift+left or g: grab | right: orbit | wheel: zoom | space: pause | r | q");
+      visual::drawFooter(frame, instruments ? "1-9: instrument to the mouse, 0: probe | c/o: close/open jaws | left: move | "
+                                              "right: orbit | wheel: zoom | space | r | q"
+                                            : "left: push | shift+left or g: grab | right: orbit | wheel: zoom | space: pause | r | q");
       window.show(frame);
-      if (options.on_frame) options.on_frame(ViewFrame{index, window, *scene, camera, *probe});
+      if (options.on_frame) options.on_frame(ViewFrame{index, window, *scene, camera, *probe, instruments.get(), selected});
     }
     if (!options.screenshot.empty() && !frame.empty()) visual::writePng(options.screenshot, frame);
   } catch (const SceneError& e) {

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "filum/core/scene.hpp"
+#include "filum/haptics/instrument_set.hpp"
 #include "filum/visual/camera.hpp"
 #include "filum/visual/interactive_probe.hpp"
 #include "filum/visual/viewer_window.hpp"
@@ -29,6 +30,8 @@ struct ViewFrame {
   const Scene& scene;
   const visual::CameraSettings& camera;
   const haptics::ToolState& probe;
+  const haptics::InstrumentSet* instruments;  // the scene's "instruments" (null without)
+  int selected;                               // the instrument the mouse drives (−1: the probe)
 };
 
 struct ViewOptions {

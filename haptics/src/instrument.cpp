@@ -179,11 +179,14 @@ void Instrument::releaseObject() {
     if (parts_[i]) parts_[i]->setEnabled(jawsCollide());
 }
 
-void Instrument::driveByDevice(const Eigen::Matrix3d& frame, unsigned buttons, double jaw_speed) {
+void Instrument::driveByDevice(const Eigen::Matrix3d& frame, unsigned buttons, double jaw_speed, double jaw,
+                               double time) {
   drive_ = DeviceDrive{};
   drive_->frame = frame;
   drive_->buttons = buttons;
   drive_->jaw_speed = jaw_speed;
+  drive_->jaw = jaw;
+  drive_->jaw_time = time;
 }
 
 void Instrument::setStylus(const Vec3& position, const Vec3& velocity, double time, unsigned buttons) {

@@ -424,6 +424,24 @@ void InstrumentSet::afterStep(const Scene& scene) {
 
 InstrumentSet::~InstrumentSet() { finish(); }
 
+bool InstrumentSet::takeOver(int i, double t) {
+  Instrument& inst = *instruments_[i];
+  if (devices_[i]) return false;
+  if (!inst.drivenByDevice()) {
+    const InstrumentPose pose = inst.poseAt(t);
+    const double jaw = inst.jawAt(t);
+    inst.driveByDevice(pose.frame, 1u, 5.0, jaw, t);
+    // The hand starts where the script left the hinge, the jaws as they were (opening, at rest).
+    inst.setStylus(inst.settings().trocar ? Vec3(2.0 * *inst.settings().trocar - pose.hinge) : pose.hinge,
+                   Vec3::Zero(), t, jaw < 1.0 ? 1u : 0u);
+  }
+  return true;
+}
+
+void InstrumentSet::steer(int i, const Vec3& position, double t, bool close_jaws) {
+  instruments_[i]->setStylus(position, Vec3::Zero(), t, close_jaws ? 1u : 0u);
+}
+
 void InstrumentSet::start() {
   for (auto& d : devices_)
     if (d) d->start();

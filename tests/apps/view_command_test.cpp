@@ -87,6 +87,51 @@ TEST(ViewCommand, TheMouseTakesTheHapticToolOfTheScene) {
   expectMouseGrabsAndPulls("haptic_grasp.json", "view_haptic_last_frame.png");
 }
 
+TEST(ViewCommand, KeysGiveAnInstrumentToTheMouseAndCloseItsJaws) {
+  // apps/scenes/instruments.json: key 2 gives the right grasper to the mouse (its script is left
+  // where it was), a left press and a drag carry its hinge to the pointer (at the hinge's depth),
+  // c closes its jaws (at 5 per second: shut within 0.2 s, 10 frames of 20 ms).
+  if (!visual::renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)";
+  std::string reason;
+  const auto display = test::displayOrSkipReason(reason);
+  if (!display) GTEST_SKIP() << reason;
+  ViewOptions options;
+  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/instruments.json";
+  options.frames = 30;
+  options.fixed_step = 0.02;
+  int selected = -2;
+  double jaw = -1.0;
+  Vec3 hinge = Vec3::Zero(), pointer = Vec3::Zero(), start_hinge = Vec3::Zero();
+  visual::Pixel start;
+  options.on_frame = [&](const ViewFrame& f) {
+    ASSERT_NE(f.instruments, nullptr);
+    const double t = f.scene.state().time;
+    if (f.index == 2) f.window.sendToSelf({WindowEvent::Type::kKey, 0, 0, 0, false, "2"});
+    if (f.index == 4) {
+      selected = f.selected;
+      start_hinge = f.instruments->instrument(1).poseAt(t).hinge;
+      start = visual::project(f.camera, start_hinge);
+      f.window.sendToSelf({WindowEvent::Type::kButtonPress, static_cast<int>(start.u), static_cast<int>(start.v), 1, false, ""});
+    }
+    if (f.index == 6)
+      f.window.sendToSelf({WindowEvent::Type::kMotion, static_cast<int>(start.u) - 80, static_cast<int>(start.v) + 40, 0, false, ""});
+    if (f.index == 9) {
+      hinge = f.instruments->instrument(1).poseAt(t).hinge;
+      pointer = visual::unproject(f.camera, static_cast<int>(start.u) - 80, static_cast<int>(start.v) + 40, start.depth);
+      f.window.sendToSelf({WindowEvent::Type::kButtonRelease, static_cast<int>(start.u) - 80, static_cast<int>(start.v) + 40, 1, false, ""});
+      f.window.sendToSelf({WindowEvent::Type::kKey, 0, 0, 0, false, "c"});
+    }
+    if (f.index == 29) jaw = f.instruments->instrument(1).jawAt(t);
+  };
+  std::ostringstream log;
+  ASSERT_EQ(viewScene(options, log), kRunOk) << log.str();
+  EXPECT_EQ(selected, 1);
+  // The hinge is the pointer unprojected at its depth (round-off of the camera's 0.3 m).
+  EXPECT_LT((hinge - pointer).norm(), 1e-12) << hinge.transpose() << " vs " << pointer.transpose();
+  EXPECT_GT((hinge - start_hinge).norm(), 5e-3);  // it moved (80 and 40 pixels at 0.3 m: about 1.5 cm)
+  EXPECT_EQ(jaw, 0.0);
+}
+
 TEST(ViewCommand, QuitKeyClosesTheWindow) {
   if (!visual::renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)";
   std::string reason;

@@ -118,7 +118,9 @@ class Instrument {
   double jawAt(double t) const;
   /// Driven by a haptic device: the shaft's orientation `frame`, the buttons that close the jaws,
   /// and how fast they move (1/s).
-  void driveByDevice(const Eigen::Matrix3d& frame, unsigned buttons, double jaw_speed);
+  /// (`jaw`: the opening at `time` to start from.)
+  void driveByDevice(const Eigen::Matrix3d& frame, unsigned buttons, double jaw_speed, double jaw = 1.0,
+                     double time = 0.0);
   bool drivenByDevice() const { return drive_.has_value(); }
   /// The stylus sampled at `time` (scene frame): X(t) = X + Ẋ (t − time) from now on; the jaws
   /// close while one of the driving buttons is held, open otherwise. With a trocar the stylus is

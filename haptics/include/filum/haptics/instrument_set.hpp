@@ -50,6 +50,13 @@ class InstrumentSet {
   bool threaded() const;
   /// Whether Ctrl-C arrived or a servo loop stopped (the run should stop after its step).
   bool interrupted() const;
+  /// The hand takes instrument i over from its script (the mouse of `filum view`): from now on
+  /// steer() moves its hinge and its jaws, its orientation kept as it was. A device-driven
+  /// instrument stays with its device (false).
+  bool takeOver(int i, double t);
+  /// The hinge of a taken-over instrument to `position` (m) at time t, its jaws closing or
+  /// opening (at 5 per second).
+  void steer(int i, const Vec3& position, double t, bool close_jaws);
   /// The device of instrument i, or nullptr for a scripted one.
   HapticSession* device(int i) const { return devices_[i].get(); }
   /// haptics_<name>.csv per device-driven instrument in `directory`; one summary line each.
