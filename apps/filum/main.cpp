@@ -41,8 +41,8 @@ int main(int argc, char** argv) {
   bool no_png = false;
   run_cmd->add_flag("--no-png", no_png, "with --render: only the video and the contact sheet, no PNG per frame");
   run_cmd->footer(
-      "Writes control_points.csv, curve.csv, energy.csv, vtk/*.vtp with curve.pvd (open in ParaView) and "
-      "timing.json; with --meshes and --render also the meshes, frames, video and contact sheet.\nExit status: 0 done, 2 bad scene, 3 diverged (state rolled back, frames kept), 4 output error, 130 stopped by Ctrl-C (a run with a haptic device: forces off, outputs kept).");
+      "Writes control_points.csv, curve.csv, energy.csv, knot.csv, vtk/*.vtp with curve.pvd (open in ParaView) and "
+      "timing.json; with instruments metrics.csv and metrics.json; with --meshes and --render also the meshes, frames, video and contact sheet.\nExit status: 0 done, 2 bad scene, 3 diverged (state rolled back, frames kept), 4 output error, 130 stopped by Ctrl-C (a run with a haptic device: forces off, outputs kept).");
 
   filum::app::ViewOptions view;
   CLI::App* view_cmd = app.add_subcommand("view", "play a scene in a window in real time; the mouse is a probe");

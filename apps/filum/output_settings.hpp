@@ -1,5 +1,5 @@
 // The scene file's "output" block, read by `filum run` and checked by `filum check`:
-//   "output": {"interval": 0.01, "curve_samples": 64}
+//   "output": {"interval": 0.01, "curve_samples": 64, "knots": true}
 #pragma once
 
 #include <string>
@@ -16,6 +16,7 @@ inline constexpr int kMaxCurveSamples = 100000;
 struct OutputSettings {
   double interval = 0.01;  // simulated seconds between frames
   int curve_samples = 64;  // points per curve
+  bool knots = true;       // knot.csv: the knot type of every thread's strands per frame
 };
 
 /// Reads and checks the block (absent: the defaults). Throws SceneError naming the place.

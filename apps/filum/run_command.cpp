@@ -196,7 +196,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     return kRunDiverged;
   };
   try {
-    output_files = std::make_unique<RunOutput>(directory, samples);
+    output_files = std::make_unique<RunOutput>(directory, samples, output.knots);
     RunOutput& out = *output_files;
     if (instruments) instruments->openCsv(directory + "/metrics.csv");
     out.writeFrame(*scene);
@@ -254,7 +254,8 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     else logRuptures(*scene, log);
     if (visuals) visuals->finish(*scene);
     log << "wrote " << out.frames() << " frames to " << directory
-        << " (control_points.csv, curve.csv, energy.csv, curve.pvd, timing.json" << (visuals ? visuals->summary() : "")
+        << " (control_points.csv, curve.csv, energy.csv, " << (output.knots ? "knot.csv, " : "")
+        << "curve.pvd, timing.json" << (visuals ? visuals->summary() : "")
         << ")\n";
     writeSummary(directory, summary(), log);
   } catch (const NonFiniteFrame& e) {

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "filum/collision/knot_determinant.hpp"
+#include "filum/collision/knot_type.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
 #include "filum/geometry/spline_point_mapping.hpp"
 
@@ -28,8 +30,9 @@ std::ofstream openCsv(const std::string& path, const char* header) {
 
 }  // namespace
 
-RunOutput::RunOutput(const std::string& directory, int curve_samples)
+RunOutput::RunOutput(const std::string& directory, int curve_samples, bool knots)
     : directory_(directory), curve_samples_(curve_samples), series_(directory + "/curve.pvd") {
+  if (knots) knots_ = openCsv(directory_ + "/knot.csv", "time,body,strand,type,crossings,jones");
   std::filesystem::create_directories(directory_ + "/vtk");
   control_points_ = openCsv(directory_ + "/control_points.csv", "time,body,index,x,y,z");
   curve_ = openCsv(directory_ + "/curve.csv", "time,body,sample,s,x,y,z");
@@ -89,6 +92,19 @@ void RunOutput::writeFrame(const Scene& scene) {
   }
   energy_ << t << ',' << exact(e.kinetic) << ',' << exact(e.potential) << ',' << exact(e.total()) << ','
           << exact(violation) << '\n';
+  if (knots_.is_open()) {
+    // Each strand closed far away; diagrams of more than 16 crossings are left "unknown" (the
+    // state sum costs 2ⁿ: 16 keeps a frame within milliseconds).
+    constexpr int kFrameCrossings = 16;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      const int strand = i > 0 && line_body[i - 1] == line_body[i] ? strand_counter_ + 1 : 0;
+      strand_counter_ = strand;
+      const collision::KnotType k = collision::knotType(collision::closeFarAway(lines[i].points), kFrameCrossings);
+      knots_ << t << ',' << lines[i].name << ',' << strand << ',' << k.name << (k.mirrored ? " (mirror)" : "") << ','
+             << k.crossings << ',' << collision::toString(k.jones) << '\n';
+    }
+    flushOrThrow(knots_, "knot.csv");
+  }
 
   char file[64];
   std::snprintf(file, sizeof file, "vtk/curve_%06d.vtp", frame_);

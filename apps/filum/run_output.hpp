@@ -25,7 +25,9 @@ class NonFiniteFrame : public std::runtime_error {
 class RunOutput {
  public:
   /// Creates `directory` (and vtk/ inside). curve_samples >= 2.
-  RunOutput(const std::string& directory, int curve_samples);
+  /// knots: also knot.csv (time, body, strand, type, crossings, jones): each strand of each
+  /// thread closed far away and classified (collision/knot_type.hpp) at every frame.
+  RunOutput(const std::string& directory, int curve_samples, bool knots = true);
 
   /// Writes one frame of the scene's current state. Throws NonFiniteFrame (and writes nothing)
   /// if a value is not finite, std::runtime_error naming the file if a write fails.
@@ -39,7 +41,8 @@ class RunOutput {
   std::string directory_;
   int curve_samples_;
   int frame_ = 0;
-  std::ofstream control_points_, curve_, energy_;
+  int strand_counter_ = 0;  // knot.csv: the strand number within its body
+  std::ofstream control_points_, curve_, energy_, knots_;
   visual::PvdSeries series_;
 };
 

@@ -6,6 +6,8 @@
 
 #include <Eigen/Geometry>
 
+#include "knot_diagram.hpp"
+
 namespace filum::collision {
 
 Points closeFarAway(const Points& open, double far) {
@@ -36,11 +38,6 @@ Points closeFarAway(const Points& open, double far) {
 }
 
 namespace {
-
-struct Crossing {
-  double over;   // position along the curve (edge index + parameter) of the over strand
-  double under;  // of the under strand
-};
 
 /// det of an integer matrix modulo the prime p (Gaussian elimination in Z/pZ), in (−p/2, p/2).
 long determinantModulo(std::vector<std::vector<long>> a, long p) {
@@ -84,9 +81,11 @@ long integerDeterminant(const std::vector<std::vector<long>>& a) {
 
 }  // namespace
 
-long knotDeterminant(const Points& closed, const Vec3& direction, int* crossings) {
+bool projectDiagram(const Points& closed, const Vec3& direction, std::vector<DiagramCrossing>& list) {
+  list.clear();
   const int m = static_cast<int>(closed.rows());
   const Vec3 d = direction.normalized();
+  // (u, w, d) right-handed: (x·u, x·w) are the coordinates seen from +d.
   const Vec3 u = d.unitOrthogonal(), w = d.cross(u);
   std::vector<Eigen::Vector2d> p(m);
   std::vector<double> h(m);
@@ -96,7 +95,6 @@ long knotDeterminant(const Points& closed, const Vec3& direction, int* crossings
     h[i] = x.dot(d);
   }
   // Crossings of non-adjacent projected edges.
-  std::vector<Crossing> list;
   for (int i = 0; i < m; ++i)
     for (int j = i + 2; j < m; ++j) {
       if (i == 0 && j == m - 1) continue;  // adjacent through the closing edge
@@ -111,7 +109,7 @@ long knotDeterminant(const Points& closed, const Vec3& direction, int* crossings
         // Parallel edges: a problem only if they overlap on one line.
         if (std::abs(ca.x() * r.y() - ca.y() * r.x()) <= 1e-12 * scale + 1e-300) {
           const double lo = std::min(ca.dot(r), (e - a).dot(r)), hi = std::max(ca.dot(r), (e - a).dot(r));
-          if (hi >= 0.0 && lo <= r.squaredNorm()) return -1;
+          if (hi >= 0.0 && lo <= r.squaredNorm()) return false;
         }
         continue;
       }
@@ -119,20 +117,29 @@ long knotDeterminant(const Points& closed, const Vec3& direction, int* crossings
       if (ti < 0.0 || ti > 1.0 || tj < 0.0 || tj > 1.0) continue;
       // A crossing at (or within round-off of) a vertex: not generic.
       const double eps = 1e-9;
-      if (ti < eps || ti > 1.0 - eps || tj < eps || tj > 1.0 - eps) return -1;
+      if (ti < eps || ti > 1.0 - eps || tj < eps || tj > 1.0 - eps) return false;
       const double hi = h[i] + ti * (h[(i + 1) % m] - h[i]);
       const double hj = h[j] + tj * (h[(j + 1) % m] - h[j]);
-      if (std::abs(hi - hj) <= 1e-14 * (std::abs(hi) + std::abs(hj))) return -1;  // the strands meet
+      if (std::abs(hi - hj) <= 1e-14 * (std::abs(hi) + std::abs(hj))) return false;  // the strands meet
+      // o × u with o the over strand's direction, u the under strand's: r × s or s × r.
+      const double cross = hi > hj ? denom : -denom;
+      const int sign = cross > 0.0 ? 1 : -1;
       if (hi > hj)
-        list.push_back({i + ti, j + tj});
+        list.push_back({i + ti, j + tj, sign});
       else
-        list.push_back({j + tj, i + ti});
+        list.push_back({j + tj, i + ti, sign});
     }
+  return true;
+}
+
+long knotDeterminant(const Points& closed, const Vec3& direction, int* crossings) {
+  std::vector<DiagramCrossing> list;
+  if (!projectDiagram(closed, direction, list)) return -1;
   const int n = static_cast<int>(list.size());
   if (crossings) *crossings = n;
   if (n <= 2) return 1;  // a diagram with at most two crossings is the unknot
   // Under-crossings in order along the curve: arc k ends at under-crossing k.
-  std::sort(list.begin(), list.end(), [](const Crossing& x, const Crossing& y) { return x.under < y.under; });
+  std::sort(list.begin(), list.end(), [](const DiagramCrossing& x, const DiagramCrossing& y) { return x.under < y.under; });
   auto arcOf = [&](double position) {
     // Arc k covers (under_{k−1}, under_k]; positions after the last under-crossing are on arc 0.
     for (int k = 0; k < n; ++k)

@@ -8,6 +8,7 @@ Vec3 jawColor(haptics::InstrumentKind kind) {
   switch (kind) {
     case haptics::InstrumentKind::kScissors: return {0.78, 0.62, 0.30};
     case haptics::InstrumentKind::kBipolarForceps: return {0.45, 0.55, 0.75};
+    case haptics::InstrumentKind::kNeedleHolder: return {0.85, 0.72, 0.25};  // gold handles: tungsten carbide jaws
     case haptics::InstrumentKind::kGrasper: break;
   }
   return {0.75, 0.76, 0.78};

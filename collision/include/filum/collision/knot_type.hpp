@@ -1,0 +1,58 @@
+// Which knot a thread is tied in: unknot, trefoil (the overhand knot closed), figure-eight,
+// granny or square (two overhand knots of the same or of opposite handedness) — by the Jones
+// polynomial of a diagram of the thread closed far away (knot_determinant.hpp: closeFarAway).
+// The Alexander polynomial (and the determinant |Δ(−1)|) cannot tell the square knot from the
+// granny: both are 3₁ # 3₁ up to mirror, determinant 9; the Jones polynomial can — the square
+// knot 3₁ # 3₁* is amphichiral, V(t) = V(1/t), the granny is not.
+//
+// Method (Kauffman, "State models and the Jones polynomial", Topology 26 (1987) 395):
+//   diagram   the closed polygon projected along d; every crossing of two projected edges has an
+//             over and an under strand (higher and lower along d) and a sign (+1 when the under
+//             strand passes from right to left under the over strand, seen from +d);
+//   bracket   ⟨K⟩ = Σ over the 2ⁿ states (an A- or a B-smoothing at each crossing) of
+//             A^(#A − #B) δ^(loops − 1), δ = −A² − A⁻², the loops counted by union–find of the 2n
+//             arcs between crossing passages; at a crossing whose over strand turns
+//             counter-clockwise onto the under strand (o × u > 0), the A-smoothing joins each
+//             over end to the under end clockwise of it;
+//   Jones     V(t) = (−A³)^(−w) ⟨K⟩ at A = t^(−1/4), w the writhe (the sum of the signs).
+// Kinks (a crossing whose two passages follow each other along the curve: Reidemeister I) are
+// removed first; of 13 projection directions, the one with the fewest crossings is used. V is
+// compared with the table (and its mirror t → 1/t):
+//   unknot 1;  trefoil t + t³ − t⁴;  figure-eight t⁻² − t⁻¹ + 1 − t + t²;
+//   granny (t + t³ − t⁴)²;  square (t + t³ − t⁴)(t⁻¹ + t⁻³ − t⁻⁴).
+// Cost 2ⁿ · n: up to kMaxCrossings crossings (a tied surgeon's knot seen from a good side has
+// 6 to 10); beyond, the type is "unknown".
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "filum/core/types.hpp"
+
+namespace filum::collision {
+
+/// A Laurent polynomial in t with integer coefficients: exponent → coefficient (no zeros kept).
+using LaurentPolynomial = std::map<int, long>;
+
+struct KnotType {
+  std::string name = "unknown";  // "unknot", "trefoil", "figure-eight", "granny", "square", "other", "unknown"
+  int crossings = -1;            // of the diagram used (after removing kinks)
+  LaurentPolynomial jones;       // V(t) (empty when unknown)
+  bool mirrored = false;         // matched the table's mirror image (a left-handed trefoil, granny)
+};
+
+inline constexpr int kMaxKnotCrossings = 22;
+
+/// The knot type of the closed polygon (its last point joined to its first); "unknown" when
+/// every projection has more than `max_crossings` crossings after kinks (at most kMaxKnotCrossings).
+KnotType knotType(const Points& closed, int max_crossings = kMaxKnotCrossings);
+
+/// The Jones polynomial of the closed polygon's diagram along `direction`; false when the
+/// projection is not generic or has more than `max_crossings` crossings (after kinks).
+bool jonesPolynomial(const Points& closed, const Vec3& direction, LaurentPolynomial& jones, int* crossings = nullptr,
+                     int max_crossings = kMaxKnotCrossings);
+
+/// "t + t^3 - t^4" (for messages and knot.csv).
+std::string toString(const LaurentPolynomial& p);
+
+}  // namespace filum::collision

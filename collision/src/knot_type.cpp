@@ -1,0 +1,210 @@
+#include "filum/collision/knot_type.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <vector>
+
+#include "filum/collision/knot_determinant.hpp"
+#include "knot_diagram.hpp"
+
+namespace filum::collision {
+
+namespace {
+
+LaurentPolynomial multiply(const LaurentPolynomial& a, const LaurentPolynomial& b) {
+  LaurentPolynomial c;
+  for (const auto& [i, x] : a)
+    for (const auto& [j, y] : b) c[i + j] += x * y;
+  for (auto it = c.begin(); it != c.end();) it = it->second == 0 ? c.erase(it) : std::next(it);
+  return c;
+}
+
+LaurentPolynomial mirror(const LaurentPolynomial& p) {
+  LaurentPolynomial m;
+  for (const auto& [e, c] : p) m[-e] = c;
+  return m;
+}
+
+/// Removes kinks: a crossing whose over and under passages are consecutive along the curve
+/// (Reidemeister I; the writhe correction of V absorbs it). Repeated until none is left.
+void removeKinks(std::vector<DiagramCrossing>& list) {
+  for (bool removed = true; removed;) {
+    removed = false;
+    const int n = static_cast<int>(list.size());
+    std::vector<std::pair<double, int>> passages;  // (position, crossing)
+    for (int c = 0; c < n; ++c) {
+      passages.push_back({list[c].over, c});
+      passages.push_back({list[c].under, c});
+    }
+    std::sort(passages.begin(), passages.end());
+    for (int k = 0; k < 2 * n && !removed; ++k) {
+      if (passages[k].second != passages[(k + 1) % (2 * n)].second) continue;
+      list.erase(list.begin() + passages[k].second);
+      removed = true;
+    }
+  }
+}
+
+/// ⟨K⟩ as a Laurent polynomial in A, by the state sum (see the header).
+LaurentPolynomial bracket(const std::vector<DiagramCrossing>& list) {
+  const int n = static_cast<int>(list.size());
+  if (n == 0) return {{0, 1}};
+  // Passages in order along the curve: edge k runs from passage k to passage k + 1.
+  std::vector<std::pair<double, int>> passages;  // (position, 2c for over, 2c + 1 for under)
+  for (int c = 0; c < n; ++c) {
+    passages.push_back({list[c].over, 2 * c});
+    passages.push_back({list[c].under, 2 * c + 1});
+  }
+  std::sort(passages.begin(), passages.end());
+  const int edges = 2 * n;
+  std::vector<int> at(2 * n);  // passage index of (crossing, strand)
+  for (int k = 0; k < edges; ++k) at[passages[k].second] = k;
+  // The four edge ends at each crossing: over in/out, under in/out (edge indices), and which
+  // pairs the A- and B-smoothings join.
+  struct Joins {
+    int a1, a2, a3, a4;  // A: (a1, a2), (a3, a4)
+    int b1, b2, b3, b4;  // B
+  };
+  std::vector<Joins> joins(n);
+  for (int c = 0; c < n; ++c) {
+    const int over_in = (at[2 * c] + edges - 1) % edges, over_out = at[2 * c];
+    const int under_in = (at[2 * c + 1] + edges - 1) % edges, under_out = at[2 * c + 1];
+    if (list[c].sign > 0)  // o × u > 0: A joins each over end to the under end clockwise of it
+      joins[c] = {over_out, under_in, over_in, under_out, over_out, under_out, over_in, under_in};
+    else
+      joins[c] = {over_out, under_out, over_in, under_in, over_out, under_in, over_in, under_out};
+  }
+  // δ^k, k = 0 .. 2n, δ = −A² − A⁻².
+  std::vector<LaurentPolynomial> delta(edges + 1);
+  delta[0] = {{0, 1}};
+  for (int k = 1; k <= edges; ++k) delta[k] = multiply(delta[k - 1], {{2, -1}, {-2, -1}});
+  // Σ_states A^(#A − #B) δ^(loops − 1): counted as (a − b, loops) pairs first.
+  std::map<std::pair<int, int>, long> counts;
+  std::vector<int> parent(edges);
+  auto find = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (unsigned long state = 0; state < (1ul << n); ++state) {
+    std::iota(parent.begin(), parent.end(), 0);
+    int loops = edges;
+    auto unite = [&](int x, int y) {
+      x = find(x);
+      y = find(y);
+      if (x != y) {
+        parent[x] = y;
+        --loops;
+      }
+    };
+    int a_minus_b = 0;
+    for (int c = 0; c < n; ++c) {
+      const Joins& j = joins[c];
+      if (state >> c & 1ul) {
+        unite(j.b1, j.b2);
+        unite(j.b3, j.b4);
+        --a_minus_b;
+      } else {
+        unite(j.a1, j.a2);
+        unite(j.a3, j.a4);
+        ++a_minus_b;
+      }
+    }
+    ++counts[{a_minus_b, loops}];
+  }
+  LaurentPolynomial sum;
+  for (const auto& [key, count] : counts)
+    for (const auto& [e, c] : delta[key.second - 1]) sum[e + key.first] += count * c;
+  for (auto it = sum.begin(); it != sum.end();) it = it->second == 0 ? sum.erase(it) : std::next(it);
+  return sum;
+}
+
+const LaurentPolynomial& trefoil() {
+  static const LaurentPolynomial v{{1, 1}, {3, 1}, {4, -1}};
+  return v;
+}
+
+/// Thirteen directions spread over the half sphere (a Fibonacci lattice, skewed off the axes).
+std::vector<Vec3> directions() {
+  std::vector<Vec3> out;
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  for (int k = 0; k < 13; ++k) {
+    const double z = 1.0 - (k + 0.5) / 13.0;
+    const double r = std::sqrt(1.0 - z * z), phi = golden * k + 0.1234;
+    out.emplace_back(r * std::cos(phi), r * std::sin(phi), z);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string toString(const LaurentPolynomial& p) {
+  if (p.empty()) return "0";
+  std::ostringstream out;
+  bool first = true;
+  for (const auto& [e, c] : p) {
+    const long magnitude = std::abs(c);
+    out << (first ? (c < 0 ? "-" : "") : (c < 0 ? " - " : " + "));
+    first = false;
+    if (magnitude != 1 || e == 0) out << magnitude;
+    if (e != 0) out << (magnitude != 1 ? "*" : "") << "t" << (e != 1 ? "^" + std::to_string(e) : "");
+  }
+  return out.str();
+}
+
+bool jonesPolynomial(const Points& closed, const Vec3& direction, LaurentPolynomial& jones, int* crossings,
+                     int max_crossings) {
+  std::vector<DiagramCrossing> list;
+  if (!projectDiagram(closed, direction, list)) return false;
+  removeKinks(list);
+  if (crossings) *crossings = static_cast<int>(list.size());
+  if (static_cast<int>(list.size()) > std::min(max_crossings, kMaxKnotCrossings)) return false;
+  int writhe = 0;
+  for (const DiagramCrossing& c : list) writhe += c.sign;
+  // V = (−A³)^(−w) ⟨K⟩; exponents of A are then multiples of 4 and t = A⁻⁴.
+  const LaurentPolynomial b = bracket(list);
+  jones.clear();
+  for (const auto& [e, c] : b) {
+    const int exponent = e - 3 * writhe;
+    if (exponent % 4 != 0) return false;  // not a knot diagram (cannot happen for one closed curve)
+    jones[-exponent / 4] += (writhe % 2 == 0 ? 1 : -1) * c;
+  }
+  return true;
+}
+
+KnotType knotType(const Points& closed, int max_crossings) {
+  KnotType best;
+  for (const Vec3& d : directions()) {
+    LaurentPolynomial v;
+    int n = 0;
+    if (!jonesPolynomial(closed, d, v, &n, max_crossings)) continue;
+    if (best.crossings < 0 || n < best.crossings) {
+      best.crossings = n;
+      best.jones = v;
+    }
+  }
+  if (best.crossings < 0) return best;
+  const LaurentPolynomial& t = trefoil();
+  const std::pair<const char*, LaurentPolynomial> table[] = {
+      {"unknot", {{0, 1}}},
+      {"trefoil", t},
+      {"figure-eight", {{-2, 1}, {-1, -1}, {0, 1}, {1, -1}, {2, 1}}},
+      {"granny", multiply(t, t)},
+      {"square", multiply(t, mirror(t))}};
+  best.name = "other";
+  for (const auto& [name, v] : table) {
+    if (best.jones == v) {
+      best.name = name;
+      return best;
+    }
+    if (best.jones == mirror(v)) {
+      best.name = name;
+      best.mirrored = true;
+      return best;
+    }
+  }
+  return best;
+}
+
+}  // namespace filum::collision

@@ -1,0 +1,125 @@
+// Knot types by the Jones polynomial (collision/knot_type.hpp) on synthetic curves: the unknot
+// drawn with many crossings, the trefoil and its mirror, the figure-eight, and the two knots a
+// surgeon ties by two throws — the square knot (throws of opposite handedness, amphichiral) and
+// the granny (the same handedness; its mirror is still a granny) — which the determinant cannot
+// tell apart (9 for both).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "filum/collision/knot_determinant.hpp"
+#include "filum/collision/knot_type.hpp"
+
+namespace filum::collision {
+namespace {
+
+Vec3 trefoil(double t) { return Vec3(std::sin(t) + 2 * std::sin(2 * t), std::cos(t) - 2 * std::cos(2 * t), -std::sin(3 * t)); }
+Vec3 figureEight(double t) {
+  return Vec3((2 + std::cos(2 * t)) * std::cos(3 * t), (2 + std::cos(2 * t)) * std::sin(3 * t), std::sin(4 * t));
+}
+/// The (1, 5) torus curve: an unknot that winds five times round a torus (many crossings in
+/// most projections).
+Vec3 coiledUnknot(double t) {
+  return Vec3((2 + std::cos(5 * t)) * std::cos(t), (2 + std::cos(5 * t)) * std::sin(t), std::sin(5 * t));
+}
+
+Points sampleClosed(const std::function<Vec3(double)>& f, int m, double phase = 0.0) {
+  Points p(m, 3);
+  for (int i = 0; i < m; ++i) p.row(i) = f(phase + 2 * M_PI * i / m).transpose();
+  return p;
+}
+
+/// The connected sum of two copies of the trefoil, the second mirrored (z → −z) or not: each
+/// copy cut open at its outermost point facing the other, the copies 8 apart along x, their cut
+/// ends joined by two parallel bridges.
+Points twoThrows(bool mirror_second) {
+  const int m = 120;
+  const Points a = sampleClosed(trefoil, m, 0.0137);
+  // The vertex of largest x of the first copy and of smallest x of the second: the cuts.
+  int cut_a = 0, cut_b = 0;
+  for (int i = 0; i < m; ++i) {
+    if (a(i, 0) > a(cut_a, 0)) cut_a = i;
+    if (a(i, 0) < a(cut_b, 0)) cut_b = i;
+  }
+  Points sum(2 * m, 3);
+  int row = 0;
+  // First copy, at x − 4, from the vertex after the cut round to the cut.
+  for (int k = 1; k <= m; ++k) {
+    const int i = (cut_a + k) % m;
+    sum.row(row++) = Vec3(a(i, 0) - 4, a(i, 1), a(i, 2)).transpose();
+  }
+  // Bridge to the second copy, at x + 4, from its cut round to the vertex before it. Mirrored,
+  // it is run in the direction that keeps the bridges parallel (the mirror of the cut point is
+  // the same point in x and y).
+  for (int k = 0; k < m; ++k) {
+    const int i = (cut_b - k + m) % m;
+    const double z = mirror_second ? -a(i, 2) : a(i, 2);
+    sum.row(row++) = Vec3(a(i, 0) + 4, a(i, 1), z).transpose();
+  }
+  return sum;
+}
+
+TEST(KnotType, TheUnknotDrawnWithManyCrossings) {
+  const KnotType k = knotType(sampleClosed(coiledUnknot, 300));
+  EXPECT_EQ(k.name, "unknot") << toString(k.jones);
+}
+
+TEST(KnotType, TheTrefoilAndItsMirror) {
+  const Points right = sampleClosed(trefoil, 150);
+  const KnotType k = knotType(right);
+  EXPECT_EQ(k.name, "trefoil") << toString(k.jones);
+  EXPECT_EQ(k.crossings, 3);
+  Points left = right;
+  left.col(2) *= -1.0;
+  const KnotType m = knotType(left);
+  EXPECT_EQ(m.name, "trefoil");
+  EXPECT_NE(m.mirrored, k.mirrored);  // chiral: the mirror has V(1/t)
+}
+
+TEST(KnotType, TheFigureEight) {
+  const KnotType k = knotType(sampleClosed(figureEight, 200));
+  EXPECT_EQ(k.name, "figure-eight") << toString(k.jones);
+}
+
+TEST(KnotType, SquareAndGrannyKnotsAreToldApart) {
+  const Points square = twoThrows(true), granny = twoThrows(false);
+  // Both have determinant 9: |Δ(−1)| cannot tell them apart.
+  EXPECT_EQ(knotDeterminant(square), 9);
+  EXPECT_EQ(knotDeterminant(granny), 9);
+  const KnotType s = knotType(square), g = knotType(granny);
+  EXPECT_EQ(s.name, "square") << toString(s.jones);
+  EXPECT_EQ(g.name, "granny") << toString(g.jones);
+  // The granny tied the other way round (both throws mirrored) is a granny still.
+  Points other = granny;
+  other.col(2) *= -1.0;
+  const KnotType o = knotType(other);
+  EXPECT_EQ(o.name, "granny");
+  EXPECT_NE(o.mirrored, g.mirrored);
+  // The square knot is its own mirror.
+  Points square_mirror = square;
+  square_mirror.col(2) *= -1.0;
+  EXPECT_EQ(knotType(square_mirror).name, "square");
+}
+
+TEST(KnotType, AnOpenOverhandKnotClosedFarAwayIsATrefoilAndACoilAnUnknot) {
+  // The trefoil opened at its outer lobe t = π, with straight arms carried out along ±x (as in
+  // knot_determinant_test.cpp), and a helix (coiled, not knotted).
+  const int n = 90;
+  Points open(n + 2, 3);
+  for (int k = 0; k < n; ++k) open.row(k + 1) = trefoil(M_PI + 0.05 + (2 * M_PI - 0.1) * k / (n - 1)).transpose();
+  open.row(0) = (open.row(1) + Eigen::RowVector3d(-5.0, 0.0, -2.0));
+  open.row(n + 1) = (open.row(n) + Eigen::RowVector3d(5.0, 0.0, -2.0));
+  EXPECT_EQ(knotType(closeFarAway(open)).name, "trefoil");
+  Points helix(200, 3);
+  for (int k = 0; k < 200; ++k) helix.row(k) << std::cos(0.3 * k), std::sin(0.3 * k), 0.02 * k;
+  EXPECT_EQ(knotType(closeFarAway(helix)).name, "unknot");
+}
+
+TEST(KnotType, JonesPolynomialsAreWritten) {
+  EXPECT_EQ(toString({{1, 1}, {3, 1}, {4, -1}}), "t + t^3 - t^4");
+  EXPECT_EQ(toString({{-2, 1}, {-1, -1}, {0, 1}}), "t^-2 - t^-1 + 1");
+}
+
+}  // namespace
+}  // namespace filum::collision
