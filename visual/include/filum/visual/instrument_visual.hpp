@@ -1,8 +1,9 @@
 // InstrumentVisual: an instrument (haptics/instrument.hpp) as drawn — its shaft and its two jaws
 // (or blades) as round-capped cylinders where they are at the state drawn, opened as its jaws
-// are, and the cannula of its trocar if it has one. The shaft is dark (a laparoscopic instrument's insulated shaft), the jaws steel; the jaws
-// of bipolar forceps are blue-grey, the blades of scissors brass-coloured, a needle holder's jaws gold (as tungsten carbide inserts are marked), and the jaws turn green
-// while they hold a thread.
+// are, and the cannula of its trocar if it has one. The shaft is dark (a laparoscopic
+// instrument's insulated shaft), the jaws steel; the jaws of bipolar forceps are blue-grey, the
+// blades of scissors brass-coloured, a needle holder's jaws gold (as tungsten carbide inserts are
+// marked), and the jaws turn green while they hold a thread.
 #pragma once
 
 #include "filum/haptics/instrument.hpp"
