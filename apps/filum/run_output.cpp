@@ -32,11 +32,11 @@ std::ofstream openCsv(const std::string& path, const char* header) {
 
 RunOutput::RunOutput(const std::string& directory, int curve_samples, bool knots)
     : directory_(directory), curve_samples_(curve_samples), series_(directory + "/curve.pvd") {
-  if (knots) knots_ = openCsv(directory_ + "/knot.csv", "time,body,strand,type,crossings,jones");
   std::filesystem::create_directories(directory_ + "/vtk");
   control_points_ = openCsv(directory_ + "/control_points.csv", "time,body,index,x,y,z");
   curve_ = openCsv(directory_ + "/curve.csv", "time,body,sample,s,x,y,z");
   energy_ = openCsv(directory_ + "/energy.csv", "time,kinetic,potential,total,max_violation");
+  if (knots) knots_ = openCsv(directory_ + "/knot.csv", "time,body,strand,type,crossings,jones");
 }
 
 void RunOutput::writeFrame(const Scene& scene) {

@@ -12,6 +12,7 @@
 #include "filum/geometry/knot_removal.hpp"
 #include "filum/geometry/nonuniform_bspline.hpp"
 #include "filum/geometry/spline_curve.hpp"
+#include "filum/geometry/spline_basis_factory.hpp"
 #include "filum/geometry/uniform_cubic_bspline.hpp"
 #include "filum/mechanics/mass_matrix.hpp"
 
@@ -207,13 +208,37 @@ double arcLength(const geometry::SplineBasis& basis, ConstPointsRef q, int nodes
 
 std::unique_ptr<geometry::SplineBasis> makeBasis(const Params& p, const std::string& key, int control_points) {
   const std::string name = p.string(key, "uniform_cubic_bspline");
-  if (name == "uniform_cubic_bspline") {
-    if (control_points < geometry::UniformCubicBSpline::kMinimumControlPoints)
-      p.fail("control_points", "at least 4 control points for a uniform cubic B-spline",
+  geometry::SplineBasisSpec spec;
+  spec.name = name;
+  spec.control_points = control_points;
+  if (name == "uniform_cubic_bspline" || name == "catmull_rom") {
+    if (control_points < 4)
+      p.fail("control_points", "at least 4 control points for a " + name + " basis", std::to_string(control_points));
+  } else if (name == "nubs") {
+    // Degree 2 to 5: a degree-1 curve has no curvature for the bending energies to see.
+    spec.degree = p.integer("degree", 2, 5, 3, "a NUBS of degree 2 to 5");
+    spec.clamped = p.boolean("clamped", true);
+    if (p.has("knots")) {
+      const nlohmann::json& knots = p.raw("knots");
+      if (!knots.is_array() || knots.size() != static_cast<std::size_t>(control_points + spec.degree + 1))
+        p.fail("knots", "a list of n + degree + 1 = " + std::to_string(control_points + spec.degree + 1) +
+                            " non-decreasing knots", describeJson(knots));
+      for (const auto& k : knots) {
+        if (!k.is_number()) p.fail("knots", "numbers", describeJson(k));
+        spec.knots.push_back(k.get<double>());
+      }
+    }
+    if (control_points < spec.degree + 1)
+      p.fail("control_points", "at least degree + 1 = " + std::to_string(spec.degree + 1) + " control points for a NUBS",
              std::to_string(control_points));
-    return std::make_unique<geometry::UniformCubicBSpline>(control_points);
+  } else {
+    p.fail(key, "a known basis (uniform_cubic_bspline, catmull_rom, nubs)", "\"" + name + "\"");
   }
-  p.fail(key, "a known basis (uniform_cubic_bspline)");
+  try {
+    return geometry::makeSplineBasis(spec);
+  } catch (const std::invalid_argument& e) {
+    p.fail(spec.knots.empty() ? key : "knots", "a valid knot vector", e.what());
+  }
 }
 
 namespace {
@@ -262,18 +287,36 @@ std::unique_ptr<DynamicSpline> build(const Params& p, std::unique_ptr<geometry::
   }
 }
 
-Points straightThread(const Params& line) {
-  // Collinear, equally spaced control points q_i = from + (i − 1) h, h = (to − from)/(n − 3):
-  // the uniform cubic B-spline then runs exactly from P(0) = q_1 = from to P(1) = q_{n−2} = to.
+/// The control point count of {"from", "to", "count"}.
+int straightThreadCount(const Params& line) { return line.integer("count", 3, kMaxControlPoints, kControlPointLimit); }
+
+Points straightThread(const Params& line, const geometry::SplineBasis& basis) {
+  // A straight thread from `from` to `to`, uniformly parametrized (|P'| constant):
+  //  - uniform cubic B-spline and Catmull-Rom: collinear, equally spaced control points
+  //    q_i = from + (i − 1) h, h = (to − from)/(n − 3): the curve runs exactly from
+  //    P(0) = q_1 = from to P(1) = q_{n−2} = to;
+  //  - NUBS: q_i at the Greville abscissae ξ_i = (t_{i+1} + ... + t_{i+d})/d mapped to [0, 1]
+  //    (a B-spline reproduces a linear function from its Greville points: P(s) = from + s (to − from)).
   const Vec3 from = line.vec3("from");
   const Vec3 to = line.vec3("to");
-  const int n = line.integer("count", 4, kMaxControlPoints, kControlPointLimit);
+  const int n = straightThreadCount(line);
   checkCoordinates(line, "from", from);
   checkCoordinates(line, "to", to);
   if ((to - from).norm() == 0.0) line.fail("to", "a point different from 'from' (a thread of non-zero length)");
   line.finish();
-  const Vec3 h = (to - from) / (n - 3);
   Points q(n, 3);
+  if (const auto* nubs = dynamic_cast<const geometry::NonUniformBSpline*>(&basis)) {
+    const std::vector<double>& t = nubs->knots();
+    const int d = nubs->degree();
+    const double a = nubs->domainStart(), b = nubs->domainEnd();
+    for (int i = 0; i < n; ++i) {
+      double xi = 0.0;
+      for (int k = 1; k <= d; ++k) xi += t[i + k];
+      q.row(i) = (from + ((xi / d - a) / (b - a)) * (to - from)).transpose();
+    }
+    return q;
+  }
+  const Vec3 h = (to - from) / (n - 3);
   for (int i = 0; i < n; ++i) q.row(i) = (from + (i - 1.0) * h).transpose();
   return q;
 }
@@ -293,12 +336,15 @@ double massFromParams(const Params& p, double radius, double length) {
 
 std::unique_ptr<DynamicSpline> DynamicSpline::fromParams(const Params& p) {
   Points q;
+  std::unique_ptr<geometry::SplineBasis> basis;
   if (p.has("control_points") && p.raw("control_points").is_object()) {
-    q = straightThread(p.object("control_points"));
+    const Params line = p.object("control_points");
+    basis = makeBasis(p, "basis", straightThreadCount(line));
+    q = straightThread(line, *basis);
   } else {
     q = controlPointList(p);
+    basis = makeBasis(p, "basis", static_cast<int>(q.rows()));
   }
-  auto basis = makeBasis(p, "basis", static_cast<int>(q.rows()));
   const double radius = p.positive("radius", 1e-4);
   const double length = arcLength(*basis, q);
   if (!(length > 0.0) || !std::isfinite(length))

@@ -35,7 +35,9 @@ class DynamicSpline final : public CurveBody {
   DynamicSpline(std::unique_ptr<geometry::SplineBasis> basis, Points initial, double mass, double radius);
 
   /// From scene parameters:
-  ///   "basis": "uniform_cubic_bspline" (default),
+  ///   "basis": "uniform_cubic_bspline" (default, C2), "catmull_rom" (C1, interpolating) or "nubs"
+  ///      with "degree" 2..5 (default 3) and "knots" (n + degree + 1 values; default clamped
+  ///      uniform knots, or uniform with "clamped": false),
   ///   "control_points": [[x,y,z], ...]  or  {"from": [..], "to": [..], "count": n} — a straight
   ///      thread whose curve runs from `from` to `to`,
   ///   "mass": kg  or  "density": kg/m³ (with the radius and the initial arc length),
