@@ -213,7 +213,10 @@ std::unique_ptr<geometry::SplineBasis> makeBasis(const Params& p, const std::str
   spec.control_points = control_points;
   if (name == "uniform_cubic_bspline" || name == "catmull_rom") {
     if (control_points < 4)
-      p.fail("control_points", "at least 4 control points for a " + name + " basis", std::to_string(control_points));
+      p.fail("control_points",
+             std::string("at least 4 control points for a ") +
+                 (name == "catmull_rom" ? "Catmull-Rom spline" : "uniform cubic B-spline"),
+             std::to_string(control_points));
   } else if (name == "nubs") {
     // Degree 2 to 5: a degree-1 curve has no curvature for the bending energies to see.
     spec.degree = p.integer("degree", 2, 5, 3, "a NUBS of degree 2 to 5");
@@ -287,10 +290,16 @@ std::unique_ptr<DynamicSpline> build(const Params& p, std::unique_ptr<geometry::
   }
 }
 
-/// The control point count of {"from", "to", "count"}.
-int straightThreadCount(const Params& line) { return line.integer("count", 3, kMaxControlPoints, kControlPointLimit); }
+/// The control point count of {"from", "to", "count"}: at least 4 (a cubic's support), or
+/// degree + 1 for a NUBS (p: the DynamicSpline's parameters).
+int straightThreadCount(const Params& p, const Params& line) {
+  const int minimum = p.string("basis", "uniform_cubic_bspline") == "nubs"
+                          ? p.integer("degree", 2, 5, 3, "a NUBS of degree 2 to 5") + 1
+                          : 4;
+  return line.integer("count", minimum, kMaxControlPoints, kControlPointLimit);
+}
 
-Points straightThread(const Params& line, const geometry::SplineBasis& basis) {
+Points straightThread(const Params& line, const geometry::SplineBasis& basis, int n) {
   // A straight thread from `from` to `to`, uniformly parametrized (|P'| constant):
   //  - uniform cubic B-spline and Catmull-Rom: collinear, equally spaced control points
   //    q_i = from + (i − 1) h, h = (to − from)/(n − 3): the curve runs exactly from
@@ -299,7 +308,6 @@ Points straightThread(const Params& line, const geometry::SplineBasis& basis) {
   //    (a B-spline reproduces a linear function from its Greville points: P(s) = from + s (to − from)).
   const Vec3 from = line.vec3("from");
   const Vec3 to = line.vec3("to");
-  const int n = straightThreadCount(line);
   checkCoordinates(line, "from", from);
   checkCoordinates(line, "to", to);
   if ((to - from).norm() == 0.0) line.fail("to", "a point different from 'from' (a thread of non-zero length)");
@@ -339,8 +347,9 @@ std::unique_ptr<DynamicSpline> DynamicSpline::fromParams(const Params& p) {
   std::unique_ptr<geometry::SplineBasis> basis;
   if (p.has("control_points") && p.raw("control_points").is_object()) {
     const Params line = p.object("control_points");
-    basis = makeBasis(p, "basis", straightThreadCount(line));
-    q = straightThread(line, *basis);
+    const int n = straightThreadCount(p, line);
+    basis = makeBasis(p, "basis", n);
+    q = straightThread(line, *basis, n);
   } else {
     q = controlPointList(p);
     basis = makeBasis(p, "basis", static_cast<int>(q.rows()));
