@@ -8,6 +8,7 @@
 #include "filum/haptics/haptic_session.hpp"
 #include "filum/haptics/instrument_set.hpp"
 #include "filum/output_settings.hpp"
+#include "filum/physics_check.hpp"
 #include "filum/run_command.hpp"
 #include "filum/visual/camera.hpp"
 #include "filum/visual/visual_scene.hpp"
@@ -25,6 +26,12 @@ int checkScene(const std::string& path, std::ostream& out) {
     haptics::InstrumentSet::fromScene(document, path, *scene);  // the "instruments", read by `filum run`
     visual::VisualScene visuals(*scene);  // binds what the visual models follow (--meshes, --render, view)
     visuals.update(scene->state());
+    // Physics mistakes: what is well-formed but cannot run as written (physics_check.hpp).
+    const std::vector<std::string> problems = physicsProblems(*scene, document);
+    if (!problems.empty()) {
+      for (const std::string& p : problems) out << "error: " << p << '\n';
+      return kRunSceneError;
+    }
     out << path << ": ok (" << scene->bodies().size() << " bodies, " << scene->dofPointCount() << " control points, "
         << scene->constraints().size() << " constraints)\n";
     return 0;
