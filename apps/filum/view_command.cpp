@@ -101,6 +101,7 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
       attachProbe(*scene, probe);
     }
     instruments = haptics::InstrumentSet::fromScene(document, options.scene, *scene, 1.0);
+    if (instruments) instruments->start();  // devices on their own thread (a Phantom) start sampling
   } catch (const SceneError& e) {
     log << "error: " << e.what() << '\n';
     return kRunSceneError;
@@ -134,7 +135,6 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
       for (auto& m : instrument_models) models.push_back(m.get());
     }
     int selected = -1;          // the instrument the mouse drives (keys 1-9; 0: back to the probe)
-    bool jaws_closed = false;   // its jaws (c: close, o: open)
     double hinge_depth = 0.0;
 
     visual::OffscreenRenderer renderer(camera);
@@ -163,17 +163,14 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
           if (instruments && e.key.size() == 1 && e.key[0] >= '0' && e.key[0] <= '9') {
             const int k = e.key[0] - '1';
             selected = -1;
-            if (k >= 0 && k < instruments->size() && instruments->takeOver(k, scene->state().time)) {
-              selected = k;
-              jaws_closed = instruments->instrument(k).jawAt(scene->state().time) < 1.0;
-            }
+            if (k >= 0 && k < instruments->size() && instruments->takeOver(k, scene->state().time)) selected = k;
           }
-          if (selected >= 0 && (e.key == "c" || e.key == "o")) {
-            jaws_closed = e.key == "c";
-            instruments->steer(selected, instruments->instrument(selected).poseAt(scene->state().time).hinge,
-                               scene->state().time, jaws_closed);
-          }
-          if (e.key == "r") {
+          if (selected >= 0 && (e.key == "c" || e.key == "o"))
+            instruments->moveJaws(selected, e.key == "c", scene->state().time);
+          if (e.key == "r" && instruments) {
+            // The instruments' holds, cuts and metrics are not rewound with the state.
+            log << "filum view: r does not restart a scene with instruments; quit and open it again\n";
+          } else if (e.key == "r") {
             scene->setState(initial);
             probe->touching = false;
             haptics::release(*probe);
@@ -184,7 +181,7 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
           left_down = true;
           const double t = scene->state().time;
           hinge_depth = visual::project(camera, instruments->instrument(selected).poseAt(t).hinge).depth;
-          instruments->steer(selected, visual::unproject(camera, e.x, e.y, hinge_depth), t, jaws_closed);
+          instruments->steer(selected, visual::unproject(camera, e.x, e.y, hinge_depth), t);
         } else if (e.type == Type::kButtonPress && e.button == 1) {
           left_down = true;
           probe_depth = pickDepth(*scene, camera, e.x, e.y);
@@ -206,8 +203,7 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
         }
         if (e.type == Type::kMotion) {
           if (left_down && selected >= 0)
-            instruments->steer(selected, visual::unproject(camera, e.x, e.y, hinge_depth), scene->state().time,
-                               jaws_closed);
+            instruments->steer(selected, visual::unproject(camera, e.x, e.y, hinge_depth), scene->state().time);
           else if (left_down)
             probe->position = visual::unproject(camera, e.x, e.y, probe_depth);
           if (right_down) {
@@ -246,7 +242,9 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
       std::string hud = visual::headsUpText(scene->state().time, wall_per_ms, scene->energy(scene->state()).total());
       if (paused) hud += " | paused";
       if (grab_mode) hud += " | grab mode";
-      if (selected >= 0) hud += " | mouse: " + instruments->instrument(selected).name() + (jaws_closed ? " (jaws closing)" : "");
+      if (selected >= 0)
+        hud += " | mouse: " + instruments->instrument(selected).name() +
+               (instruments->instrument(selected).jawsClosing() ? " (jaws closing)" : "");
       if (haptic) {  // what a device's hand would feel: the tool's reaction
         std::ostringstream force;
         force.precision(3);

@@ -153,13 +153,10 @@ std::string toString(const LaurentPolynomial& p) {
   return out.str();
 }
 
-bool jonesPolynomial(const Points& closed, const Vec3& direction, LaurentPolynomial& jones, int* crossings,
-                     int max_crossings) {
-  std::vector<DiagramCrossing> list;
-  if (!projectDiagram(closed, direction, list)) return false;
-  removeKinks(list);
-  if (crossings) *crossings = static_cast<int>(list.size());
-  if (static_cast<int>(list.size()) > std::min(max_crossings, kMaxKnotCrossings)) return false;
+namespace {
+
+/// V(t) of a diagram (kinks removed); false if its exponents are not integers (not one closed curve).
+bool jonesOfDiagram(const std::vector<DiagramCrossing>& list, LaurentPolynomial& jones) {
   int writhe = 0;
   for (const DiagramCrossing& c : list) writhe += c.sign;
   // V = (−A³)^(−w) ⟨K⟩; exponents of A are then multiples of 4 and t = A⁻⁴.
@@ -173,18 +170,35 @@ bool jonesPolynomial(const Points& closed, const Vec3& direction, LaurentPolynom
   return true;
 }
 
+}  // namespace
+
+bool jonesPolynomial(const Points& closed, const Vec3& direction, LaurentPolynomial& jones, int* crossings,
+                     int max_crossings) {
+  std::vector<DiagramCrossing> list;
+  if (!projectDiagram(closed, direction, list)) return false;
+  removeKinks(list);
+  if (crossings) *crossings = static_cast<int>(list.size());
+  if (static_cast<int>(list.size()) > std::min(max_crossings, kMaxKnotCrossings)) return false;
+  return jonesOfDiagram(list, jones);
+}
+
 KnotType knotType(const Points& closed, int max_crossings) {
   KnotType best;
+  // The diagram with the fewest crossings (after kinks) over the directions; the state sum, 2ⁿ,
+  // for that one only.
+  std::vector<DiagramCrossing> fewest, list;
+  bool found = false;
   for (const Vec3& d : directions()) {
-    LaurentPolynomial v;
-    int n = 0;
-    if (!jonesPolynomial(closed, d, v, &n, max_crossings)) continue;
-    if (best.crossings < 0 || n < best.crossings) {
-      best.crossings = n;
-      best.jones = v;
+    if (!projectDiagram(closed, d, list)) continue;
+    removeKinks(list);
+    if (static_cast<int>(list.size()) > std::min(max_crossings, kMaxKnotCrossings)) continue;
+    if (!found || list.size() < fewest.size()) {
+      fewest = list;
+      found = true;
     }
   }
-  if (best.crossings < 0) return best;
+  if (!found || !jonesOfDiagram(fewest, best.jones)) return best;
+  best.crossings = static_cast<int>(fewest.size());
   const LaurentPolynomial& t = trefoil();
   const std::pair<const char*, LaurentPolynomial> table[] = {
       {"unknot", {{0, 1}}},

@@ -65,8 +65,8 @@ InstrumentSettings InstrumentSettings::fromParams(const Params& p) {
   if (s.device && p.has("path")) p.fail("path", "a path or a device driving the instrument, not both", "both");
   if (!s.device) s.path = InstrumentPath::fromParams(p, "path", s.trocar ? &*s.trocar : nullptr);
   if (s.trocar && !s.device) {
-    // The hinge within the shaft's reach of the port over the whole path (1 ms samples, and the
-    // keyframes' times, where the farthest points of a monotone Hermite path lie).
+    // The hinge within the shaft's reach of the port over the whole path, sampled every 1 ms and
+    // at its end.
     const double end = s.path.endTime();
     for (long k = 0; k <= static_cast<long>(end * 1e3) + 1; ++k) {
       const double t = std::min(end, 1e-3 * k);
@@ -82,6 +82,11 @@ InstrumentSettings InstrumentSettings::fromParams(const Params& p) {
            "one");
   if (s.kind != InstrumentKind::kBipolarForceps && p.has("coagulation_time"))
     p.fail("coagulation_time", "no coagulation time on a " + type + " (only BipolarForceps coagulate)", "one");
+  if (s.device && (p.has("grasp_stiffness") || p.has("grasp_damping")))
+    p.fail(p.has("grasp_stiffness") ? "grasp_stiffness" : "grasp_damping",
+           "no grasp gains with a device: its coupling's (\"device\": {\"coupling\": {\"stiffness\", \"damping\"}}) are "
+           "the hold the hand feels through",
+           "one");
   if (s.kind != InstrumentKind::kScissors && p.has("require_coagulation"))
     p.fail("require_coagulation", "require_coagulation only on Scissors", type);
   p.finish();
@@ -163,7 +168,7 @@ Capsule Instrument::partNow(int index) const {
 
 bool Instrument::jawsCollide() const {
   return settings_.collide && settings_.kind != InstrumentKind::kScissors && !holding() && !holds_object_ &&
-         opening_ <= settings_.close_below;
+         jaws_clear_ && opening_ <= settings_.close_below;
 }
 
 void Instrument::holdObject() {
@@ -175,6 +180,7 @@ void Instrument::holdObject() {
 
 void Instrument::releaseObject() {
   holds_object_ = false;
+  jaws_clear_ = opening_ > settings_.close_below;
   for (int i = 1; i < kParts; ++i)
     if (parts_[i]) parts_[i]->setEnabled(jawsCollide());
 }
@@ -190,19 +196,32 @@ void Instrument::driveByDevice(const Eigen::Matrix3d& frame, unsigned buttons, d
 }
 
 void Instrument::setStylus(const Vec3& position, const Vec3& velocity, double time, unsigned buttons) {
+  if (!drive_) return;
+  setJaws((buttons & drive_->buttons) != 0, time);
+  setHand(position, velocity, time);
+}
+
+void Instrument::setHand(const Vec3& position, const Vec3& velocity, double time) {
+  if (!drive_) return;
+  drive_->position = position;
+  drive_->velocity = velocity;
+  drive_->time = time;
+}
+
+void Instrument::setJaws(bool closing, double time) {
+  if (!drive_) return;
   DeviceDrive& d = *drive_;
   d.jaw = jawAt(time);
-  d.jaw_time = time;
-  d.closing = (buttons & d.buttons) != 0;
-  d.position = position;
-  d.velocity = velocity;
-  d.time = time;
+  d.jaw_time = std::max(time, d.jaw_time);
+  d.moving = true;
+  d.closing = closing;
 }
 
 double Instrument::jawAt(double t) const {
   if (!drive_) return settings_.path.jaw(t);
   const DeviceDrive& d = *drive_;
-  return std::clamp(d.jaw + (d.closing ? -1.0 : 1.0) * d.jaw_speed * (t - d.jaw_time), 0.0, 1.0);
+  if (!d.moving) return d.jaw;  // taken over by the hand: as they were until a key moves them
+  return std::clamp(d.jaw + (d.closing ? -1.0 : 1.0) * d.jaw_speed * std::max(0.0, t - d.jaw_time), 0.0, 1.0);
 }
 
 InstrumentPose Instrument::poseAt(double t) const {
@@ -211,6 +230,15 @@ InstrumentPose Instrument::poseAt(double t) const {
     const Vec3 hand = drive_->position + drive_->velocity * (t - drive_->time);
     pose.hinge = settings_.trocar ? Vec3(2.0 * *settings_.trocar - hand) : hand;
     pose.frame = drive_->frame;
+    if (settings_.trocar) {
+      // The hand cannot pull the jaws out through the port nor push the shaft past its length:
+      // the hinge kept between 1 mm and shaft_length from the port (a scripted path is checked
+      // at load instead).
+      const Vec3 r = pose.hinge - *settings_.trocar;
+      const double reach = r.norm(), lo = 1e-3, hi = settings_.shape.shaft_length;
+      if (reach > hi) pose.hinge = *settings_.trocar + r * (hi / reach);
+      if (reach < lo) pose.hinge = *settings_.trocar + (reach > 0.0 ? Vec3(r / reach) : Vec3(pose.axis())) * lo;
+    }
   } else {
     pose = settings_.path.pose(t);
   }
@@ -227,6 +255,8 @@ void Instrument::setTime(double t, double h) {
   previous_opening_ = previous_opening_ < 0.0 ? jawAt(t) : opening_;
   opening_ = jawAt(t);
   if (opening_ > previous_opening_) latched_ = false;
+  // Jaws that let go of something closed on it stay clear of collisions until they have opened.
+  if (opening_ > settings_.close_below) jaws_clear_ = true;
   next_ = poseAt(t + h);
   h_ = h;
   const double next_opening = jawAt(t + h);
@@ -261,6 +291,7 @@ void Instrument::startHolding(const CurveBody& body, double abscissa, double alo
 void Instrument::stopHolding() {
   release(*hold_);
   held_for_ = 0.0;
+  jaws_clear_ = opening_ > settings_.close_below;
   for (int i = 1; i < kParts; ++i)
     if (parts_[i]) parts_[i]->setEnabled(jawsCollide());
 }

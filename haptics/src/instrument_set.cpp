@@ -21,6 +21,14 @@ std::string number(double x) {
   return out.str();
 }
 
+/// The strand of the curve holding abscissa s (the first one whose end is past s).
+Strand strandAt(const CurveBasis& basis, double s) {
+  const std::vector<Strand> all = strands(basis);
+  for (const Strand& strand : all)
+    if (s < strand.end) return strand;
+  return all.back();
+}
+
 /// The curve body of the scene that `body` is, for a layout change (Scene::cut needs it mutable).
 CurveBody* mutableCurve(Scene& scene, const CurveBody* body) {
   for (MechanicalState* state : scene.bodies())
@@ -141,6 +149,10 @@ void InstrumentSet::attach(Scene& scene, const std::string& source) {
     if (devices_[i] && devices_[i]->stylus(scene, sample))
       instruments_[i]->setStylus(sample.position, sample.velocity, sample.time, sample.buttons);
     instruments_[i]->setTime(scene.state().time, dt_);
+    // The metrics start from where the instrument is at the start.
+    const double t = scene.state().time;
+    metrics_.start(i, instruments_[i]->settings().shape.tip(instruments_[i]->poseAt(t), instruments_[i]->jawAt(t)),
+                   instruments_[i]->jawAt(t));
   }
 }
 
@@ -174,6 +186,7 @@ void InstrumentSet::beforeStep(Scene& scene) {
     }
     if (!inst.holding() && !inst.holdsObject() && inst.closing() && !inst.latched()) closeJaws(i, scene);
     if (inst.reachedClosed() && !inst.holding() && !inst.holdsObject() && !inst.latched()) {
+      inst.latch();  // this closing missed: it catches nothing more until the jaws open again
       if (inst.kind() != InstrumentKind::kScissors) ++metrics_.instrument(i).missed_grasps;
       event(t, "'" + inst.name() + "' closed on nothing");
     }
@@ -315,7 +328,9 @@ void InstrumentSet::slip(int i, const Scene& scene, const Vec3& force) {
   const double s = point.abscissa() + ds;
   metrics_.instrument(i).slip_length += std::abs(ds) * speed;
   const double t = scene.state().time;
-  if (s <= 0.0 || s >= 1.0) {
+  // Pulled past the end of its strand (the thread's end, or a cut's), the thread leaves the jaws.
+  const Strand strand = strandAt(point.body()->basis(), point.abscissa());
+  if (s <= strand.begin || s >= strand.end) {
     released_[i].push_back(point.body());
     event(t, "thread pulled out of '" + inst.name() + "'");
     inst.stopHolding();
@@ -330,12 +345,16 @@ void InstrumentSet::coagulate(int i, const Scene& scene) {
   if (coagulating_done_[i] || inst.heldFor() < inst.settings().coagulation_time) return;
   coagulating_done_[i] = 1;
   const BodyPoint& point = inst.hold()->grasp;
-  // The span under the jaws: half a jaw's length either side, in abscissa through |P'(s*)|.
-  const double half = 0.5 * inst.settings().shape.jaw_length / point.mapTangent(scene.state().q).norm();
-  coagulated_.push_back({point.body(), point.abscissa() - half, point.abscissa() + half});
+  // The span under the jaws: half a jaw's length either side, in abscissa through |P'(s*)|, within
+  // the strand it is on.
+  const double speed = point.mapTangent(scene.state().q).norm();
+  if (!(speed > 0.0)) return;
+  const double half = 0.5 * inst.settings().shape.jaw_length / speed;
+  const Strand strand = strandAt(point.body()->basis(), point.abscissa());
+  const double from = std::max(strand.begin, point.abscissa() - half), to = std::min(strand.end, point.abscissa() + half);
+  coagulated_.push_back({point.body(), from, to});
   ++metrics_.instrument(i).coagulations;
-  event(scene.state().time, "'" + inst.name() + "' coagulated s in [" + number(point.abscissa() - half) + ", " +
-                                number(point.abscissa() + half) + "]");
+  event(scene.state().time, "'" + inst.name() + "' coagulated s in [" + number(from) + ", " + number(to) + "]");
 }
 
 bool InstrumentSet::coagulated(const CurveBody& body, double s) const {
@@ -414,12 +433,12 @@ void InstrumentSet::afterStep(const Scene& scene) {
   }
   if (csv_.is_open()) csv_ << '\n';
   countToolContacts(t);
+  metrics_.endStep(t, dt_);
   for (; ruptures_seen_ < scene.ruptures().size(); ++ruptures_seen_) {
     const Scene::Rupture& r = scene.ruptures()[ruptures_seen_];
     metrics_.countBreak();
     event(r.time, r.body + " broke at s = " + number(r.abscissa) + " under " + number(r.tension) + " N");
   }
-  metrics_.endStep(t);
 }
 
 InstrumentSet::~InstrumentSet() { finish(); }
@@ -431,16 +450,20 @@ bool InstrumentSet::takeOver(int i, double t) {
     const InstrumentPose pose = inst.poseAt(t);
     const double jaw = inst.jawAt(t);
     inst.driveByDevice(pose.frame, 1u, 5.0, jaw, t);
-    // The hand starts where the script left the hinge, the jaws as they were (opening, at rest).
-    inst.setStylus(inst.settings().trocar ? Vec3(2.0 * *inst.settings().trocar - pose.hinge) : pose.hinge,
-                   Vec3::Zero(), t, jaw < 1.0 ? 1u : 0u);
+    // The hand starts where the script left the hinge, the jaws as they were, at rest.
+    steer(i, pose.hinge, t);
   }
   return true;
 }
 
-void InstrumentSet::steer(int i, const Vec3& position, double t, bool close_jaws) {
-  instruments_[i]->setStylus(position, Vec3::Zero(), t, close_jaws ? 1u : 0u);
+void InstrumentSet::steer(int i, const Vec3& hinge, double t) {
+  Instrument& inst = *instruments_[i];
+  // Through a trocar the hand is the hinge's mirror through the port.
+  const auto& trocar = inst.settings().trocar;
+  inst.setHand(trocar ? Vec3(2.0 * *trocar - hinge) : hinge, Vec3::Zero(), t);
 }
+
+void InstrumentSet::moveJaws(int i, bool close, double t) { instruments_[i]->setJaws(close, t); }
 
 void InstrumentSet::start() {
   for (auto& d : devices_)

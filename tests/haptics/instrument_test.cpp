@@ -107,6 +107,31 @@ TEST(Grasp, HoldsBelowItsHoldingForce) {
   EXPECT_EQ(run.instruments->metrics().instrument(0).slip_length, 0.0);
 }
 
+TEST(Grasp, AThreadPulledThroughTheJawsLeavesThemAtACutNotOntoTheOtherStrand) {
+  // The thread cut at s = 0.6 before the first step (a scheduled cut): the grasper catches s = 0.5
+  // and draws 3 cm along +x against a 0.05 N hold. The strand [0, 0.6] slides through the jaws
+  // until its cut end passes them: the grasp lets go there, and never holds s > 0.6.
+  json document = threadScene(pullingGrasper(0.05, 0.03));
+  document["nodes"][0]["components"][0]["cuts"] = json::array({{{"time", 0.0}, {"abscissa", 0.6}}});
+  InstrumentRun run(document);
+  double largest = 0.0;
+  bool held = false;
+  for (int k = 0; k < 1300; ++k) {
+    ASSERT_TRUE(run.step()) << "step " << k;
+    const Instrument& g = run.instruments->instrument(0);
+    if (g.holding()) {
+      held = true;
+      largest = std::max(largest, g.hold()->grasp.abscissa());
+    }
+  }
+  EXPECT_TRUE(held);
+  EXPECT_FALSE(run.instruments->instrument(0).holding());
+  EXPECT_LE(largest, 0.6);
+  bool pulled_out = false;
+  for (const std::string& e : run.instruments->events()) pulled_out = pulled_out || e.find("pulled out") != std::string::npos;
+  EXPECT_TRUE(pulled_out);
+}
+
 TEST(Grasp, SlipsAboveItsHoldingForceToWhereTheSliderStops) {
   // A 2 cm pull against a 0.5 N hold: once the coupling's pull along the thread reaches 0.5 N the
   // thread slides through the jaws. At rest the jaws bear exactly F_hold (the last slip left the
@@ -390,6 +415,26 @@ TEST(NeedleHolder, CarriesTheNeedleRigidlyLetsGoAndAnotherTakesItOver) {
   EXPECT_EQ(run.instruments->metrics().instrument(0).grasps, 1);
   EXPECT_EQ(run.instruments->metrics().instrument(1).grasps, 1);
   EXPECT_EQ(run.instruments->metrics().instrument(1).regrasps, 1);
+}
+
+TEST(Trocar, TheHandTakesOverAtTheHingeAndSteersItThroughThePort) {
+  // A trocar grasper given to the hand: taking over leaves the hinge where the script had it, and
+  // steering to a hinge puts it there (the hand at its mirror through the port), to round-off.
+  const Vec3 port(0.05, -0.05, 0.05);
+  const json grasper = {{"name", "g"}, {"type", "Grasper"}, {"trocar", {port.x(), port.y(), port.z()}},
+                        {"path", json::array({{{"time", 0.0}, {"position", {0.05, -0.01, 0.01}}, {"jaw", 0.5}}})}};
+  InstrumentRun run(threadScene(json::array({grasper})));
+  for (int k = 0; k < 10; ++k) ASSERT_TRUE(run.step());
+  const double t = run.scene->state().time;
+  const Vec3 before = run.instruments->instrument(0).poseAt(t).hinge;
+  ASSERT_TRUE(run.instruments->takeOver(0, t));
+  EXPECT_LT((run.instruments->instrument(0).poseAt(t).hinge - before).norm(), 1e-15);
+  EXPECT_EQ(run.instruments->instrument(0).jawAt(t + 0.1), 0.5);  // the jaws stay until a key moves them
+  const Vec3 target(0.06, -0.005, 0.015);
+  run.instruments->steer(0, target, t);
+  EXPECT_LT((run.instruments->instrument(0).poseAt(t).hinge - target).norm(), 1e-15);
+  run.instruments->moveJaws(0, true, t);
+  EXPECT_NEAR(run.instruments->instrument(0).jawAt(t + 0.05), 0.25, 1e-12);  // closing at 5 per second
 }
 
 struct BadField {

@@ -9,10 +9,12 @@
 //               "jaw_speed": 5 (1/s), "direction": [x, y, z] and "roll": rad (the shaft's fixed
 //               orientation: a 3-DOF stylus gives the hinge's position only)},
 //    "shaft_length": m, "shaft_radius": m, "jaw_length": m, "jaw_radius": m, "max_angle": rad,
-//    "close_below": 0.15,       the jaws act when their opening falls to this (grasp, cut, clamp)
+//    "close_below": 0.15,       jaws that reach this opening holding nothing have missed; closed
+//                               this far on nothing, graspers' and forceps' jaws push threads
 //    "holding_force": N,        Grasper, NeedleHolder: the pull along a thread the jaws hold
 //                               (default 2 N; 5 N for a needle holder)
-//    "grasp_stiffness": N/m, "grasp_damping": N·s/m   the jaws' hold on the point (500; critical)
+//    "grasp_stiffness": N/m, "grasp_damping": N·s/m   the jaws' hold on the point (500; critical;
+//                               with a device, its coupling's gains instead)
 //    "coagulation_time": s,     BipolarForceps: closed this long on a tube, the span is coagulated
 //    "require_coagulation": true | ["node", ...]   Scissors: a cut outside a coagulated span (of
 //                               every body, or of the named nodes' bodies) is refused (an error)
@@ -126,6 +128,12 @@ class Instrument {
   /// close while one of the driving buttons is held, open otherwise. With a trocar the stylus is
   /// the hand on the handle: the hinge is its mirror through the port (the fulcrum effect).
   void setStylus(const Vec3& position, const Vec3& velocity, double time, unsigned buttons);
+  /// The hand's position alone (the mouse), and the jaws alone (its keys): closing or opening
+  /// from `time` on. A hand-driven instrument's jaws stay as they were until setJaws.
+  void setHand(const Vec3& position, const Vec3& velocity, double time);
+  void setJaws(bool closing, double time);
+  /// The driven jaws are closing (false: opening or at rest).
+  bool jawsClosing() const { return drive_ && drive_->moving && drive_->closing; }
   /// Moves the instrument to time t (from its driver) and its parts over [t, t + h].
   void setTime(double t, double h);
   /// The opening at the previous setTime (the current one at the first).
@@ -178,6 +186,7 @@ class Instrument {
   double hold_opening_ = 0.0;       // the opening at which the jaws caught what they hold
   bool latched_ = false;
   bool holds_object_ = false;       // a needle
+  bool jaws_clear_ = true;          // false from a release until the jaws open past close_below
   /// The jaws push threads (see above).
   bool jawsCollide() const;
   std::shared_ptr<ToolState> hold_ = std::make_shared<ToolState>();
@@ -191,6 +200,7 @@ class Instrument {
     double time = 0.0;
     double jaw = 1.0, jaw_time = 0.0;  // the opening at jaw_time
     bool closing = false;
+    bool moving = false;  // the jaws move (a device's always; the mouse's once a key moved them)
   };
   std::optional<DeviceDrive> drive_;
 };

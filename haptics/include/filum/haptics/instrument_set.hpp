@@ -54,9 +54,10 @@ class InstrumentSet {
   /// steer() moves its hinge and its jaws, its orientation kept as it was. A device-driven
   /// instrument stays with its device (false).
   bool takeOver(int i, double t);
-  /// The hinge of a taken-over instrument to `position` (m) at time t, its jaws closing or
-  /// opening (at 5 per second).
-  void steer(int i, const Vec3& position, double t, bool close_jaws);
+  /// The hinge of a taken-over instrument to `hinge` (m) at time t (through a trocar, the hand to
+  /// its mirror), and its jaws closing or opening (at 5 per second) from t on.
+  void steer(int i, const Vec3& hinge, double t);
+  void moveJaws(int i, bool close, double t);
   /// The device of instrument i, or nullptr for a scripted one.
   HapticSession* device(int i) const { return devices_[i].get(); }
   /// haptics_<name>.csv per device-driven instrument in `directory`; one summary line each.

@@ -52,10 +52,18 @@ class TraineeMetrics {
   /// One step of length h: instrument i's tip and jaw opening at its end, force on tissue and
   /// force limit.
   void sample(int i, double h, const Vec3& tip, double opening, double force, double force_limit);
-  /// After every instrument's sample of the step ending at t.
-  void endStep(double t) {
+  /// Instrument i at the start: its tip and jaw opening.
+  void start(int i, const Vec3& tip, double opening) {
+    InstrumentTally& m = instruments_[i];
+    m.start = m.last = tip;
+    m.last_opening = opening;
+    m.sampled = true;
+  }
+  /// After every instrument's sample of the step of length h ending at t: the task runs from the
+  /// start of the first step in which a tip moved to the end of the last.
+  void endStep(double t, double h) {
     if (moving_) {
-      if (first_motion_ < 0.0) first_motion_ = t;
+      if (first_motion_ < 0.0) first_motion_ = t - h;
       last_motion_ = t;
     }
     moving_ = false;
