@@ -16,6 +16,7 @@
 #include "filum/mechanics/runge_kutta4.hpp"
 #include "filum/mechanics/spring_force_field.hpp"
 #include "filum/mechanics/symplectic_euler.hpp"
+#include "filum/mechanics/tissue_attachment.hpp"
 #include "filum/mechanics/viscous_damping.hpp"
 
 namespace filum::mechanics {
@@ -44,6 +45,9 @@ void register_components(Factory& factory) {
               [](const Params& p) { return RodEndFrame::fromParams(p); });
   factory.add("PointLoad", "a force (any curve) and a torque (rods with frames) at an abscissa, constant or on a path",
               [](const Params& p) { return PointLoad::fromParams(p); });
+  factory.add("TissueAttachment",
+              "springs and dashpots from points of a curve to anchors: mesosalpinx, mesentery, ligament",
+              [](const Params& p) { return TissueAttachment::fromParams(p); });
   factory.add("ViscousDamping", "mass-proportional viscous drag Q = -gamma M v",
               [](const Params& p) { return ViscousDamping::fromParams(p); });
   factory.add("RayleighDamping", "stiffness-proportional damping Q = beta K(q) v",
