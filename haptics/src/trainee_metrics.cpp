@@ -45,6 +45,7 @@ nlohmann::json TraineeMetrics::summary() const {
   out["idle_speed"] = idle_speed_;
   out["instrument_contacts"] = tool_contacts_;
   out["thread_breaks"] = breaks_;
+  if (removed_length_ >= 0.0) out["removed_length"] = removed_length_;
   nlohmann::json list = nlohmann::json::array();
   for (const InstrumentTally& m : instruments_) {
     list.push_back({{"name", m.name},
@@ -72,7 +73,9 @@ std::string TraineeMetrics::text() const {
   std::ostringstream out;
   out.precision(3);
   out << "metrics: task time " << taskTime() << " s, " << tool_contacts_ << " instrument contacts, " << breaks_
-      << " thread breaks\n";
+      << " thread breaks";
+  if (removed_length_ >= 0.0) out << ", specimen " << 1e3 * removed_length_ << " mm removed";
+  out << '\n';
   for (const InstrumentTally& m : instruments_) {
     out << "  " << m.name << " (" << m.kind << "): path " << 1e3 * m.path_length << " mm, economy " << m.economy()
         << ", idle " << m.idle_time << " s, grasps " << m.grasps << " (regrasps " << m.regrasps << ", missed "

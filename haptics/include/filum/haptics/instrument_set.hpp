@@ -3,7 +3,9 @@
 //
 //   "instruments": [ {"name": ..., "type": "Grasper", "path": [...], ...}, ... ],
 //   "needles": [ {"name": ..., "radius": ..., "thread": ..., ...}, ... ]   (needle.hpp; optional)
-//   "metrics": {"idle_speed": 0.005}     (m/s; optional)
+//   "metrics": {"idle_speed": 0.005,     (m/s; optional)
+//               "specimen": {"body": "tube", "kept_end": 0}}  (optional: the length cut off the
+//               body's end kept in the patient, s = kept_end, is the specimen removed)
 //
 // Building it adds to the scene, for each instrument, its parts as obstacles of the collision
 // pipeline (InstrumentCapsule; with "collide", the default) and on every curve body a coupling
@@ -125,6 +127,15 @@ class InstrumentSet {
   std::ofstream csv_;
   double dt_ = 1e-3;
   std::size_t ruptures_seen_ = 0;  // Scene::ruptures() already counted
+  // The specimen ("metrics": {"specimen"}): the body, its kept end, and the cut nearest that end
+  // (−1: none yet) as of the body's layout revision seen last.
+  const CurveBody* specimen_ = nullptr;
+  double specimen_kept_end_ = 0.0;
+  double specimen_cut_ = -1.0;
+  long specimen_revision_ = -1;
+  /// The specimen's length at the scene's state (m): the curve from the cut nearest the kept end
+  /// to the other end, by chords.
+  void measureSpecimen(const Scene& scene);
 };
 
 }  // namespace filum::haptics

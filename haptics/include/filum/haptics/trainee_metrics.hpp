@@ -70,6 +70,11 @@ class TraineeMetrics {
     duration_ = t;
   }
   void countToolContact() { ++tool_contacts_; }
+  /// The specimen's length (m): the curve cut off the end kept in the patient (InstrumentSet's
+  /// "specimen"); reported when set at least once.
+  void setRemovedLength(double length) { removed_length_ = length; }
+  /// −1 when the scene names no specimen.
+  double removedLength() const { return removed_length_; }
   void countBreak() { ++breaks_; }
 
   double idleSpeed() const { return idle_speed_; }
@@ -87,6 +92,7 @@ class TraineeMetrics {
   bool moving_ = false;
   double first_motion_ = -1.0, last_motion_ = 0.0, duration_ = 0.0;
   int tool_contacts_ = 0, breaks_ = 0;
+  double removed_length_ = -1.0;
 };
 
 }  // namespace filum::haptics
