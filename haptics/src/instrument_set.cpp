@@ -58,6 +58,16 @@ std::unique_ptr<InstrumentSet> InstrumentSet::fromScene(const nlohmann::json& do
       sp.finish();
       set->metrics_.setRemovedLength(0.0);
     }
+    if (m.has("inspection")) {
+      const Params in = m.object("inspection");
+      const std::string path = in.string("body");
+      const MechanicalState* body = scene.bodyAt(path);
+      if (!body || !body->curve()) in.fail("body", "the path of a node holding a curve body (e.g. \"bowel\")", "\"" + path + "\"");
+      set->inspected_ = body->curve();
+      set->inspection_step_ = in.positive("max_step", 0.1);
+      in.finish();
+      set->metrics_.setInspected(0.0, 0.0);
+    }
     m.finish();
   }
   if (top.has("needles")) {
@@ -148,6 +158,15 @@ void InstrumentSet::attach(Scene& scene, const std::string& source) {
     body->node()->addComponent(std::move(field));
   }
   scene.init();
+  if (inspected_) {
+    // The body's length from s = 0 as it lies at the start, by chords at 1001 abscissas (O(h²):
+    // 1e-6 relative for bends of a radius of a tenth of its length).
+    std::vector<double> length_at(1001, 0.0);
+    const VecX& q = scene.state().q;
+    for (int k = 1; k <= 1000; ++k)
+      length_at[k] = length_at[k - 1] + (inspected_->position(q, k / 1000.0) - inspected_->position(q, (k - 1) / 1000.0)).norm();
+    coverage_ = std::make_unique<GraspCoverage>(std::move(length_at), inspection_step_);
+  }
   for (auto& needle : needles_) {
     if (needle->settings().thread.empty()) continue;
     grasp(*needle->swageHold(), *scene.bodyAt(needle->settings().thread)->curve(), needle->settings().abscissa);
@@ -273,6 +292,10 @@ void InstrumentSet::closeJaws(int i, Scene& scene) {
   if (std::find(released.begin(), released.end(), c->body) != released.end()) ++tally.regrasps;
   coagulating_done_[i] = 0;
   inst.startHolding(*c->body, c->abscissa, c->along);
+  if (coverage_ && c->body == inspected_ && inst.kind() == InstrumentKind::kGrasper) {
+    coverage_->grasp(c->abscissa);
+    metrics_.setInspected(coverage_->coveredLength(), coverage_->fraction());
+  }
   event(scene.state().time, "'" + inst.name() + "' " +
                                 (inst.kind() == InstrumentKind::kBipolarForceps ? "clamped" : "grasped") + " at s = " +
                                 number(c->abscissa));

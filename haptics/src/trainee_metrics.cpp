@@ -46,6 +46,10 @@ nlohmann::json TraineeMetrics::summary() const {
   out["instrument_contacts"] = tool_contacts_;
   out["thread_breaks"] = breaks_;
   if (removed_length_ >= 0.0) out["removed_length"] = removed_length_;
+  if (inspected_length_ >= 0.0) {
+    out["inspected_length"] = inspected_length_;
+    out["inspected_fraction"] = inspected_fraction_;
+  }
   nlohmann::json list = nlohmann::json::array();
   for (const InstrumentTally& m : instruments_) {
     list.push_back({{"name", m.name},
@@ -75,6 +79,8 @@ std::string TraineeMetrics::text() const {
   out << "metrics: task time " << taskTime() << " s, " << tool_contacts_ << " instrument contacts, " << breaks_
       << " thread breaks";
   if (removed_length_ >= 0.0) out << ", specimen " << 1e3 * removed_length_ << " mm removed";
+  if (inspected_length_ >= 0.0)
+    out << ", inspected " << 1e3 * inspected_length_ << " mm (" << 100.0 * inspected_fraction_ << " % of the length)";
   out << '\n';
   for (const InstrumentTally& m : instruments_) {
     out << "  " << m.name << " (" << m.kind << "): path " << 1e3 * m.path_length << " mm, economy " << m.economy()

@@ -8,13 +8,17 @@
 
 namespace filum::collision {
 
-TriangleMeshObstacle::TriangleMeshObstacle(std::shared_ptr<const TriangleMeshSurface> surface)
-    : surface_(std::move(surface)) {}
+TriangleMeshObstacle::TriangleMeshObstacle(std::shared_ptr<const TriangleMeshSurface> surface, bool cavity)
+    : surface_(std::move(surface)), cavity_(cavity) {}
 
 std::unique_ptr<TriangleMeshObstacle> TriangleMeshObstacle::fromParams(const Params& p) {
   const std::string file = p.string("file");
   const double scale = geometry::meshScale(p);  // "units" × "scale": metres per unit of the file
   const Vec3 translation = p.vec3("translation", Vec3::Zero());
+  const std::string side = p.string("side", "outside");
+  if (side != "outside" && side != "inside")
+    p.fail("side", "\"outside\" (a solid the bodies stay out of) or \"inside\" (a cavity they stay in)",
+           "\"" + side + "\"");
   // Relative paths are relative to the scene file's folder.
   std::filesystem::path path(file);
   if (path.is_relative() && !p.file().empty()) path = std::filesystem::path(p.file()).parent_path() / path;
@@ -24,12 +28,13 @@ std::unique_ptr<TriangleMeshObstacle> TriangleMeshObstacle::fromParams(const Par
   } catch (const std::exception& e) {
     p.fail("file", "a closed triangle mesh file (.off, .obj, .stl, .ply)", "\"" + file + "\" (" + e.what() + ")");
   }
-  auto obstacle = std::make_unique<TriangleMeshObstacle>(std::move(surface));
+  auto obstacle = std::make_unique<TriangleMeshObstacle>(std::move(surface), side == "inside");
   obstacle->readCommon(p);
   return obstacle;
 }
 
 bool TriangleMeshObstacle::sample(const Vec3& x, double max_distance, SurfaceSample& out) const {
+  if (cavity_) return sampleCavity(x, max_distance, out);
   // Early out on the bounding box: farther than max_distance from it, no contact possible.
   if (surface_->bounds().exteriorDistance(x) > max_distance) return false;
   const Vec3 c = surface_->closestPoint(x);
@@ -43,6 +48,25 @@ bool TriangleMeshObstacle::sample(const Vec3& x, double max_distance, SurfaceSam
   out.normal = unsigned_distance > 1e-12 * (1.0 + surface_->bounds().diagonal().norm())
                    ? Vec3((inside ? c - x : x - c) / unsigned_distance)
                    : surface_->nearestFaceNormal(x);
+  out.velocity.setZero();
+  return true;
+}
+
+bool TriangleMeshObstacle::sampleCavity(const Vec3& x, double max_distance, SurfaceSample& out) const {
+  Vec3 face_normal;
+  const Vec3 c = surface_->closestPoint(x, face_normal);
+  const Vec3 away = x - c;
+  const double u = away.norm();
+  // Inside the closed surface (the free side): the sign of (x − c)·n_f when clearly off the
+  // face's plane, else the exact test.
+  const double along = away.dot(face_normal);
+  const bool inside = std::abs(along) > 0.5 * u ? along < 0.0 : surface_->inside(x);
+  if (inside && u > max_distance) return false;
+  // d = +u inside (clear of the wall), −u outside (through it); n into the cavity.
+  out.distance = inside ? u : -u;
+  out.point = c;
+  out.normal = u > 1e-12 * (1.0 + surface_->bounds().diagonal().norm()) ? Vec3((inside ? away : -away) / u)
+                                                                         : Vec3(-face_normal);
   out.velocity.setZero();
   return true;
 }

@@ -108,6 +108,17 @@ bool TriangleMeshSurface::inside(const Vec3& x) const {
   return (*impl_->inside)(toPoint(x)) == CGAL::ON_BOUNDED_SIDE;
 }
 
+Vec3 TriangleMeshSurface::closestPoint(const Vec3& x, Vec3& face_normal) const {
+  const Vec3 c = closestPoint(x);
+  const Mesh& mesh = impl_->mesh;
+  const auto h = mesh.halfedge(impl_->hint.second);
+  const Vec3 a = toVec3(mesh.point(mesh.source(h)));
+  const Vec3 b = toVec3(mesh.point(mesh.target(h)));
+  const Vec3 d = toVec3(mesh.point(mesh.target(mesh.next(h))));
+  face_normal = (b - a).cross(d - a).normalized();  // counter-clockwise seen from outside
+  return c;
+}
+
 Vec3 TriangleMeshSurface::nearestFaceNormal(const Vec3& x) const {
   const auto hit = impl_->tree->closest_point_and_primitive(toPoint(x), impl_->hint);
   impl_->hint = hit;

@@ -47,6 +47,8 @@ class TriangleMeshSurface {
 
   /// Closest point of the surface to x (AABB tree).
   Vec3 closestPoint(const Vec3& x) const;
+  /// The same, and the outward unit normal of the face it lies on.
+  Vec3 closestPoint(const Vec3& x, Vec3& face_normal) const;
   /// x strictly inside the closed surface (points on it count as outside).
   bool inside(const Vec3& x) const;
   /// Outward unit normal of the face nearest to x (for points on the surface, where x − closest

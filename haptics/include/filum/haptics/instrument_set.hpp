@@ -4,8 +4,10 @@
 //   "instruments": [ {"name": ..., "type": "Grasper", "path": [...], ...}, ... ],
 //   "needles": [ {"name": ..., "radius": ..., "thread": ..., ...}, ... ]   (needle.hpp; optional)
 //   "metrics": {"idle_speed": 0.005,     (m/s; optional)
-//               "specimen": {"body": "tube", "kept_end": 0}}  (optional: the length cut off the
-//               body's end kept in the patient, s = kept_end, is the specimen removed)
+//               "specimen": {"body": "tube", "kept_end": 0},  (optional: the length cut off the
+//                 body's end kept in the patient, s = kept_end, is the specimen removed)
+//               "inspection": {"body": "bowel", "max_step": 0.1}}  (optional: the length of the
+//                 body that passed between the graspers, grasp_coverage.hpp; max_step in m)
 //
 // Building it adds to the scene, for each instrument, its parts as obstacles of the collision
 // pipeline (InstrumentCapsule; with "collide", the default) and on every curve body a coupling
@@ -27,6 +29,7 @@
 #include <nlohmann/json.hpp>
 
 #include "filum/core/scene.hpp"
+#include "filum/haptics/grasp_coverage.hpp"
 #include "filum/haptics/haptic_session.hpp"
 #include "filum/haptics/instrument.hpp"
 #include "filum/haptics/needle.hpp"
@@ -136,6 +139,10 @@ class InstrumentSet {
   /// The specimen's length at the scene's state (m): the curve from the cut nearest the kept end
   /// to the other end, by chords.
   void measureSpecimen(const Scene& scene);
+  // "inspection": the body and how much of it passed between the graspers.
+  const CurveBody* inspected_ = nullptr;
+  double inspection_step_ = 0.1;
+  std::unique_ptr<GraspCoverage> coverage_;
 };
 
 }  // namespace filum::haptics

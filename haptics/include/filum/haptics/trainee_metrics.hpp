@@ -75,6 +75,13 @@ class TraineeMetrics {
   void setRemovedLength(double length) { removed_length_ = length; }
   /// −1 when the scene names no specimen.
   double removedLength() const { return removed_length_; }
+  /// The length that passed between the graspers (m) and its fraction of the body (InstrumentSet's
+  /// "inspection", grasp_coverage.hpp); reported when set at least once.
+  void setInspected(double length, double fraction) {
+    inspected_length_ = length;
+    inspected_fraction_ = fraction;
+  }
+  double inspectedFraction() const { return inspected_fraction_; }
   void countBreak() { ++breaks_; }
 
   double idleSpeed() const { return idle_speed_; }
@@ -93,6 +100,7 @@ class TraineeMetrics {
   double first_motion_ = -1.0, last_motion_ = 0.0, duration_ = 0.0;
   int tool_contacts_ = 0, breaks_ = 0;
   double removed_length_ = -1.0;
+  double inspected_length_ = -1.0, inspected_fraction_ = -1.0;
 };
 
 }  // namespace filum::haptics

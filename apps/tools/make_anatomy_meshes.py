@@ -1,18 +1,21 @@
 #!/usr/bin/env python3
-"""Writes the organs of apps/scenes/salpingectomy.json into apps/scenes/data/: uterus.off,
-ovary.off and bowel.off (metres), made by the project itself so that the scene ships with no
-third-party data.
+"""Writes the organs of apps/scenes/salpingectomy.json and apps/scenes/intestine.json into
+apps/scenes/data/: uterus.off, ovary.off, bowel.off and abdomen.off (metres), made by the project
+itself so that the scenes ship with no third-party data.
 
 Sizes are those of an adult pelvis (Gray's Anatomy, 42nd ed.): a uterus about 7.5 x 5 x 3.5 cm,
 pear-shaped (the body wider than the cervix below it); an ovary about 3.5 x 2 x 1.5 cm; and a
-loop of small bowel (diameter about 2.5 cm) lying below the adnexa.
+loop of small bowel (diameter about 2.5 cm) lying below the adnexa; and the peritoneal cavity of
+the abdomen below the liver as a flattened ellipsoid of 44 x 36 x 18 cm, its lower (posterior)
+side a little flatter, in which the small bowel of intestine.json lies (a cavity: the bowel is
+inside it).
 
 Every mesh is closed, consistently oriented (counter-clockwise seen from outside) and free of
 self-intersections, as the collision library's inside test requires: the uterus and the ovary
 are star-shaped radial deformations of a subdivided icosahedron (make_organ_mesh.icosphere), the
 bowel a torus. Pure Python, no dependencies:
 
-    python3 apps/tools/make_pelvis_meshes.py [--out apps/scenes/data]
+    python3 apps/tools/make_anatomy_meshes.py [--out apps/scenes/data]
 """
 import argparse
 import math
@@ -42,6 +45,12 @@ def pear(u):
     """The uterus: full at the fundus (top), narrowing smoothly towards the cervix (bottom)."""
     z = u[2]
     return 1.0 - 0.28 * max(0.0, -z) ** 1.5
+
+
+def flat_back(u):
+    """The abdomen: its posterior side (z < 0) flattened, as the abdominal wall lies on the spine."""
+    z = u[2]
+    return 1.0 - 0.15 * max(0.0, -z) ** 2
 
 
 def torus(centre, major, minor, rings=48, sides=16):
@@ -85,6 +94,10 @@ def main():
                                                              lambda u: 1.0))
     # A loop of small bowel under the adnexa (tube radius 12.5 mm on a loop of radius 35 mm).
     write_off(os.path.join(args.out, "bowel.off"), *torus((0.045, 0.01, -0.046), 0.035, 0.0125))
+    # The peritoneal cavity of intestine.json, centred at the origin, z towards the front (the
+    # patient lies on the back: gravity -z).
+    write_off(os.path.join(args.out, "abdomen.off"), *star_mesh((0.0, 0.0, 0.0), (0.22, 0.18, 0.09), flat_back,
+                                                              subdivisions=4))
 
 
 if __name__ == "__main__":
