@@ -7,44 +7,22 @@
 
 #include <cmath>
 
-#include "filum/all_components.hpp"
 #include "filum/collision/triangle_mesh_obstacle.hpp"
-#include "filum/core/curve_body.hpp"
-#include "filum/core/scene_loader.hpp"
-#include "filum/haptics/instrument_set.hpp"
 #include "filum/mechanics/tissue_attachment.hpp"
+#include "support/instrument_scene_run.hpp"
 
 namespace filum {
 namespace {
 
-struct Salpingectomy {
-  std::unique_ptr<Scene> scene;
-  std::unique_ptr<haptics::InstrumentSet> instruments;
+struct Salpingectomy : test::InstrumentSceneRun {
   std::vector<const collision::TriangleMeshObstacle*> organs;
   const mechanics::TissueAttachment* mesosalpinx = nullptr;
 
-  Salpingectomy() {
-    const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/salpingectomy.json";
-    const nlohmann::json document = readJsonFile(path);
-    scene = loadScene(document, path, app::makeFactory());
-    instruments = haptics::InstrumentSet::fromScene(document, path, *scene);
-    scene->init();
-    collect(scene->root());
-    for (const ForceField* field : scene->forceFields())
-      if (const auto* a = dynamic_cast<const mechanics::TissueAttachment*>(field)) mesosalpinx = a;
+  Salpingectomy() : InstrumentSceneRun("salpingectomy.json") {
+    organs = components<collision::TriangleMeshObstacle>();
+    mesosalpinx = forceField<mechanics::TissueAttachment>();
   }
-  void collect(const Node& node) {
-    for (const auto& component : node.components())
-      if (const auto* mesh = dynamic_cast<const collision::TriangleMeshObstacle*>(component.get()))
-        organs.push_back(mesh);
-    for (const auto& child : node.children()) collect(*child);
-  }
-  const CurveBody& tube() const { return *scene->bodies().front()->curve(); }
-  int instrumentIndex(const std::string& name) const {
-    for (int i = 0; i < instruments->size(); ++i)
-      if (instruments->instrument(i).name() == name) return i;
-    return -1;
-  }
+  const CurveBody& tube() const { return body(); }
   /// The smallest gap between the tube's surface and an organ (m; < 0: inside), over its axis at
   /// 201 abscissas.
   double smallestGap() const {
@@ -70,14 +48,12 @@ TEST(Salpingectomy, TheTubeIsHeldCoagulatedCutAndRemovedWithoutEnteringAnOrgan) 
   for (int k = 1; k <= 1000; ++k)
     length_at[k] = length_at[k - 1] + (run.tube().position(run.scene->state().q, k / 1000.0) -
                                        run.tube().position(run.scene->state().q, (k - 1) / 1000.0)).norm();
-  const long steps = std::lround(run.scene->settings().duration / run.scene->settings().dt);
+  const long steps = run.steps();
   double smallest_gap = std::numeric_limits<double>::infinity();
   double nearest_hold = std::numeric_limits<double>::infinity(), farthest_hold = 0.0;
   int held_steps = 0;
   for (long k = 0; k < steps; ++k) {
-    run.instruments->beforeStep(*run.scene);
-    ASSERT_TRUE(run.scene->step().ok) << "step " << k;
-    run.instruments->afterStep(*run.scene);
+    ASSERT_TRUE(run.step()) << "step " << k;
     const haptics::Instrument& forceps = run.instruments->instrument(bipolar);
     if (forceps.holding()) {
       // After the hold's spring has settled: ω dt = 0.5 at 1 ms (haptics/tool.cpp), critically

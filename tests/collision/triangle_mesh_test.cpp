@@ -121,6 +121,48 @@ TEST(TriangleMeshObstacle, SphereToMeshGapIsTheExactSignedDistanceMinusTheRadius
   }
 }
 
+TEST(TriangleMeshObstacle, ACavityIsTheSameSurfaceSeenFromInside) {
+  // "side": "inside": the distance is the exact one with the opposite sign (positive inside, where
+  // the bodies are free), the normal points into the cavity (x = point + d n), and points far
+  // inside give no contact while points outside — escaped through the wall — always do. The side
+  // comes from the nearest face's normal or the exact test: both agree with the winding number.
+  const auto surface = std::shared_ptr<const TriangleMeshSurface>(TriangleMeshSurface::read(kOrgan));
+  const TriangleMeshObstacle cavity(surface, true);
+  EXPECT_TRUE(cavity.cavity());
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double max_distance = 2e-3;
+  int inside_far = 0, outside = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    // Near the surface (a vertex pushed by up to 3 mm), or anywhere in the box around it (2 cm more).
+    const int v = trial * 7 % surface->vertexCount();
+    const Eigen::AlignedBox3d& box = surface->bounds();
+    const Vec3 x = trial % 2 == 0 ? Vec3(surface->vertices().row(v).transpose() + 3e-3 * Vec3(u(rng), u(rng), u(rng)))
+                                  : Vec3(box.center() + 0.5 * (box.sizes() + Vec3::Constant(0.04)).cwiseProduct(
+                                                             Vec3(u(rng), u(rng), u(rng))));
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& t : surface->triangles())
+      best = std::min(best, (x - closestOnTriangle(x, surface->vertices().row(t[0]).transpose(),
+                                                   surface->vertices().row(t[1]).transpose(),
+                                                   surface->vertices().row(t[2]).transpose()))
+                                .norm());
+    const bool inside = windingNumber(*surface, x) > 0.5;
+    SurfaceSample sample;
+    const bool hit = cavity.sample(x, max_distance, sample);
+    if (inside && best > max_distance) {
+      EXPECT_FALSE(hit) << "far inside the cavity, at " << best << " m from its wall";
+      ++inside_far;
+      continue;
+    }
+    ASSERT_TRUE(hit);
+    outside += inside ? 0 : 1;
+    EXPECT_NEAR(sample.distance, inside ? best : -best, 1e-14);
+    EXPECT_LT((sample.point + sample.distance * sample.normal - x).norm(), 1e-12);
+  }
+  EXPECT_GT(inside_far, 10);  // both kinds of point were met
+  EXPECT_GT(outside, 10);
+}
+
 TEST(TriangleMeshSurface, ReadsOffObjStlAndPlyAlike) {
   const auto off = TriangleMeshSurface::read(kOrgan);
   const auto dir = std::filesystem::temp_directory_path() / "filum_mesh_formats";
