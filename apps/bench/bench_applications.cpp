@@ -1,0 +1,122 @@
+// bench_applications: the surgical applications in wall time per simulated millisecond — the
+// shipped salpingectomy.json and intestine.json played whole with their instruments (as
+// `filum run` plays them: the instruments' drivers, jaws and metrics between the steps), and the
+// small bowel's cost against its length: a bowel of 0.5, 1, 2 and 4 m (radius 1.5 cm, soft
+// tissue, a control point every 2.5 cm, contact spheres every 1.5 cm with self-collision and
+// friction 0.3) laid as a serpentine on the posterior abdominal wall (a plane), its turns relaxing
+// into loops that touch. The grid broad phase keeps self-collision near linear in the length;
+// what grows faster is the contact solve (dense in the contact rows, contact_newton.hpp).
+//   build/apps/bench/bench_applications --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "filum/haptics/instrument_set.hpp"
+#include "scene_stepping.hpp"
+
+namespace {
+
+using nlohmann::json;
+
+/// The whole scripted run of apps/scenes/<file> per iteration (loading untimed).
+void application(benchmark::State& state, const std::string& file) {
+  const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/" + file;
+  double simulated = 0.0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    const json document = filum::readJsonFile(path);
+    auto scene = filum::bench::loadOrSkip(document, path, state);
+    if (!scene) return;
+    auto instruments = filum::haptics::InstrumentSet::fromScene(document, path, *scene);
+    const long steps = std::lround(scene->settings().duration / scene->settings().dt);
+    state.ResumeTiming();
+    for (long k = 0; k < steps; ++k) {
+      instruments->beforeStep(*scene);
+      const filum::StepReport report = scene->step();
+      if (!report.ok) {
+        state.SkipWithError(report.message.c_str());
+        return;
+      }
+      instruments->afterStep(*scene);
+    }
+    simulated += scene->settings().duration;
+  }
+  // Simulated seconds per wall second, inverted: wall time per simulated time (ms per ms).
+  using benchmark::Counter;
+  state.counters["wall_ms_per_sim_ms"] = Counter(simulated, Counter::kIsRate | Counter::kInvert);
+}
+
+/// A serpentine of `length` metres: rows of 20 cm along x, 4.5 cm apart, joined by half circles;
+/// a point every `spacing` metres along it, at height z.
+std::vector<std::array<double, 3>> serpentine(double length, double spacing, double z) {
+  const double row = 0.2, pitch = 0.045, turn = pitch / 2;
+  std::vector<std::array<double, 3>> points;
+  double y = 0.0, walked = 0.0;
+  bool forward = true;
+  auto at = [&](double t) -> std::array<double, 3> {  // t along the current row and its turn
+    const double x0 = forward ? -row / 2 : row / 2, sign = forward ? 1.0 : -1.0;
+    if (t <= row) return {x0 + sign * t, y, z};
+    const double angle = (t - row) / turn;  // along the half circle
+    return {x0 + sign * (row + turn * std::sin(angle)), y + turn - turn * std::cos(angle), z};
+  };
+  double next = 0.0;
+  while (next <= length + 1e-9) {
+    const double piece = row + M_PI * turn;
+    while (next <= length + 1e-9 && next - walked <= piece) {
+      points.push_back(at(next - walked));
+      next += spacing;
+    }
+    walked += piece;
+    y += pitch;
+    forward = !forward;
+  }
+  return points;
+}
+
+json bowelOnTheWall(double length) {
+  const double radius = 0.015, k = 200.0, linear_density = 1050 * M_PI * radius * radius;
+  const auto points = serpentine(length, 0.025, radius);
+  json control_points = json::array();
+  for (const auto& p : points) control_points.push_back({p[0], p[1], p[2]});
+  const double rows = std::ceil(length / (0.2 + M_PI * 0.0225));
+  const json components = json::array(
+      {{{"type", "DynamicSpline"}, {"control_points", control_points}, {"radius", radius}, {"density", 1050}},
+       {{"type", "GreenLagrangeStretching"}, {"youngs_modulus", 1e5}},
+       {{"type", "CurvatureBending"}, {"youngs_modulus", 1e5}},
+       {{"type", "ViscousDamping"}, {"coefficient", 2.0}},
+       {{"type", "TissueAttachment"}, {"count", static_cast<int>(60 * length)}, {"stiffness", k},
+        {"damping", 2.0 * std::sqrt(k * linear_density)}, {"rest_length", "initial"},
+        {"root", {{"from", {-0.06, 0.0, -0.03}}, {"to", {0.06, 0.045 * rows, -0.03}}}}},
+       {{"type", "SphereCollisionModel"}, {"spacing", radius}, {"self_collision", true}}});
+  return {{"name", "bench_applications bowel"}, {"dt", 1e-3}, {"duration", 100.0}, {"gravity", {0, 0, -9.81}},
+          {"integrator", {{"type", "ImplicitEuler"}}},
+          {"collision", {{"type", "ContactPipeline"}, {"response", "unilateral"}, {"friction", 0.3}}},
+          {"nodes", json::array({{{"name", "bowel"}, {"components", components}},
+                                 {{"name", "wall"},
+                                  {"components", json::array({{{"type", "PlaneObstacle"}, {"point", {0, 0, 0}},
+                                                               {"normal", {0, 0, 1}}, {"friction", 0.2}}})}}})}};
+}
+
+void bowelLength(benchmark::State& state) {
+  const double length = state.range(0) / 10.0;
+  auto scene = filum::bench::loadOrSkip(bowelOnTheWall(length), "bench_applications", state);
+  if (!scene) return;
+  // 0.3 s untimed: the turns relax into loops that touch; then 10 steps (10 simulated ms) per iteration.
+  filum::bench::timeSteps(*scene, 300, 10, state);
+  using benchmark::Counter;
+  state.counters["wall_ms_per_sim_ms"] = Counter(1e-2, Counter::kIsIterationInvariantRate | Counter::kInvert);
+  state.counters["metres"] = length;
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(application, salpingectomy, std::string("salpingectomy.json"))
+    ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(application, intestine, std::string("intestine.json"))
+    ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+BENCHMARK(bowelLength)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->UseRealTime()->Unit(benchmark::kMillisecond);
