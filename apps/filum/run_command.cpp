@@ -255,8 +255,11 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     if (visuals) visuals->finish(*scene);
     log << "wrote " << out.frames() << " frames to " << directory
         << " (control_points.csv, curve.csv, energy.csv, " << (output.knots ? "knot.csv, " : "")
-        << "curve.pvd, timing.json" << (visuals ? visuals->summary() : "")
-        << ")\n";
+        << (scene->layoutControllers().empty() ? "" : "layout.csv, ") << "curve.pvd, timing.json"
+        << (visuals ? visuals->summary() : "") << ")\n";
+    if (!scene->layoutControllers().empty())
+      log << "adaptive refinement: " << scene->adaptiveInsertions() << " control points inserted, "
+          << scene->adaptiveRemovals() << " removed\n";
     writeSummary(directory, summary(), log);
   } catch (const NonFiniteFrame& e) {
     // A finite state whose curve or energy overflows: nothing of the frame was written.

@@ -92,6 +92,13 @@ void RunOutput::writeFrame(const Scene& scene) {
   }
   energy_ << t << ',' << exact(e.kinetic) << ',' << exact(e.potential) << ',' << exact(e.total()) << ','
           << exact(violation) << '\n';
+  if (!scene.layoutControllers().empty()) {
+    if (!layout_.is_open()) layout_ = openCsv(directory_ + "/layout.csv", "time,body,points,inserted,removed");
+    for (const MechanicalState* body : scene.bodies())
+      layout_ << t << ',' << body->node()->path() << ',' << body->pointCount() << ',' << scene.adaptiveInsertions()
+              << ',' << scene.adaptiveRemovals() << '\n';
+    flushOrThrow(layout_, "layout.csv");
+  }
   if (knots_.is_open()) {
     // Each strand closed far away; diagrams of more than 16 crossings are left "unknown" (the
     // state sum costs 2ⁿ: 16 keeps a frame within milliseconds).

@@ -29,7 +29,9 @@ class RunOutput {
   /// thread closed far away and classified (collision/knot_type.hpp) at every frame.
   RunOutput(const std::string& directory, int curve_samples, bool knots = true);
 
-  /// Writes one frame of the scene's current state. Throws NonFiniteFrame (and writes nothing)
+  /// Writes one frame of the scene's current state (and, when the scene changes its points as it
+  /// runs — layout controllers, adaptive refinement — layout.csv: time, body, control points,
+  /// and the insertions and removals of the scene so far). Throws NonFiniteFrame (and writes nothing)
   /// if a value is not finite, std::runtime_error naming the file if a write fails.
   void writeFrame(const Scene& scene);
   int frames() const { return frame_; }
@@ -42,7 +44,7 @@ class RunOutput {
   int curve_samples_;
   int frame_ = 0;
   int strand_counter_ = 0;  // knot.csv: the strand number within its body
-  std::ofstream control_points_, curve_, energy_, knots_;
+  std::ofstream control_points_, curve_, energy_, knots_, layout_;
   visual::PvdSeries series_;
 };
 

@@ -162,6 +162,15 @@ void ContactPipeline::addJacobian(const SceneState& s, double k_factor, double d
   }
 }
 
+void ContactPipeline::contactAbscissas(const MechanicalState& body, std::vector<double>& out) const {
+  // A thread's points are identified by its first global point (offset_a, offset_b).
+  if (body.pointCount() == 0) return;
+  for (const Contact& c : contacts_) {
+    if (c.offset_a == body.offset()) out.push_back(c.abscissa_a);
+    if (c.model_b >= 0 && c.offset_b == body.offset()) out.push_back(c.abscissa_b);
+  }
+}
+
 int ContactPipeline::addContactRows(const SceneState& s, ConstraintRows& rows) {
   if (settings_.response != Response::kUnilateral) return 0;
   const int first = rows.rows();

@@ -1,5 +1,6 @@
 #include "filum/mechanics/register_components.hpp"
 
+#include "filum/mechanics/adaptive_refinement.hpp"
 #include "filum/mechanics/chain_elasticity.hpp"
 #include "filum/mechanics/curvature_bending.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
@@ -26,6 +27,10 @@ void register_components(Factory& factory) {
               [](const Params& p) { return DynamicSpline::fromParams(p); });
   factory.add("FramedChain", "a discrete Cosserat rod: point masses with a material frame per segment (catheters, guidewires)",
               [](const Params& p) { return FramedChain::fromParams(p); });
+
+  factory.add("AdaptiveRefinement",
+              "adaptive NUBS at run time: control points inserted where the curve bends or is touched, removed where it is straight",
+              [](const Params& p) { return AdaptiveRefinement::fromParams(p); });
 
   // Energies and dissipation (each with an analytic Jacobian, for the implicit integrators).
   factory.add("SpringForceField", "stretch and bend springs between points sampled on the curve (paper Fig. 1)",

@@ -65,9 +65,11 @@ void Scene::init() {
   bodies_.clear();
   force_fields_.clear();
   constraints_.clear();
+  layout_controllers_.clear();
   root_->collect(bodies_);
   root_->collect(force_fields_);
   root_->collect(constraints_);
+  root_->collect(layout_controllers_);
 
   std::vector<Integrator*> integrators;
   std::vector<ConstraintSolver*> solvers;
@@ -100,6 +102,7 @@ void Scene::init() {
 
   for (ForceField* f : force_fields_) bindBodyComponent(*f);
   for (Constraint* c : constraints_) bindBodyComponent(*c);
+  for (LayoutController* l : layout_controllers_) bindBodyComponent(*l);
   setExtraIndices();
   setInternalOffsets();
   state_.q.conservativeResize(positionSize());
@@ -179,6 +182,7 @@ void Scene::integratePositions(const VecX& q0, const VecX& w, double h, VecX& q1
 void Scene::bindComponents() {
   for (ForceField* f : force_fields_) bindBodyComponent(*f);
   for (Constraint* c : constraints_) bindBodyComponent(*c);
+  for (LayoutController* l : layout_controllers_) bindBodyComponent(*l);
   const int extras = extra_count_;
   setExtraIndices();
   if (extra_count_ != extras)
@@ -354,6 +358,7 @@ void Scene::beginStep() {
   fault_.clear();
   applyScheduledLayoutChanges();
   applyRuptures();
+  if (fault_.empty() && !layout_controllers_.empty()) applyLayoutControllers();
   // endStep needs the last good state: copied into preallocated storage (no allocation).
   last_good_ = state_;
   // Scheduled releases (cuts) take effect at the first step that starts at or after their time.
@@ -382,6 +387,43 @@ void Scene::applyScheduledLayoutChanges() {
           return;
         }
       }
+}
+
+void Scene::applyLayoutControllers() {
+  for (LayoutController* controller : layout_controllers_) {
+    if (!controller->due(state_.steps)) continue;
+    CurveBody* curve = controller->body().curve();
+    if (!curve) continue;
+    plan_.insert.clear();
+    plan_.remove.clear();
+    controller->plan(*this, plan_);
+    try {
+      if (!plan_.insert.empty()) {
+        refine(*curve, plan_.insert);
+        adaptive_insertions_ += static_cast<long>(plan_.insert.size());
+      }
+      // Removals one by one, each refused by the curve when it would move it further than the
+      // tolerance (the knots planned stay knots when insertions come first: they are apart).
+      for (const double s : plan_.remove) {
+        if (coarsen(*curve, s, plan_.tolerance))
+          ++adaptive_removals_;
+        else
+          controller->removalRefused(s);
+      }
+    } catch (const std::exception& e) {
+      // refine and coarsen throw before they change anything: the state is the last good one.
+      noteFault(controller->describe() + ": an adaptive layout change failed: " + e.what());
+      return;
+    }
+  }
+}
+
+void Scene::actingAbscissas(const MechanicalState& body, std::vector<double>& out) const {
+  for (const ForceField* f : force_fields_)
+    if (&f->body() == &body) f->actingAbscissas(state_, out);
+  for (const Constraint* c : constraints_)
+    if (&c->body() == &body) c->actingAbscissas(state_, out);
+  if (collision_) collision_->contactAbscissas(body, out);
 }
 
 void Scene::applyRuptures() {
@@ -558,9 +600,23 @@ void Scene::cut(CurveBody& body, double abscissa) {
 bool Scene::coarsen(CurveBody& body, double abscissa, double tolerance) {
   if (!initialized_) init();
   requirePointsOnly(body, "remove control points from");
+  // Linear momentum before: p = ∫ρA Ṗ ds = 1ᵀ M v per axis (the basis is a partition of unity).
+  Points mv(body.pointCount(), 3);
+  body.multiplyMass(body.block(state_.v), mv);
+  const Vec3 momentum = mv.colwise().sum().transpose();
   const SparseMatrix R = body.coarsen(abscissa, body.block(state_.q), tolerance);
   if (R.rows() == 0) return false;  // the curve would move further than the tolerance
   relayout(body, R);
+  // ṽ = R v is a least-squares fit and need not keep p. The smallest change of ṽ in the kinetic
+  // energy's norm, ½ δvᵀ M̃ δv, with 1ᵀ M̃ (ṽ + δv) = p is a uniform velocity δv = u (a partition
+  // of unity represents it exactly): u = (p − 1ᵀ M̃ ṽ) / m, m = 1ᵀ M̃ 1 the body's mass.
+  const int n = body.pointCount();
+  Points fitted(n, 3), ones = Points::Ones(n, 3);
+  body.multiplyMass(body.block(state_.v), fitted);
+  Points mass(n, 3);
+  body.multiplyMass(ones, mass);
+  const Vec3 u = (momentum - fitted.colwise().sum().transpose()) / mass.col(0).sum();
+  body.block(state_.v).rowwise() += u.transpose();
   return true;
 }
 

@@ -126,6 +126,7 @@ class ContactPipeline final : public CollisionPipeline {
   const Settings& settings() const { return settings_; }
   const ContactSet& contacts() const { return contacts_; }
   int contactCount() const override { return static_cast<int>(contacts_.size()); }
+  void contactAbscissas(const MechanicalState& body, std::vector<double>& out) const override;
   const Statistics& statistics() const { return stats_; }
   const std::vector<SphereCollisionModel*>& models() const { return models_; }
   const std::vector<Obstacle*>& obstacles() const { return obstacles_; }

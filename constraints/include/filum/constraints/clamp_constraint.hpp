@@ -43,6 +43,9 @@ class ClampConstraint final : public Constraint, public TargetConstraint {
   void violation(const SceneState& s, VecX& g, int first) const override;
 
   double abscissa() const { return abscissa_; }
+  void actingAbscissas(const SceneState&, std::vector<double>& out) const override {
+    if (active()) out.push_back(abscissa_);
+  }
   const Vec3& direction() const { return direction_; }
   const PointTarget& target() const override { return target_; }
   PointTarget& target() override { return target_; }

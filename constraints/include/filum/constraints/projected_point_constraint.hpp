@@ -28,6 +28,10 @@ class ProjectedPointConstraint : public Constraint, public TargetConstraint {
   void violation(const SceneState& s, VecX& g, int first) const override;
 
   double abscissa() const { return abscissa_; }
+  /// Its point, while it holds (not released).
+  void actingAbscissas(const SceneState&, std::vector<double>& out) const override {
+    if (active()) out.push_back(abscissa_);
+  }
   double stabilization() const { return baumgarte_.omega(); }
   const PointTarget& target() const override { return target_; }
   PointTarget& target() override { return target_; }

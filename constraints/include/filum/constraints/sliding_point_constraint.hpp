@@ -69,6 +69,10 @@ class SlidingPointConstraint final : public Constraint, public TargetConstraint 
   /// s(t) and ṡ(t) at state s.
   double abscissa(const SceneState& s) const { return s.q[extraIndex()]; }
   double abscissaRate(const SceneState& s) const { return s.v[extraIndex()]; }
+  /// Where the thread is in the hole now.
+  void actingAbscissas(const SceneState& s, std::vector<double>& out) const override {
+    if (active()) out.push_back(abscissa(s));
+  }
   double friction() const { return friction_; }
   const PointTarget& target() const override { return target_; }
   PointTarget& target() override { return target_; }

@@ -94,6 +94,10 @@ class ToolForceField final : public ForceField {
  private:
   bool grasping() const { return tool_->grasping && tool_->grasp.body() == body().curve(); }
   bool pushing() const { return tool_->touching && !grasping(); }
+  /// The held point, while the jaws (or the stylus) hold this body.
+  void actingAbscissas(const SceneState&, std::vector<double>& out) const override {
+    if (grasping()) out.push_back(tool_->grasp.abscissa());
+  }
   /// The stiffness to use: capped for explicit steps, the cap when unset.
   double gain(double requested, double cap) const;
   /// P(s*) and Ṗ(s*) at state s, and the row b(s*).

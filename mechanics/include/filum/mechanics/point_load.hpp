@@ -51,6 +51,7 @@ class PointLoad final : public ForceField {
   /// The force and the torque at time t (linear between keyframes).
   Keyframe loadAt(double t) const;
   double abscissa() const { return abscissa_; }
+  void actingAbscissas(const SceneState&, std::vector<double>& out) const override { out.push_back(abscissa_); }
 
  private:
   void init(const Scene& scene) override;

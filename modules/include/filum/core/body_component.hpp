@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "filum/core/component.hpp"
 
@@ -11,6 +12,7 @@ namespace filum {
 
 class MechanicalState;
 class Scene;
+struct SceneState;
 
 class BodyComponent : public Component {
  public:
@@ -24,6 +26,9 @@ class BodyComponent : public Component {
   }
   MechanicalState& body() const { return *body_; }
   bool bound() const { return body_ != nullptr; }
+  /// Abscissas of the body where this component holds it in state s (a fixed point, a sliding
+  /// point, a grasp, a load): adaptive refinement keeps the curve fine there. None by default.
+  virtual void actingAbscissas(const SceneState& /*s*/, std::vector<double>& /*out*/) const {}
 
  protected:
   /// Precompute what never changes (rest lengths, basis tables). Throws SceneError on

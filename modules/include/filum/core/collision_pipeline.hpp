@@ -36,6 +36,7 @@
 
 namespace filum {
 
+class MechanicalState;
 class Scene;
 
 /// A component of the collision side. Marker interface: its presence switches collision on.
@@ -67,6 +68,9 @@ class CollisionPipeline : public Component {
   virtual void takeMultipliers(Eigen::Ref<const VecX> /*lambda*/, int /*first*/) {}
   /// The contacts of the current step's contact set (0: none found at its start).
   virtual int contactCount() const { return 0; }
+  /// The abscissas of `body` in the current contact set (adaptive refinement keeps the curve fine
+  /// where it is touched). None by default.
+  virtual void contactAbscissas(const MechanicalState& /*body*/, std::vector<double>& /*out*/) const {}
   /// True when the pipeline adds contact rows: the scene then needs a ConstraintSolver, and uses
   /// defaultConstraintSolver() when it declares none.
   virtual bool addsContactRows() const { return false; }

@@ -19,6 +19,7 @@
 #include "filum/core/constraint_solver.hpp"
 #include "filum/core/force_field.hpp"
 #include "filum/core/integrator.hpp"
+#include "filum/core/layout_controller.hpp"
 #include "filum/core/mechanical_state.hpp"
 #include "filum/core/node.hpp"
 #include "filum/core/scene_state.hpp"
@@ -182,6 +183,14 @@ class Scene {
   const std::vector<MechanicalState*>& bodies() const { return bodies_; }
   const std::vector<ForceField*>& forceFields() const { return force_fields_; }
   const std::vector<Constraint*>& constraints() const { return constraints_; }
+  const std::vector<LayoutController*>& layoutControllers() const { return layout_controllers_; }
+  /// Abscissas of `body` where something holds or touches it now: its constraints' and force
+  /// fields' points (BodyComponent::actingAbscissas) and its contacts (CollisionPipeline::
+  /// contactAbscissas). Appended to out.
+  void actingAbscissas(const MechanicalState& body, std::vector<double>& out) const;
+  /// Control points inserted and removed by layout controllers since init.
+  long adaptiveInsertions() const { return adaptive_insertions_; }
+  long adaptiveRemovals() const { return adaptive_removals_; }
   Integrator& integrator() const { return *integrator_; }
   ConstraintSolver* constraintSolver() const { return constraint_solver_; }
   /// The collision pipeline, or nullptr when the scene holds no CollisionModel (collision is
@@ -231,6 +240,11 @@ class Scene {
   void applyScheduledLayoutChanges();
   /// Bodies whose tension exceeds their strength (ForceField::tearsAt) cut where it does.
   void applyRuptures();
+  /// The plans of the layout controllers that are due (LayoutController).
+  void applyLayoutControllers();
+  std::vector<LayoutController*> layout_controllers_;
+  LayoutController::Plan plan_;
+  long adaptive_insertions_ = 0, adaptive_removals_ = 0;
   std::vector<Rupture> ruptures_;
   /// Advances state_ by h (detection at its start, then the integrator); redone as two halves,
   /// recursively, while the collision pipeline finds a contact the step's contact set missed.
