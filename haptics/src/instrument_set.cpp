@@ -546,25 +546,34 @@ void InstrumentSet::openCsv(const std::string& path) {
 }
 
 void InstrumentSet::measureSpecimen(const Scene& scene) {
-  if (specimen_->layoutRevision() != specimen_revision_) {  // a layout change (cut, refine): find the cut again
+  if (specimen_->layoutRevision() != specimen_revision_) {  // a layout change (cut, refine): the strands again
     specimen_revision_ = specimen_->layoutRevision();
-    specimen_cut_ = -1.0;
-    for (const double c : specimen_->basis().cuts())
-      if (specimen_cut_ < 0.0 || std::abs(c - specimen_kept_end_) < std::abs(specimen_cut_ - specimen_kept_end_))
-        specimen_cut_ = c;
+    specimen_strands_ = strands(specimen_->basis());
   }
-  if (specimen_cut_ < 0.0) return;
-  // Chords over 64 pieces: O(h²), 1e-4 relative for a specimen bent at a radius of a fifth of its length.
+  if (specimen_strands_.size() < 2) return;
+  // The strands not holding the kept end, each by chords over 64 pieces (O(h²): 1e-4 relative for
+  // a strand bent at a radius of a fifth of its length); a strand's last point is its left limit.
   constexpr int kPieces = 64;
-  const double from = specimen_kept_end_ == 0.0 ? specimen_cut_ : 0.0;
-  // (At the cut itself the curve is the strand after it: the strand before ends just short of it.)
-  const double to = specimen_kept_end_ == 0.0 ? 1.0 : specimen_cut_ - 1e-12;
   double length = 0.0;
-  Vec3 last = specimen_->position(scene.state().q, from);
-  for (int k = 1; k <= kPieces; ++k) {
-    const Vec3 next = specimen_->position(scene.state().q, from + (to - from) * k / kPieces);
-    length += (next - last).norm();
-    last = next;
+  BasisRow row;
+  const VecX& q = scene.state().q;
+  const auto at = [&](double s, bool from_left) {
+    if (from_left)
+      specimen_->basis().evaluateFromLeft(s, row);
+    else
+      specimen_->basis().evaluate(s, row);
+    Vec3 x = Vec3::Zero();
+    for (int j = 0; j < row.count; ++j) x += row.value[j] * q.segment<3>(3 * (specimen_->offset() + row.first + j));
+    return x;
+  };
+  for (const Strand& strand : specimen_strands_) {
+    if (specimen_kept_end_ >= strand.begin && specimen_kept_end_ <= strand.end) continue;
+    Vec3 last = at(strand.begin, false);
+    for (int k = 1; k <= kPieces; ++k) {
+      const Vec3 next = at(strand.begin + (strand.end - strand.begin) * k / kPieces, k == kPieces);
+      length += (next - last).norm();
+      last = next;
+    }
   }
   metrics_.setRemovedLength(length);
 }

@@ -53,7 +53,6 @@ void AdaptiveRefinement::init(const Scene&) {
     refused_.reserve(room);
     planned_turning_.reserve(room);
   }
-  refused_.clear();  // a new layout: every knot may be tried again
   // Bound again after every layout change (Scene::relayout): the breakpoints are read here, in
   // the step that changed the layout, so that a plan that changes nothing allocates nothing.
   layout_revision_ = -1;
@@ -65,6 +64,13 @@ void AdaptiveRefinement::refreshLayout() const {
   layout_revision_ = curve_->layoutRevision();
   breakpoints_ = curve_->basis().breakpoints();
   cuts_ = curve_->basis().cuts();
+  // Refusals of knots that are knots no longer are forgotten; the others stand (their spans'
+  // turning decides when they are tried again).
+  refused_.erase(std::remove_if(refused_.begin(), refused_.end(),
+                                [&](const std::pair<double, double>& r) {
+                                  return !std::binary_search(breakpoints_.begin(), breakpoints_.end(), r.first);
+                                }),
+                 refused_.end());
 }
 
 void AdaptiveRefinement::plan(const Scene& scene, Plan& out) const {

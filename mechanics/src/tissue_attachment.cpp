@@ -64,6 +64,9 @@ std::unique_ptr<TissueAttachment> TissueAttachment::fromParams(const Params& p) 
 void TissueAttachment::init(const Scene& scene) {
   curve_ = body().curve();
   if (!curve_) throw SceneError(origin(), "a curve body for " + describe(), body().describe());
+  // Bound again after every layout change (refine, coarsen, cut: Scene::relayout): the tissue is
+  // what it was at the start — its points keep their abscissas, their anchors and rest lengths.
+  if (!abscissas_.empty()) return;
   const VecX& q = scene.state().q;
   // L₀ by chords at 512 samples: the chord sum converges like O(h²), 1e-5 relative for a curve
   // bent at a radius of its own length — far below what a tissue's stiffness is known to.

@@ -411,7 +411,8 @@ void Scene::applyLayoutControllers() {
           controller->removalRefused(s);
       }
     } catch (const std::exception& e) {
-      // refine and coarsen throw before they change anything: the state is the last good one.
+      // refine and coarsen throw before they change the body (CurveBody::refine, coarsen); a
+      // component that cannot be bound to the new layout throws after it: the step reports it.
       noteFault(controller->describe() + ": an adaptive layout change failed: " + e.what());
       return;
     }

@@ -71,6 +71,7 @@ TEST(Salpingectomy, TheTubeIsHeldCoagulatedCutAndRemovedWithoutEnteringAnOrgan) 
   }
   // Held while closed: 1.2 s to 2.6 s of the script, minus the closing and opening of the jaws.
   EXPECT_GE(held_steps, 1000);
+  ASSERT_TRUE(std::isfinite(nearest_hold)) << "the forceps never held for 50 ms";
   // The held point stays inside the tube around the jaws' point (its axis within its own radius),
   // and does not slip: it moves by less than a tenth of a millimetre over the hold (the scene is
   // at rest around the clamp; a clamp has no slider).

@@ -103,14 +103,19 @@ TEST(TissueAttachment, ATubeOnAUniformFoundationSinksByItsWeightOverTheModulus) 
 }
 
 TEST(TissueAttachment, ACutTubeKeepsBothPartsHeld) {
-  // Cut in the middle at the start: each part is a tube on the same foundation and sinks by q/k.
+  // Settled on its foundation, then cut in the middle: each part is a tube on the same
+  // foundation, still sunk by q/k below the anchors of the start (the cut rebinds the field to
+  // the new layout; the tissue keeps its anchors and rest lengths).
   const double k = 100.0;
   json components = tubeMaterial();
   components.push_back({{"type", "TissueAttachment"}, {"count", 40}, {"stiffness", k}, {"damping", criticalDamping(k)}});
   auto scene = test::loadThreadWith(tubeSpec(), components);
   scene->init();
+  expectSagOnFoundation(*scene, k, 0.7);
+  const Vec3 anchor = attachmentOf(*scene).anchor(7);
   scene->cut(*scene->bodies().front()->curve(), 0.5);
   ASSERT_EQ(strands(scene->bodies().front()->curve()->basis()).size(), 2u);
+  EXPECT_EQ(attachmentOf(*scene).anchor(7), anchor);
   expectSagOnFoundation(*scene, k, 0.7);
 }
 

@@ -28,6 +28,19 @@ std::unique_ptr<TriangleMeshObstacle> TriangleMeshObstacle::fromParams(const Par
   } catch (const std::exception& e) {
     p.fail("file", "a closed triangle mesh file (.off, .obj, .stl, .ply)", "\"" + file + "\" (" + e.what() + ")");
   }
+  if (side == "inside") {
+    // The cavity's side test trusts the faces' winding (counter-clockwise seen from outside):
+    // a mesh wound the other way encloses a negative volume, Σ a·(b × c)/6.
+    double volume = 0.0;
+    for (const auto& t : surface->triangles()) {
+      const Vec3 a = surface->vertices().row(t[0]).transpose(), b = surface->vertices().row(t[1]).transpose(),
+                 c = surface->vertices().row(t[2]).transpose();
+      volume += a.dot(b.cross(c)) / 6.0;
+    }
+    if (!(volume > 0.0))
+      p.fail("file", "a closed mesh wound counter-clockwise seen from outside (a positive enclosed volume) for \"side\": \"inside\"",
+             "\"" + file + "\" (enclosed volume " + std::to_string(volume) + " m³: wound inward)");
+  }
   auto obstacle = std::make_unique<TriangleMeshObstacle>(std::move(surface), side == "inside");
   obstacle->readCommon(p);
   return obstacle;

@@ -130,14 +130,13 @@ class InstrumentSet {
   std::ofstream csv_;
   double dt_ = 1e-3;
   std::size_t ruptures_seen_ = 0;  // Scene::ruptures() already counted
-  // The specimen ("metrics": {"specimen"}): the body, its kept end, and the cut nearest that end
-  // (−1: none yet) as of the body's layout revision seen last.
+  // The specimen ("metrics": {"specimen"}): the body, its kept end, and its strands as of the
+  // body's layout revision seen last.
   const CurveBody* specimen_ = nullptr;
   double specimen_kept_end_ = 0.0;
-  double specimen_cut_ = -1.0;
+  std::vector<Strand> specimen_strands_;
   long specimen_revision_ = -1;
-  /// The specimen's length at the scene's state (m): the curve from the cut nearest the kept end
-  /// to the other end, by chords.
+  /// The specimen's length at the scene's state (m): the strands cut off the kept end, by chords.
   void measureSpecimen(const Scene& scene);
   // "inspection": the body and how much of it passed between the graspers.
   const CurveBody* inspected_ = nullptr;

@@ -72,7 +72,7 @@ class AdaptiveRefinement final : public LayoutController {
   mutable std::vector<char> touched_, removed_;
   mutable std::vector<int> order_;
   // Knots whose removal was refused at this layout, with the turning of their two spans then.
-  std::vector<std::pair<double, double>> refused_;
+  mutable std::vector<std::pair<double, double>> refused_;
   mutable std::vector<std::pair<double, double>> planned_turning_;  // (knot, θ_{j−1} + θ_j) planned now
 };
 

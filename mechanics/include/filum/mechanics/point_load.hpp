@@ -51,7 +51,11 @@ class PointLoad final : public ForceField {
   /// The force and the torque at time t (linear between keyframes).
   Keyframe loadAt(double t) const;
   double abscissa() const { return abscissa_; }
-  void actingAbscissas(const SceneState&, std::vector<double>& out) const override { out.push_back(abscissa_); }
+  /// Its point, while it loads it.
+  void actingAbscissas(const SceneState& s, std::vector<double>& out) const override {
+    const Keyframe load = loadAt(s.time);
+    if (load.force != Vec3::Zero() || load.torque != Vec3::Zero()) out.push_back(abscissa_);
+  }
 
  private:
   void init(const Scene& scene) override;

@@ -20,7 +20,8 @@
 // whatever its bending stiffness: a uniform load on a uniform foundation bends nothing.
 //
 // Abscissas keep their meaning through refinement and cuts (CurveBody::cut): a tube cut between
-// two attachment points leaves each part held by its own springs.
+// two attachment points leaves each part held by its own springs, with the anchors and rest
+// lengths of the start (computed once, at the first binding).
 #pragma once
 
 #include <memory>
