@@ -101,7 +101,11 @@ class ShapeChecker final : public json::json_sax_t {
   std::string pointer(std::size_t frames) const {
     std::string out;
     for (std::size_t k = 0; k < frames && k < frames_.size(); ++k)
-      out += "/" + (frames_[k].array ? std::to_string(frames_[k].index) : escapePointer(frames_[k].key));
+    {
+      // Appended piece by piece: GCC 12 sees a false overlap (-Wrestrict) in "/" + temporary.
+      out += '/';
+      out += frames_[k].array ? std::to_string(frames_[k].index) : escapePointer(frames_[k].key);
+    }
     return out.empty() ? "/" : out;
   }
   bool open(bool array) {
