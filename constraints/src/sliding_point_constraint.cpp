@@ -5,6 +5,7 @@
 #include "filum/constraints/projected_point_constraint.hpp"
 #include "filum/constraints/release_schedule.hpp"
 #include "filum/constraints/curve_lookup.hpp"
+#include "filum/core/scene.hpp"
 #include "filum/geometry/spline_curve.hpp"
 
 namespace filum::constraints {
@@ -26,6 +27,8 @@ void SlidingPointConstraint::init(const Scene& scene) {
   target_.init(scene, *this, geometry::curvePoint(spline_->basis(), spline_->initialPositions(), initial_abscissa_),
                body(), -1.0 /* s moves: no abscissa of its own to compare */);
   baumgarte_.init(scene);
+  cuts_ = spline_->basis().cuts();  // a layout change binds the constraint again
+  dt_ = scene.settings().dt;
 }
 
 SlidingPointConstraint::Local SlidingPointConstraint::evaluate(const SceneState& st) const {
@@ -91,9 +94,20 @@ void SlidingPointConstraint::addForce(const SceneState& st, VecX& B) const {
 }
 
 bool SlidingPointConstraint::releasedAt(const SceneState& s) const {
-  // Released on schedule, or when the thread has slid out of the hole (s left [0, 1]).
+  // Released on schedule, or when the thread has slid out of the hole (s left [0, 1]), or a cut
+  // end of it reaches the hole within twice this step.
   const double abscissa_now = abscissa(s);
-  return Constraint::releasedAt(s) || abscissa_now < 0.0 || abscissa_now > 1.0;
+  if (Constraint::releasedAt(s) || abscissa_now < 0.0 || abscissa_now > 1.0) return true;
+  if (cut_release_time_ && s.time >= *cut_release_time_) return true;
+  const double rate = abscissaRate(s), reach = 2.0 * std::abs(rate) * dt_;
+  for (const double c : cuts_) {
+    const double ahead = (c - abscissa_now) * (rate >= 0.0 ? 1.0 : -1.0);  // > 0: the cut lies ahead
+    if (abscissa_now == c || (ahead >= 0.0 && ahead <= reach)) {
+      cut_release_time_ = s.time;
+      return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace filum::constraints

@@ -216,6 +216,55 @@ TEST(SlidingPoint, RealSutureIsPulledThroughUnderImplicitEulerAt1ms) {
   EXPECT_TRUE(h.active());
 }
 
+TEST(SlidingPoint, ACutEndSlidesOutOfTheHoleInsteadOfPassingToTheOtherStrand) {
+  // The implicit suture above, cut at s = 0.42 at the start: the grip draws the thread through the
+  // hole (s falls from 0.5), the cut end reaches the hole and slides out — the constraint is
+  // released there, within twice a step's sliding of the cut, and stays released to the end,
+  // although s, no longer held, runs on past the cut into the other strand's range.
+  const Factory factory = app::makeFactory();
+  json thread = {{"name", "thread"},
+                 {"components",
+                  {{{"type", "DynamicSpline"},
+                    {"control_points", {{"from", {0, 0, 0}}, {"to", {0.1, 0, 0}}, {"count", 30}}},
+                    {"radius", 1e-4},
+                    {"density", 910},
+                    {"cuts", {{{"time", 0.0}, {"abscissa", 0.42}}}}},
+                   {{"type", "GreenLagrangeStretching"}, {"youngs_modulus", 2e9}},
+                   {{"type", "ParametricBending"}, {"youngs_modulus", 2e9}},
+                   {{"type", "ViscousDamping"}, {"coefficient", 0.5}},
+                   {{"type", "SlidingPointConstraint"}, {"name", "hole"}, {"abscissa", 0.5}},
+                   {{"type", "FixedPointConstraint"},
+                    {"name", "grip"},
+                    {"abscissa", 1.0},
+                    {"interpolation", "smooth"},
+                    {"path",
+                     {{{"time", 0.2}, {"position", {0.1, 0.0, 0.0}}},
+                      {{"time", 2.2}, {"position", {0.125, 0.0, 0.01}}}}}}}}};
+  const json document = {{"name", "implicit sliding, cut"},
+                         {"dt", 1e-3},
+                         {"gravity", {-3.0, 0.0, 0.0}},
+                         {"integrator", {{"type", "ImplicitEuler"}}},
+                         {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}}},
+                         {"nodes", {thread}}};
+  auto scene = loadScene(document, "implicit sliding, cut", factory);
+  const auto& h = hole(*scene);
+  int released_at = -1;
+  double s_at_release = 0.0, previous = h.abscissa(scene->state());
+  for (int k = 0; k < 3000; ++k) {
+    const double before = h.abscissa(scene->state());
+    ASSERT_TRUE(scene->step().ok) << k;
+    if (released_at < 0 && !h.active()) {
+      released_at = k;
+      s_at_release = before;
+      previous = before - h.abscissa(scene->state());  // the last step's slide
+    }
+    if (released_at >= 0) EXPECT_FALSE(h.active()) << "held again at step " << k;
+  }
+  ASSERT_GE(released_at, 0) << "the cut end should have reached the hole";
+  EXPECT_GE(s_at_release, 0.42);
+  EXPECT_LE(s_at_release - 0.42, 3.0 * std::abs(previous) + 1e-12);  // within twice a step's slide (+ ṡ's change)
+}
+
 // Redundant constraints: two sliding points at one abscissa give identical rows and a singular
 // system. Its NaN abscissas used to index the basis out of range (a segmentation fault); the step
 // now fails, names the solver and the cause, and rolls back.

@@ -28,10 +28,18 @@
 // a known force applied at P(s) (B_j += b_j(s) F) and, for an attached hole, −F on the other
 // body. It is explicit: stable while η dt / m_eff < 2 for the sliding mass m_eff it drags.
 //
-// The thread slides out of the hole when s leaves [0, 1]: the constraint is then released.
+// The thread slides out of the hole when s leaves [0, 1]: the constraint is then released. So it
+// is at a cut of the thread (CurveBasis::cuts): a cut strand's end slides out of the hole as the
+// thread's own ends do, rather than the hole passing on to the other strand. Releases are a
+// function of the state: at a step's start the point is released when it is at a cut or moving
+// towards one that it reaches within twice its step, |c − s| <= 2 |ṡ| dt (twice: ṡ changes over the
+// step; a point released a step early has only its last sliding step left); from then on, as a
+// scheduled release is (a state restored from before that time holds the thread again).
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "filum/constraints/baumgarte.hpp"
 #include "filum/core/body_point.hpp"
@@ -93,6 +101,9 @@ class SlidingPointConstraint final : public Constraint, public TargetConstraint 
   Local evaluate(const SceneState& st) const;
 
   double initial_abscissa_;
+  std::vector<double> cuts_;  // of the thread, as of the last binding (a cut rebinds)
+  double dt_ = 0.0;
+  mutable std::optional<double> cut_release_time_;  // the time a cut end reached the hole
   PointTarget target_;
   double friction_;
   Baumgarte baumgarte_;
