@@ -48,7 +48,12 @@ RunVisual::~RunVisual() = default;
 
 std::string RunVisual::meshName(std::size_t model, int mesh) const {
   // A model's first mesh carries its name; the others (the strands of a cut thread) a suffix.
-  return visuals_.modelName(model) + (mesh > 0 ? "_" + std::to_string(mesh + 1) : "");
+  std::string name = visuals_.modelName(model);
+  if (mesh > 0) {  // appended piece by piece: GCC 12 sees a false overlap (-Wrestrict) in "_" + temporary
+    name += '_';
+    name += std::to_string(mesh + 1);
+  }
+  return name;
 }
 
 void RunVisual::writeMeshes(const Scene& scene) {

@@ -148,7 +148,8 @@ std::string toString(const LaurentPolynomial& p) {
     out << (first ? (c < 0 ? "-" : "") : (c < 0 ? " - " : " + "));
     first = false;
     if (magnitude != 1 || e == 0) out << magnitude;
-    if (e != 0) out << (magnitude != 1 ? "*" : "") << "t" << (e != 1 ? "^" + std::to_string(e) : "");
+    if (e != 0) out << (magnitude != 1 ? "*" : "") << "t";
+    if (e != 0 && e != 1) out << '^' << e;
   }
   return out.str();
 }

@@ -258,7 +258,9 @@ TEST(SlidingPoint, ACutEndSlidesOutOfTheHoleInsteadOfPassingToTheOtherStrand) {
       s_at_release = before;
       previous = before - h.abscissa(scene->state());  // the last step's slide
     }
-    if (released_at >= 0) EXPECT_FALSE(h.active()) << "held again at step " << k;
+    if (released_at >= 0) {
+      EXPECT_FALSE(h.active()) << "held again at step " << k;
+    }
   }
   ASSERT_GE(released_at, 0) << "the cut end should have reached the hole";
   EXPECT_GE(s_at_release, 0.42);

@@ -149,7 +149,9 @@ TEST(AdaptiveRefinement, AThreadBentByALoadGainsPointsAndLosesThemWhenStraighten
   for (int k = 0; k < 1000; ++k) {
     ASSERT_TRUE(scene->step().ok) << k;
     most = std::max(most, curveOf(*scene).pointCount());
-    if (k == 699) EXPECT_GT(curveOf(*scene).pointCount(), 12) << "bent under the load";
+    if (k == 699) {
+      EXPECT_GT(curveOf(*scene).pointCount(), 12) << "bent under the load";
+    }
   }
   EXPECT_LE(most, 20);                                 // max_points
   EXPECT_EQ(curveOf(*scene).pointCount(), 12);         // back to min_points, the initial count

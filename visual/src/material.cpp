@@ -4,9 +4,17 @@ namespace filum::visual {
 
 Vec3 colorParam(const Params& p, const std::string& key, const Vec3& fallback) {
   const Vec3 c = p.vec3(key, fallback);
-  if ((c.array() < 0.0).any() || (c.array() > 1.0).any())
-    p.fail(key, "an [r, g, b] colour with components in [0, 1]",
-           "[" + std::to_string(c.x()) + ", " + std::to_string(c.y()) + ", " + std::to_string(c.z()) + "]");
+  if ((c.array() < 0.0).any() || (c.array() > 1.0).any()) {
+    // Appended piece by piece: GCC 12 sees a false overlap (-Wrestrict) in "[" + temporary.
+    std::string found = "[";
+    found += std::to_string(c.x());
+    found += ", ";
+    found += std::to_string(c.y());
+    found += ", ";
+    found += std::to_string(c.z());
+    found += ']';
+    p.fail(key, "an [r, g, b] colour with components in [0, 1]", found);
+  }
   return c;
 }
 
