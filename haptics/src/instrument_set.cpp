@@ -9,6 +9,7 @@
 #include "filum/collision/segment_closest_points.hpp"
 #include "filum/core/curve_body.hpp"
 #include "filum/core/scene_error.hpp"
+#include "filum/geometry/arc_length.hpp"
 
 namespace filum::haptics {
 
@@ -27,6 +28,14 @@ Strand strandAt(const CurveBasis& basis, double s) {
   for (const Strand& strand : all)
     if (s < strand.end) return strand;
   return all.back();
+}
+
+/// The curve body of the node whose path p[key] names; refused at p[key] otherwise.
+const CurveBody* curveAt(const Scene& scene, const Params& p, const std::string& key) {
+  const std::string path = p.string(key);
+  const MechanicalState* body = scene.bodyAt(path);
+  if (!body || !body->curve()) p.fail(key, "the path of a node holding a curve body (e.g. \"tube\")", "\"" + path + "\"");
+  return body->curve();
 }
 
 /// The curve body of the scene that `body` is, for a layout change (Scene::cut needs it mutable).
@@ -48,10 +57,7 @@ std::unique_ptr<InstrumentSet> InstrumentSet::fromScene(const nlohmann::json& do
     set->metrics_ = TraineeMetrics(m.positive("idle_speed", 5e-3));
     if (m.has("specimen")) {
       const Params sp = m.object("specimen");
-      const std::string path = sp.string("body");
-      const MechanicalState* body = scene.bodyAt(path);
-      if (!body || !body->curve()) sp.fail("body", "the path of a node holding a curve body (e.g. \"tube\")", "\"" + path + "\"");
-      set->specimen_ = body->curve();
+      set->specimen_ = curveAt(scene, sp, "body");
       set->specimen_kept_end_ = sp.number("kept_end", 0.0);
       if (set->specimen_kept_end_ != 0.0 && set->specimen_kept_end_ != 1.0)
         sp.fail("kept_end", "0 or 1: the end of the body that stays in the patient", describeJson(sp.raw("kept_end")));
@@ -60,10 +66,7 @@ std::unique_ptr<InstrumentSet> InstrumentSet::fromScene(const nlohmann::json& do
     }
     if (m.has("inspection")) {
       const Params in = m.object("inspection");
-      const std::string path = in.string("body");
-      const MechanicalState* body = scene.bodyAt(path);
-      if (!body || !body->curve()) in.fail("body", "the path of a node holding a curve body (e.g. \"bowel\")", "\"" + path + "\"");
-      set->inspected_ = body->curve();
+      set->inspected_ = curveAt(scene, in, "body");
       set->inspection_step_ = in.positive("max_step", 0.1);
       in.finish();
       set->metrics_.setInspected(0.0, 0.0);
@@ -159,12 +162,11 @@ void InstrumentSet::attach(Scene& scene, const std::string& source) {
   }
   scene.init();
   if (inspected_) {
-    // The body's length from s = 0 as it lies at the start, by chords at 1001 abscissas (O(h²):
-    // 1e-6 relative for bends of a radius of a tenth of its length).
-    std::vector<double> length_at(1001, 0.0);
-    const VecX& q = scene.state().q;
-    for (int k = 1; k <= 1000; ++k)
-      length_at[k] = length_at[k - 1] + (inspected_->position(q, k / 1000.0) - inspected_->position(q, (k - 1) / 1000.0)).norm();
+    // The body's length from s = 0 as it lies at the start, at 1001 abscissas (arc length,
+    // geometry/arc_length.hpp; GraspCoverage interpolates linearly between them).
+    const geometry::ArcLengthParameterization arc(inspected_->basis(), inspected_->block(scene.state().q));
+    std::vector<double> length_at(1001);
+    for (int k = 0; k <= 1000; ++k) length_at[k] = arc.lengthAt(k / 1000.0);
     coverage_ = std::make_unique<GraspCoverage>(std::move(length_at), inspection_step_);
   }
   for (auto& needle : needles_) {

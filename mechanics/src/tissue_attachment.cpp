@@ -6,6 +6,7 @@
 #include "filum/core/curve_body.hpp"
 #include "filum/core/scene.hpp"
 #include "filum/core/scene_error.hpp"
+#include "filum/geometry/arc_length.hpp"
 
 namespace filum::mechanics {
 
@@ -68,16 +69,8 @@ void TissueAttachment::init(const Scene& scene) {
   // what it was at the start — its points keep their abscissas, their anchors and rest lengths.
   if (!abscissas_.empty()) return;
   const VecX& q = scene.state().q;
-  // L₀ by chords at 512 samples: the chord sum converges like O(h²), 1e-5 relative for a curve
-  // bent at a radius of its own length — far below what a tissue's stiffness is known to.
-  constexpr int kSamples = 512;
-  double length = 0.0;
-  Vec3 last = curve_->position(q, 0.0);
-  for (int k = 1; k <= kSamples; ++k) {
-    const Vec3 next = curve_->position(q, static_cast<double>(k) / kSamples);
-    length += (next - last).norm();
-    last = next;
-  }
+  // L₀: the curve's arc length at the start (adaptive Gauss–Legendre, geometry/arc_length.hpp).
+  const double length = geometry::curveLength(curve_->basis(), body().block(q));
   const int n = settings_.count;
   const double piece = (settings_.to - settings_.from) * length / n;
   point_stiffness_ = settings_.stiffness * piece;

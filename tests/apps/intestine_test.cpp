@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "filum/collision/triangle_mesh_obstacle.hpp"
+#include "filum/geometry/arc_length.hpp"
 #include "filum/mechanics/tissue_attachment.hpp"
 #include "support/instrument_scene_run.hpp"
 
@@ -63,11 +64,10 @@ TEST(Intestine, TheBowelIsLiftedLetGoAndRunWithoutEnteringItselfOrLeavingTheCavi
   // The loop the right grasper lifts first, where it lay at the start.
   const double lifted_at = 0.32;
   const double start_height = run.bowel().position(run.scene->state().q, lifted_at).z();
-  // The bowel's length from s = 0 as it lies at the start, at 1001 abscissas (chords).
-  std::vector<double> length_at(1001, 0.0);
-  for (int k = 1; k <= 1000; ++k)
-    length_at[k] = length_at[k - 1] + (run.bowel().position(run.scene->state().q, k / 1000.0) -
-                                       run.bowel().position(run.scene->state().q, (k - 1) / 1000.0)).norm();
+  // The bowel's length from s = 0 as it lies at the start, at 1001 abscissas (as the metric reads it).
+  const geometry::ArcLengthParameterization arc(run.bowel().basis(), run.bowel().block(run.scene->state().q));
+  std::vector<double> length_at(1001);
+  for (int k = 0; k <= 1000; ++k) length_at[k] = arc.lengthAt(k / 1000.0);
   const auto lengthAt = [&](double s) {
     const double at = 1000.0 * s, fraction = at - std::floor(at);
     const int below = std::min(999, static_cast<int>(at));
@@ -118,7 +118,7 @@ TEST(Intestine, TheBowelIsLiftedLetGoAndRunWithoutEnteringItselfOrLeavingTheCavi
 
   // Inspected: the span between the second and the third grasp (8 cm apart, a step shorter than
   // max_step = 10 cm), none between the first and the second (a jump of 25 cm), as a fraction of
-  // the bowel's length — both measured as it lay at the start, by the same chords (round-off).
+  // the bowel's length — both measured as it lay at the start, from the same table (round-off).
   ASSERT_GT(lengthAt(grasped[1]) - lengthAt(grasped[0]), 0.1);
   const double step = std::abs(lengthAt(grasped[2]) - lengthAt(grasped[1]));
   ASSERT_LT(step, 0.1);

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "filum/collision/triangle_mesh_obstacle.hpp"
+#include "filum/geometry/arc_length.hpp"
 #include "filum/mechanics/tissue_attachment.hpp"
 #include "support/instrument_scene_run.hpp"
 
@@ -43,11 +44,8 @@ TEST(Salpingectomy, TheTubeIsHeldCoagulatedCutAndRemovedWithoutEnteringAnOrgan) 
   ASSERT_NE(run.mesosalpinx, nullptr);
   const int bipolar = run.instrumentIndex("bipolar");
   ASSERT_GE(bipolar, 0);
-  // The tube's length from s = 0 as it lies at the start, at 1001 abscissas (chords).
-  std::vector<double> length_at(1001, 0.0);
-  for (int k = 1; k <= 1000; ++k)
-    length_at[k] = length_at[k - 1] + (run.tube().position(run.scene->state().q, k / 1000.0) -
-                                       run.tube().position(run.scene->state().q, (k - 1) / 1000.0)).norm();
+  // The tube's arc length from s = 0 as it lies at the start.
+  const geometry::ArcLengthParameterization arc(run.tube().basis(), run.tube().block(run.scene->state().q));
   const long steps = run.steps();
   double smallest_gap = std::numeric_limits<double>::infinity();
   double nearest_hold = std::numeric_limits<double>::infinity(), farthest_hold = 0.0;
@@ -94,9 +92,7 @@ TEST(Salpingectomy, TheTubeIsHeldCoagulatedCutAndRemovedWithoutEnteringAnOrgan) 
   // grasper's pull against its mesosalpinx by at most (the grasper's largest force on tissue,
   // from the metrics) / E A; measured by chords over 64 pieces, short by L h²/(24 R²) < 1e-3 L
   // for bends of radius R > 1 cm.
-  const double at = 1000.0 * cuts.front(), fraction = at - std::floor(at);
-  const int below = static_cast<int>(std::floor(at));
-  const double rest = length_at[1000] - ((1.0 - fraction) * length_at[below] + fraction * length_at[below + 1]);
+  const double rest = arc.totalLength() - arc.lengthAt(cuts.front());
   const double removed = run.instruments->metrics().removedLength();
   double grasper_force = 0.0;
   for (const auto& m : summary["instruments"])

@@ -50,6 +50,17 @@ Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& 
   return a + ab * (vb * denom) + ac * (vc * denom);
 }
 
+/// Distance of p to the mesh: the nearest of every triangle's exact closest point.
+double exactDistance(const TriangleMeshSurface& mesh, const Vec3& p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& t : mesh.triangles())
+    best = std::min(best, (p - closestOnTriangle(p, mesh.vertices().row(t[0]).transpose(),
+                                                 mesh.vertices().row(t[1]).transpose(),
+                                                 mesh.vertices().row(t[2]).transpose()))
+                              .norm());
+  return best;
+}
+
 /// Winding number of the closed mesh around p: Σ solid angles / 4π (Van Oosterom & Strackee).
 double windingNumber(const TriangleMeshSurface& mesh, const Vec3& p) {
   double sum = 0.0;
@@ -107,12 +118,7 @@ TEST(TriangleMeshObstacle, SphereToMeshGapIsTheExactSignedDistanceMinusTheRadius
     const Vec3 x = surface->vertices().row(v).transpose() + 3e-3 * Vec3(u(rng), u(rng), u(rng));
     SurfaceSample sample;
     ASSERT_TRUE(obstacle.sample(x, 1.0, sample));
-    double best = std::numeric_limits<double>::infinity();
-    for (const auto& t : surface->triangles())
-      best = std::min(best, (x - closestOnTriangle(x, surface->vertices().row(t[0]).transpose(),
-                                                   surface->vertices().row(t[1]).transpose(),
-                                                   surface->vertices().row(t[2]).transpose()))
-                                .norm());
+    const double best = exactDistance(*surface, x);
     const double sign = windingNumber(*surface, x) > 0.5 ? -1.0 : 1.0;
     EXPECT_NEAR(sample.distance - r, sign * best - r, 1e-14);
     EXPECT_NEAR((sample.point - x).norm(), best, 1e-14);
@@ -140,12 +146,7 @@ TEST(TriangleMeshObstacle, ACavityIsTheSameSurfaceSeenFromInside) {
     const Vec3 x = trial % 2 == 0 ? Vec3(surface->vertices().row(v).transpose() + 3e-3 * Vec3(u(rng), u(rng), u(rng)))
                                   : Vec3(box.center() + 0.5 * (box.sizes() + Vec3::Constant(0.04)).cwiseProduct(
                                                              Vec3(u(rng), u(rng), u(rng))));
-    double best = std::numeric_limits<double>::infinity();
-    for (const auto& t : surface->triangles())
-      best = std::min(best, (x - closestOnTriangle(x, surface->vertices().row(t[0]).transpose(),
-                                                   surface->vertices().row(t[1]).transpose(),
-                                                   surface->vertices().row(t[2]).transpose()))
-                                .norm());
+    const double best = exactDistance(*surface, x);
     const bool inside = windingNumber(*surface, x) > 0.5;
     SurfaceSample sample;
     const bool hit = cavity.sample(x, max_distance, sample);

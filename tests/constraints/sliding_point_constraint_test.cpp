@@ -165,20 +165,18 @@ TEST(SlidingPoint, FrictionSlowsTheSliding) {
   EXPECT_LT(braked, 0.35);
 }
 
-TEST(SlidingPoint, RealSutureIsPulledThroughUnderImplicitEulerAt1ms) {
-  // The same pull on a real 3-0 polypropylene suture (radius 0.1 mm, 910 kg/m³, E = 2 GPa,
-  // Green–Lagrange stretching and bending) under linearized backward Euler at dt = 1 ms, a step
-  // 50× beyond the explicit stability limit of its stretching (ω_max h ≈ 50). The abscissa s is
-  // advanced with the points (v_s += h s̈, s += h v_s) from the direct relation evaluated after
-  // the constrained point accelerations of each Newton update.
-  const Factory factory = app::makeFactory();
-  if (!factory.knows("ImplicitEuler")) GTEST_SKIP() << "no ImplicitEuler in this build";
+/// A real 3-0 polypropylene suture (30 points, E = 2 GPa) through a hole at s = 0.5, drawn by a
+/// grip at s = 1 from 0.2 to 2.2 s, under linearized backward Euler at 1 ms; `cuts` as the
+/// DynamicSpline's "cuts" (none when null).
+json implicitSutureThroughHole(const json& cuts = nullptr) {
+  json spline = {{"type", "DynamicSpline"},
+                 {"control_points", {{"from", {0, 0, 0}}, {"to", {0.1, 0, 0}}, {"count", 30}}},
+                 {"radius", 1e-4},
+                 {"density", 910}};
+  if (!cuts.is_null()) spline["cuts"] = cuts;
   json thread = {{"name", "thread"},
                  {"components",
-                  {{{"type", "DynamicSpline"},
-                    {"control_points", {{"from", {0, 0, 0}}, {"to", {0.1, 0, 0}}, {"count", 30}}},
-                    {"radius", 1e-4},
-                    {"density", 910}},
+                  {spline,
                    {{"type", "GreenLagrangeStretching"}, {"youngs_modulus", 2e9}},
                    {{"type", "ParametricBending"}, {"youngs_modulus", 2e9}},
                    {{"type", "ViscousDamping"}, {"coefficient", 0.5}},
@@ -190,12 +188,23 @@ TEST(SlidingPoint, RealSutureIsPulledThroughUnderImplicitEulerAt1ms) {
                     {"path",
                      {{{"time", 0.2}, {"position", {0.1, 0.0, 0.0}}},
                       {{"time", 2.2}, {"position", {0.125, 0.0, 0.01}}}}}}}}};
-  const json document = {{"name", "implicit sliding"},
-                         {"dt", 1e-3},
-                         {"gravity", {-3.0, 0.0, 0.0}},
-                         {"integrator", {{"type", "ImplicitEuler"}}},
-                         {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}}},
-                         {"nodes", {thread}}};
+  return {{"name", "implicit sliding"},
+          {"dt", 1e-3},
+          {"gravity", {-3.0, 0.0, 0.0}},
+          {"integrator", {{"type", "ImplicitEuler"}}},
+          {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}}},
+          {"nodes", {thread}}};
+}
+
+TEST(SlidingPoint, RealSutureIsPulledThroughUnderImplicitEulerAt1ms) {
+  // The same pull on a real 3-0 polypropylene suture (radius 0.1 mm, 910 kg/m³, E = 2 GPa,
+  // Green–Lagrange stretching and bending) under linearized backward Euler at dt = 1 ms, a step
+  // 50× beyond the explicit stability limit of its stretching (ω_max h ≈ 50). The abscissa s is
+  // advanced with the points (v_s += h s̈, s += h v_s) from the direct relation evaluated after
+  // the constrained point accelerations of each Newton update.
+  const Factory factory = app::makeFactory();
+  if (!factory.knows("ImplicitEuler")) GTEST_SKIP() << "no ImplicitEuler in this build";
+  const json document = implicitSutureThroughHole();
   auto scene = loadScene(document, "implicit sliding", factory);
   const auto& h = hole(*scene);
   double worst = 0.0;
@@ -222,30 +231,7 @@ TEST(SlidingPoint, ACutEndSlidesOutOfTheHoleInsteadOfPassingToTheOtherStrand) {
   // released there, within twice a step's sliding of the cut, and stays released to the end,
   // although s, no longer held, runs on past the cut into the other strand's range.
   const Factory factory = app::makeFactory();
-  json thread = {{"name", "thread"},
-                 {"components",
-                  {{{"type", "DynamicSpline"},
-                    {"control_points", {{"from", {0, 0, 0}}, {"to", {0.1, 0, 0}}, {"count", 30}}},
-                    {"radius", 1e-4},
-                    {"density", 910},
-                    {"cuts", {{{"time", 0.0}, {"abscissa", 0.42}}}}},
-                   {{"type", "GreenLagrangeStretching"}, {"youngs_modulus", 2e9}},
-                   {{"type", "ParametricBending"}, {"youngs_modulus", 2e9}},
-                   {{"type", "ViscousDamping"}, {"coefficient", 0.5}},
-                   {{"type", "SlidingPointConstraint"}, {"name", "hole"}, {"abscissa", 0.5}},
-                   {{"type", "FixedPointConstraint"},
-                    {"name", "grip"},
-                    {"abscissa", 1.0},
-                    {"interpolation", "smooth"},
-                    {"path",
-                     {{{"time", 0.2}, {"position", {0.1, 0.0, 0.0}}},
-                      {{"time", 2.2}, {"position", {0.125, 0.0, 0.01}}}}}}}}};
-  const json document = {{"name", "implicit sliding, cut"},
-                         {"dt", 1e-3},
-                         {"gravity", {-3.0, 0.0, 0.0}},
-                         {"integrator", {{"type", "ImplicitEuler"}}},
-                         {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}}},
-                         {"nodes", {thread}}};
+  const json document = implicitSutureThroughHole({{{"time", 0.0}, {"abscissa", 0.42}}});
   auto scene = loadScene(document, "implicit sliding, cut", factory);
   const auto& h = hole(*scene);
   int released_at = -1;
