@@ -15,6 +15,7 @@
 #include "filum/core/scene_loader.hpp"
 #include "filum/haptics/haptic_session.hpp"
 #include "filum/haptics/instrument_set.hpp"
+#include "filum/haptics/navigation_metrics.hpp"
 #include "filum/output_settings.hpp"
 #include "filum/run_output.hpp"
 #include "filum/run_visual.hpp"
@@ -130,6 +131,20 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     return kRunSceneError;
   }
 
+  // The navigation metrics (the scene's "navigation" block: catheters and guidewires in a lumen).
+  std::unique_ptr<haptics::NavigationMetrics> navigation;
+  try {
+    navigation = haptics::NavigationMetrics::fromScene(document, options.scene, *scene);
+  } catch (const SceneError& e) {
+    log << "error: " << e.what() << '\n';
+    return kRunSceneError;
+  }
+  if (navigation && instruments) {
+    log << "error: " << options.scene << ": /navigation: expected either laparoscopic \"instruments\" or a catheter "
+        << "\"navigation\" block (both write metrics.csv), found both\n";
+    return kRunSceneError;
+  }
+
   // Visual outputs (on request): bind the visual models, open the renderer.
   std::unique_ptr<RunVisual> visuals;
   if (options.meshes || options.render) {
@@ -183,9 +198,16 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     if (const ConstraintSolver* solver = scene->constraintSolver()) timing.contact = solver->contactTally();
     return timing;
   };
+  // metrics.json written, the navigation metrics logged.
+  auto finishNavigation = [&]() {
+    if (!navigation) return;
+    navigation->writeSummary(directory + "/metrics.json");
+    log << navigation->text() << "  -> metrics.csv, metrics.json\n";
+  };
   // The run stops: what happened, the frames kept, the summary (exit 3).
   auto diverged = [&](const std::string& message) {
     if (haptic) finishHaptics(*haptic, directory, log);
+    finishNavigation();
     if (instruments) finishInstruments(*instruments, directory, log);
     else logRuptures(*scene, log);
     log << "error: " << message << '\n'
@@ -199,6 +221,10 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     output_files = std::make_unique<RunOutput>(directory, samples, output.knots);
     RunOutput& out = *output_files;
     if (instruments) instruments->openCsv(directory + "/metrics.csv");
+    if (navigation) {
+      navigation->openCsv(directory + "/metrics.csv");
+      navigation->start(*scene);
+    }
     out.writeFrame(*scene);
     if (visuals) {
       visuals->writeMeshes(*scene);
@@ -218,11 +244,13 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
       if (instruments) instruments->beforeStep(*scene);
       const StepReport report = scene->step();
       if (instruments && report.ok) instruments->afterStep(*scene);
+      if (navigation && report.ok) navigation->afterStep(*scene, dt);
       const auto after = Clock::now();
       if (!report.ok) return diverged(report.message);
       if (haptic) haptic->afterStep(*scene);
       if ((haptic && haptic->interrupted()) || (instruments && instruments->interrupted())) {
         if (haptic) finishHaptics(*haptic, directory, log);
+        finishNavigation();
         if (instruments) finishInstruments(*instruments, directory, log);
         log << "interrupted (Ctrl-C) at t = " << scene->state().time << " s: forces off\n";
         if (visuals) visuals->finish(*scene);
@@ -250,6 +278,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
       }
     }
     if (haptic) finishHaptics(*haptic, directory, log);
+    finishNavigation();
     if (instruments) finishInstruments(*instruments, directory, log);
     else logRuptures(*scene, log);
     if (visuals) visuals->finish(*scene);

@@ -7,6 +7,7 @@
 #include "filum/collision/probe_sphere.hpp"
 #include "filum/collision/sphere_collision_model.hpp"
 #include "filum/collision/sphere_obstacle.hpp"
+#include "filum/collision/vessel_lumen_obstacle.hpp"
 #ifdef FILUM_WITH_CGAL
 #include "filum/collision/triangle_mesh_obstacle.hpp"
 #endif
@@ -29,6 +30,9 @@ void register_components(Factory& factory) {
               [](const Params& p) { return CapsuleObstacle::fromParams(p); });
   factory.add("ImplicitSurfaceObstacle", "a convolution surface f(x) = 0 around a skeleton polyline (talk 002)",
               [](const Params& p) { return ImplicitSurfaceObstacle::fromParams(p); });
+  factory.add("VesselLumenObstacle",
+              "the wall of an artery tree from centrelines with radii, touched from inside (guidewires, catheters, coils)",
+              [](const Params& p) { return VesselLumenObstacle::fromParams(p); });
   factory.add("ProbeSphere", "a sphere on a scripted trajectory that pushes threads (paper Fig. 1a probe)",
               [](const Params& p) { return ProbeSphere::fromParams(p); });
 #ifdef FILUM_WITH_CGAL

@@ -4,6 +4,7 @@
 #include "filum/visual/generalized_cylinder_model.hpp"
 #include "filum/visual/mesh_model.hpp"
 #include "filum/visual/sphere_model.hpp"
+#include "filum/visual/vessel_lumen_model.hpp"
 
 namespace filum::visual {
 
@@ -21,6 +22,11 @@ void register_components(Factory& factory) {
                 [](const Params& p) { return ConvolutionSurfaceModel::fromParams(p); });
   else
     factory.addUnavailable("ConvolutionSurfaceModel", "FILUM_WITH_CGAL");
+  if (convolutionSurfaceMeshingAvailable())
+    factory.add("VesselLumenModel", "the wall of a vessel tree (centrelines with radii), translucent, meshed by CGAL",
+                [](const Params& p) { return VesselLumenModel::fromParams(p); });
+  else
+    factory.addUnavailable("VesselLumenModel", "FILUM_WITH_CGAL");
 }
 
 }  // namespace filum::visual

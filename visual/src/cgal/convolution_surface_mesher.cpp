@@ -25,13 +25,13 @@ using Kernel = Triangulation::Geom_traits;
 using Point = Kernel::Point_3;
 using FT = Kernel::FT;
 
-// f(x) = T − F(x): negative inside, positive outside, as CGAL's Implicit_surface_3 expects.
-struct ImplicitFunction {
-  const geometry::ConvolutionSurface* surface;
-  FT operator()(const Point& p) const { return surface->implicitValue(Vec3(p.x(), p.y(), p.z())); }
+// f: negative inside, positive outside, as CGAL's Implicit_surface_3 expects.
+struct FunctionAdapter {
+  const ImplicitFunction* f;
+  FT operator()(const Point& p) const { return (*f)(Vec3(p.x(), p.y(), p.z())); }
 };
 
-using Surface = CGAL::Implicit_surface_3<Kernel, ImplicitFunction>;
+using Surface = CGAL::Implicit_surface_3<Kernel, FunctionAdapter>;
 
 }  // namespace
 
@@ -41,9 +41,18 @@ TriangleMesh meshConvolutionSurface(const geometry::ConvolutionSurface& surface,
                                     double bounding_radius, const SurfaceMeshingCriteria& criteria) {
   if (!(surface.implicitValue(inside) < 0.0))
     throw std::invalid_argument("meshConvolutionSurface: the start point is not inside the surface");
+  // f = T − F, outward gradient ∇f = −∇F.
+  return meshImplicitSurface([&](const Vec3& x) { return surface.implicitValue(x); },
+                             [&](const Vec3& x) { return Vec3(-surface.fieldGradient(x)); }, inside, bounding_radius,
+                             criteria);
+}
+
+TriangleMesh meshImplicitSurface(const ImplicitFunction& value, const ImplicitGradient& gradient, const Vec3& inside,
+                                 double bounding_radius, const SurfaceMeshingCriteria& criteria) {
+  if (!(value(inside) < 0.0)) throw std::invalid_argument("meshImplicitSurface: the start point is not inside the surface");
   Triangulation triangulation;
   Complex complex(triangulation);
-  const ImplicitFunction function{&surface};
+  const FunctionAdapter function{&value};
   // Error bound of the bisection that locates surface points on segments: a small fraction of
   // the approximation bound.
   const Surface implicit(function, Kernel::Sphere_3(Point(inside.x(), inside.y(), inside.z()), bounding_radius * bounding_radius),
@@ -53,7 +62,7 @@ TriangleMesh meshConvolutionSurface(const geometry::ConvolutionSurface& surface,
   CGAL::make_surface_mesh(complex, implicit, bounds, CGAL::Manifold_tag());
   CGAL::Surface_mesh<Point> output;
   CGAL::facets_in_complex_2_to_triangle_mesh(complex, output);
-  if (output.number_of_faces() == 0) throw std::runtime_error("meshConvolutionSurface: CGAL produced no facets");
+  if (output.number_of_faces() == 0) throw std::runtime_error("meshImplicitSurface: CGAL produced no facets");
 
   TriangleMesh mesh;
   mesh.vertices.resize(output.number_of_vertices(), 3);
@@ -64,8 +73,7 @@ TriangleMesh meshConvolutionSurface(const geometry::ConvolutionSurface& surface,
     const Point& p = output.point(v);
     const Vec3 x(p.x(), p.y(), p.z());
     mesh.vertices.row(next) = x.transpose();
-    // Outward normal ∇f = −∇F.
-    const Vec3 g = -surface.fieldGradient(x);
+    const Vec3 g = gradient(x);  // outward
     mesh.normals.row(next) = (g.norm() > 0.0 ? Vec3(g.normalized()) : Vec3::UnitZ()).transpose();
     index[v] = next++;
   }

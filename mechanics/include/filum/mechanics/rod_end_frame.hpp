@@ -58,6 +58,8 @@ class RodEndFrame final : public ForceField {
 
   /// The held frame at time t.
   Eigen::Quaterniond heldFrame(double t) const;
+  /// The roll ψ(t) the path holds the end at (rad): how far the hand has turned the hub.
+  double roll(double t) const { return poseAt(t).second; }
 
  private:
   void init(const Scene& scene) override;

@@ -1,0 +1,218 @@
+#include "filum/haptics/navigation_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "filum/collision/contact_pipeline.hpp"
+#include "filum/collision/sphere_collision_model.hpp"
+#include "filum/collision/vessel_lumen_obstacle.hpp"
+#include "filum/core/curve_body.hpp"
+#include "filum/core/node.hpp"
+#include "filum/core/params.hpp"
+#include "filum/core/scene_error.hpp"
+#include "filum/mechanics/rod_end_frame.hpp"
+
+namespace filum::haptics {
+
+namespace {
+
+/// The node at `path` of the scene, refused at p[key] otherwise.
+Node* nodeAt(const Scene& scene, const Params& p, const std::string& key, const std::string& path) {
+  Node* node = const_cast<Scene&>(scene).root().find(path);
+  if (!node) p.fail(key, "the path of a node of the scene", "\"" + path + "\"");
+  return node;
+}
+
+template <class T>
+const T* componentOf(const Node& node) {
+  for (const auto& c : node.components())
+    if (const auto* found = dynamic_cast<const T*>(c.get())) return found;
+  return nullptr;
+}
+
+}  // namespace
+
+std::unique_ptr<NavigationMetrics> NavigationMetrics::fromScene(const nlohmann::json& document, const std::string& source,
+                                                                const Scene& scene) {
+  if (!document.is_object() || !document.contains("navigation")) return nullptr;
+  const Params top(document, source, "");
+  const Params p = top.object("navigation").withOwner("navigation");
+  std::unique_ptr<NavigationMetrics> metrics(new NavigationMetrics());
+  std::vector<std::string> names;
+  if (p.has("instrument")) names.push_back(p.string("instrument"));
+  if (p.has("instruments")) {
+    const nlohmann::json& list = p.raw("instruments");
+    if (!list.is_array() || list.empty() || list.size() > 16)
+      p.fail("instruments", "a list of 1 to 16 node paths of instruments (curve bodies)");
+    for (const nlohmann::json& name : list) {
+      if (!name.is_string()) p.fail("instruments", "node paths (strings)", describeJson(name));
+      names.push_back(name.get<std::string>());
+    }
+  }
+  if (names.empty()) p.fail("instruments", "the instruments to score: \"instruments\": [node paths] or \"instrument\"");
+  for (const std::string& name : names) {
+    Node* node = nodeAt(scene, p, p.has("instruments") ? "instruments" : "instrument", name);
+    const MechanicalState* body = node->mechanicalState();
+    if (!body || !body->curve())
+      p.fail(p.has("instruments") ? "instruments" : "instrument", "instruments that are curve bodies (a rod, a spline)",
+             "\"" + name + "\" (no curve body)");
+    Instrument m;
+    m.name = name;
+    m.body = body->curve();
+    m.hub_frame = componentOf<mechanics::RodEndFrame>(*node);
+    metrics->instruments_.push_back(m);
+  }
+  Node* vessels = nodeAt(scene, p, "vessels", p.string("vessels"));
+  metrics->lumen_ = componentOf<collision::VesselLumenObstacle>(*vessels);
+  if (!metrics->lumen_)
+    p.fail("vessels", "the node holding the VesselLumenObstacle", "\"" + p.string("vessels") + "\" (it has none)");
+  if (const auto* pipeline = dynamic_cast<const collision::ContactPipeline*>(scene.collisionPipeline()))
+    for (std::size_t o = 0; o < pipeline->obstacles().size(); ++o)
+      if (pipeline->obstacles()[o] == metrics->lumen_) metrics->lumen_index_ = static_cast<int>(o);
+  if (p.has("target")) metrics->target_ = p.vec3("target");
+  if (p.has("target_branch")) {
+    const std::string branch = p.string("target_branch");
+    metrics->target_branch_ = metrics->lumen_->tree().branchIndex(branch);
+    if (metrics->target_branch_ < 0) {
+      std::string known;
+      for (int b = 0; b < metrics->lumen_->tree().branchCount(); ++b)
+        known += (b ? ", " : "") + metrics->lumen_->tree().branch(b).name;
+      p.fail("target_branch", "a branch of the vessel tree (" + known + ")", "\"" + branch + "\"");
+    }
+  }
+  metrics->force_limit_ = p.positive("force_limit", 0.5);
+  p.finish();
+  return metrics;
+}
+
+void NavigationMetrics::measure(const Scene& scene, Instrument& m) const {
+  const VecX& q = scene.state().q;
+  const Vec3 hub = m.body->position(q, 0.0);
+  m.inserted = (hub - m.hub_start).dot(m.axis);
+  m.roll = m.hub_frame ? m.hub_frame->roll(scene.state().time) : 0.0;
+  m.tip = m.body->position(q, 1.0);
+  m.branch = lumen_->tree().branchAt(m.tip, lumen_->tree().maxRadius());
+  if (target_) m.target_distance = (m.tip - *target_).norm();
+  // Σ |F_c| over this instrument's contacts with the lumen (the last solve's multipliers).
+  m.wall_force = m.max_contact_force = 0.0;
+  const auto* pipeline = dynamic_cast<const collision::ContactPipeline*>(scene.collisionPipeline());
+  if (!pipeline || lumen_index_ < 0) return;
+  const collision::ContactSet& contacts = pipeline->contacts();
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const collision::Contact& c = contacts[i];
+    if (c.obstacle != lumen_index_ || &pipeline->models()[c.model_a]->curve() != m.body) continue;
+    const double f = pipeline->contactForce(static_cast<int>(i), scene.state()).norm();
+    m.wall_force += f;
+    m.max_contact_force = std::max(m.max_contact_force, f);
+  }
+}
+
+void NavigationMetrics::start(const Scene& scene) {
+  for (Instrument& m : instruments_) {
+    const VecX& q = scene.state().q;
+    m.hub_start = m.body->position(q, 0.0);
+    const Vec3 tangent = m.body->tangent(q, 0.0);
+    m.axis = tangent.norm() > 0.0 ? Vec3(tangent.normalized()) : Vec3::UnitZ();
+    measure(scene, m);
+    m.min_target_distance = m.target_distance;
+    m.max_inserted = m.inserted;
+  }
+  time_ = scene.state().time;
+  writeRow(time_);
+}
+
+void NavigationMetrics::afterStep(const Scene& scene, double h) {
+  time_ = scene.state().time;
+  for (Instrument& m : instruments_) {
+    const Vec3 previous_tip = m.tip;
+    measure(scene, m);
+    m.tip_path += (m.tip - previous_tip).norm();
+    m.max_inserted = std::max(m.max_inserted, m.inserted);
+    m.max_wall_force = std::max(m.max_wall_force, m.wall_force);
+    if (m.wall_force > force_limit_) m.time_above_limit += h;
+    if (target_) m.min_target_distance = std::min(m.min_target_distance, m.target_distance);
+    if (target_branch_ >= 0 && m.reached_time < 0.0 && m.branch == target_branch_) m.reached_time = time_;
+  }
+  writeRow(time_);
+}
+
+void NavigationMetrics::openCsv(const std::string& path) {
+  csv_.open(path);
+  if (!csv_) throw std::runtime_error(path + ": cannot open for writing");
+  csv_ << std::setprecision(9) << "time";
+  for (const Instrument& m : instruments_)
+    for (const char* column : {"inserted", "roll", "tip_x", "tip_y", "tip_z", "branch", "target_distance", "wall_force",
+                               "max_contact_force"})
+      csv_ << ',' << m.name << '_' << column;
+  csv_ << '\n';
+}
+
+void NavigationMetrics::writeRow(double t) {
+  if (!csv_.is_open() || csv_failed_) return;
+  csv_ << t;
+  const geometry::VesselTree& tree = lumen_->tree();
+  for (const Instrument& m : instruments_)
+    csv_ << ',' << m.inserted << ',' << m.roll << ',' << m.tip.x() << ',' << m.tip.y() << ',' << m.tip.z() << ','
+         << (m.branch >= 0 ? tree.branch(m.branch).name : std::string("outside")) << ',' << m.target_distance << ','
+         << m.wall_force << ',' << m.max_contact_force;
+  csv_ << '\n';
+  if (!csv_) csv_failed_ = true;
+}
+
+nlohmann::json NavigationMetrics::summary() const {
+  nlohmann::json out = {{"duration", time_}, {"force_limit", force_limit_}};
+  const geometry::VesselTree& tree = lumen_->tree();
+  if (target_branch_ >= 0) out["target_branch"] = tree.branch(target_branch_).name;
+  if (target_) out["target"] = {target_->x(), target_->y(), target_->z()};
+  for (const Instrument& m : instruments_) {
+    nlohmann::json i = {{"inserted_length", m.inserted},
+                        {"max_inserted_length", m.max_inserted},
+                        {"roll", m.roll},
+                        {"tip", {m.tip.x(), m.tip.y(), m.tip.z()}},
+                        {"tip_branch", m.branch >= 0 ? tree.branch(m.branch).name : std::string("outside")},
+                        {"tip_path_length", m.tip_path},
+                        {"max_wall_force", m.max_wall_force},
+                        {"time_above_force_limit", m.time_above_limit}};
+    if (target_) {
+      i["target_distance"] = m.target_distance;
+      i["min_target_distance"] = m.min_target_distance;
+    }
+    if (target_branch_ >= 0) {
+      i["reached_target_branch"] = m.reached_time >= 0.0;
+      if (m.reached_time >= 0.0) i["time_to_target_branch"] = m.reached_time;
+    }
+    out["instruments"][m.name] = i;
+  }
+  return out;
+}
+
+void NavigationMetrics::writeSummary(const std::string& path) const {
+  std::ofstream out(path);
+  out << summary().dump(2) << '\n';
+  if (!out) throw std::runtime_error(path + ": write failed");
+}
+
+std::string NavigationMetrics::text() const {
+  std::ostringstream s;
+  s << std::setprecision(3);
+  const geometry::VesselTree& tree = lumen_->tree();
+  for (const Instrument& m : instruments_) {
+    s << "  " << m.name << ": inserted " << 1e3 * m.inserted << " mm, roll " << m.roll * 180.0 / M_PI
+      << "°, tip in " << (m.branch >= 0 ? tree.branch(m.branch).name : std::string("no branch"));
+    if (target_) s << ", " << 1e3 * m.target_distance << " mm from the target";
+    if (target_branch_ >= 0)
+      s << (m.reached_time >= 0.0 ? ", reached " + tree.branch(target_branch_).name + " at t = " + [&] {
+              std::ostringstream t;
+              t << std::setprecision(3) << m.reached_time;
+              return t.str();
+            }() + " s"
+                                  : ", did not reach " + tree.branch(target_branch_).name);
+    s << "; wall force max " << m.max_wall_force << " N, " << m.time_above_limit << " s above " << force_limit_
+      << " N; tip path " << 1e3 * m.tip_path << " mm\n";
+  }
+  return s.str();
+}
+
+}  // namespace filum::haptics
