@@ -119,6 +119,9 @@ class SphereSamplingMapping final : public Mapping {
   std::vector<double> arc_of_;          // arc length from s = 0 to every centre, strands end to end
   /// Places the centres of strand t from index `first` on, at arc lengths from `base` (table
   /// lengths computed); returns K_t.
+  /// K of strand t from its current length (table_length_ filled): ⌈L / h⌉ + 1, or for a polyline
+  /// a multiple of its pieces plus one, so that the vertices of a rod laid out uniformly are centres.
+  int centresOnStrand(int t) const;
   int sampleStrand(int t, int first, double base);
 
   // Arc-length table (model data, from the basis only): abscissas, basis derivatives there and
