@@ -1,6 +1,7 @@
 // bench_applications: the surgical applications in wall time per simulated millisecond — the
-// shipped salpingectomy.json and intestine.json played whole with their instruments (as
-// `filum run` plays them: the instruments' drivers, jaws and metrics between the steps), and the
+// shipped salpingectomy.json, intestine.json and catheter.json played whole with their
+// instruments or navigation metrics (as `filum run` plays them: the instruments' drivers, jaws and
+// metrics between the steps), and the
 // small bowel's cost against its length: a bowel of 0.5, 1, 2 and 4 m (radius 1.5 cm, soft
 // tissue, a control point every 2.5 cm, contact spheres every 1.5 cm with self-collision and
 // friction 0.3) laid as a serpentine on the posterior abdominal wall (a plane), its turns relaxing
@@ -17,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "filum/haptics/instrument_set.hpp"
+#include "filum/haptics/navigation_metrics.hpp"
 #include "scene_stepping.hpp"
 
 namespace {
@@ -33,16 +35,20 @@ void application(benchmark::State& state, const std::string& file) {
     auto scene = filum::bench::loadOrSkip(document, path, state);
     if (!scene) return;
     auto instruments = filum::haptics::InstrumentSet::fromScene(document, path, *scene);
-    const long steps = std::lround(scene->settings().duration / scene->settings().dt);
+    auto navigation = filum::haptics::NavigationMetrics::fromScene(document, path, *scene);
+    const double dt = scene->settings().dt;
+    const long steps = std::lround(scene->settings().duration / dt);
+    if (navigation) navigation->start(*scene);
     state.ResumeTiming();
     for (long k = 0; k < steps; ++k) {
-      instruments->beforeStep(*scene);
+      if (instruments) instruments->beforeStep(*scene);
       const filum::StepReport report = scene->step();
       if (!report.ok) {
         state.SkipWithError(report.message.c_str());
         return;
       }
-      instruments->afterStep(*scene);
+      if (instruments) instruments->afterStep(*scene);
+      if (navigation) navigation->afterStep(*scene, dt);
     }
     simulated += scene->settings().duration;
   }
@@ -118,5 +124,7 @@ void bowelLength(benchmark::State& state) {
 BENCHMARK_CAPTURE(application, salpingectomy, std::string("salpingectomy.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(application, intestine, std::string("intestine.json"))
+    ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(application, catheter, std::string("catheter.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK(bowelLength)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->UseRealTime()->Unit(benchmark::kMillisecond);
