@@ -138,6 +138,9 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   } catch (const SceneError& e) {
     log << "error: " << e.what() << '\n';
     return kRunSceneError;
+  } catch (const std::exception& e) {
+    log << "error: " << options.scene << ": /navigation: " << e.what() << '\n';
+    return kRunSceneError;
   }
   if (navigation && instruments) {
     log << "error: " << options.scene << ": /navigation: expected either laparoscopic \"instruments\" or a catheter "

@@ -107,20 +107,21 @@ void SphereSamplingMapping::resample(ConstPointsRef q) {
   }
 }
 
-int SphereSamplingMapping::centresOnStrand(int t) const {
+double SphereSamplingMapping::centresOnStrand(int t) const {
   const int begin = strand_table_begin_[t], end = strand_table_begin_[t + 1];
   const double length = table_length_[end - 1];
-  // K = ⌈L / h⌉ + 1 centres on the strand, spacing L / (K − 1) <= h.
-  int count = std::max(2, static_cast<int>(std::ceil(length / spacing_ - 1e-9) + 1.0));
+  // K = ⌈L / h⌉ + 1 centres on the strand, spacing L / (K − 1) <= h (in doubles: the caller checks
+  // the total against the limit before anything is cast or allocated).
+  double count = std::max(2.0, std::ceil(length / spacing_ - 1e-9) + 1.0);
   // A polyline (degree 1: a rod's centre line) bends only at its vertices, and a vertex between
   // two centres pokes out of their spheres towards the outside of the bend, by up to
   // (h/2) sin(θ/2) for a turn θ — a tenth of the radius at 13° with h = 2r. So the count is a
-  // multiple of the P pieces, ⌈L/(P h)⌉ centres a piece: with the pieces of equal length (a rod
-  // laid out uniformly, which its stretching stiffness keeps so to its strain) every vertex is a
-  // centre.
+  // multiple of the P pieces, ⌈L/(P h)⌉ (at least 1) centres a piece: with the pieces of equal
+  // length (a rod laid out uniformly, which its stretching stiffness keeps so to its strain) every
+  // vertex is a centre.
   if (basis_->degree() == 1) {
     const int pieces = (end - begin - 1) / kTablePerPiece;
-    if (pieces >= 1) count = pieces * static_cast<int>(std::ceil(length / (pieces * spacing_) - 1e-9)) + 1;
+    if (pieces >= 1) count = pieces * std::max(1.0, std::ceil(length / (pieces * spacing_) - 1e-9)) + 1.0;
   }
   return count;
 }
@@ -128,7 +129,7 @@ int SphereSamplingMapping::centresOnStrand(int t) const {
 int SphereSamplingMapping::sampleStrand(int t, int first, double base) {
   const int begin = strand_table_begin_[t], end = strand_table_begin_[t + 1];
   const double length = table_length_[end - 1];
-  const int count = centresOnStrand(t);
+  const int count = static_cast<int>(centresOnStrand(t));  // checked against the limit by resample
   strand_spacing_[t] = length / (count - 1);
   // ℓ ↦ s by cubic Hermite interpolation of the inverse on each table interval, ds/dℓ = 1/|P'|:
   // error O(Δs⁴), about 1e-7 of the spacing for curves bent to the radius of a piece.

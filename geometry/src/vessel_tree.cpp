@@ -111,34 +111,36 @@ bool VesselTree::branchField(int b, const Vec3& x, double cull, bool capped, dou
 }
 
 VesselTree::Sample VesselTree::sample(const Vec3& x, double reach, bool capped) const {
-  // Branches below −(reach + blend) cannot change the smooth maximum where it is above −reach.
+  // The smooth maximum of the largest two branch fields (header): symmetric in the branches, at
+  // most k/4 above the plain maximum, and exact to cull — a branch below −(reach + k) is more than
+  // k below any field above −reach, so it is neither of the largest two where φ > −reach matters,
+  // or, if it is the second, more than k below the first and adds no bump.
   const double cull = std::max(reach, 0.0) + blend_;
+  double first = -std::numeric_limits<double>::infinity(), second = first;
+  Vec3 first_gradient = Vec3::Zero(), second_gradient = Vec3::Zero();
   Sample out;
-  bool any = false;
-  double best = -std::numeric_limits<double>::infinity();
   for (int b = 0; b < branchCount(); ++b) {
     double v;
     Vec3 g;
     if (!branchField(b, x, cull, capped, v, g) || v < -cull) continue;
-    if (!any) {
-      out.value = v;
-      out.gradient = g;
-      any = true;
-    } else {
-      double w;
-      out.value = smoothMax(out.value, v, blend_, w);
-      out.gradient = w * out.gradient + (1.0 - w) * g;
-    }
-    if (v > best) {
-      best = v;
+    if (v > first) {
+      second = first;
+      second_gradient = first_gradient;
+      first = v;
+      first_gradient = g;
       out.branch = b;
+    } else if (v > second) {
+      second = v;
+      second_gradient = g;
     }
   }
-  if (!any) {
+  if (out.branch < 0) {
     out.value = -cull;
-    out.gradient.setZero();
-    out.branch = -1;
+    return out;
   }
+  double w = 1.0;
+  out.value = second > -std::numeric_limits<double>::infinity() ? smoothMax(first, second, blend_, w) : first;
+  out.gradient = w * first_gradient + (1.0 - w) * second_gradient;
   return out;
 }
 

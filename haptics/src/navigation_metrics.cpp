@@ -52,11 +52,13 @@ std::unique_ptr<NavigationMetrics> NavigationMetrics::fromScene(const nlohmann::
     }
   }
   if (names.empty()) p.fail("instruments", "the instruments to score: \"instruments\": [node paths] or \"instrument\"");
-  for (const std::string& name : names) {
-    Node* node = nodeAt(scene, p, p.has("instruments") ? "instruments" : "instrument", name);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string& name = names[i];
+    const std::string key = i == 0 && p.has("instrument") ? "instrument" : "instruments";
+    Node* node = nodeAt(scene, p, key, name);
     const MechanicalState* body = node->mechanicalState();
     if (!body || !body->curve())
-      p.fail(p.has("instruments") ? "instruments" : "instrument", "instruments that are curve bodies (a rod, a spline)",
+      p.fail(key, "instruments that are curve bodies (a rod, a spline)",
              "\"" + name + "\" (no curve body)");
     Instrument m;
     m.name = name;
@@ -71,6 +73,9 @@ std::unique_ptr<NavigationMetrics> NavigationMetrics::fromScene(const nlohmann::
   if (const auto* pipeline = dynamic_cast<const collision::ContactPipeline*>(scene.collisionPipeline()))
     for (std::size_t o = 0; o < pipeline->obstacles().size(); ++o)
       if (pipeline->obstacles()[o] == metrics->lumen_) metrics->lumen_index_ = static_cast<int>(o);
+  if (metrics->lumen_index_ < 0)
+    p.fail("vessels", "a lumen the scene's ContactPipeline touches (the wall force is measured on its contacts)",
+           "\"" + p.string("vessels") + "\" without a \"collision\": {\"type\": \"ContactPipeline\"} block");
   if (p.has("target")) metrics->target_ = p.vec3("target");
   if (p.has("target_branch")) {
     const std::string branch = p.string("target_branch");
@@ -153,10 +158,12 @@ void NavigationMetrics::writeRow(double t) {
   if (!csv_.is_open() || csv_failed_) return;
   csv_ << t;
   const geometry::VesselTree& tree = lumen_->tree();
-  for (const Instrument& m : instruments_)
+  static const std::string outside = "outside";
+  for (const Instrument& m : instruments_) {
+    const std::string& branch = m.branch >= 0 ? tree.branch(m.branch).name : outside;  // no copy in a step
     csv_ << ',' << m.inserted << ',' << m.roll << ',' << m.tip.x() << ',' << m.tip.y() << ',' << m.tip.z() << ','
-         << (m.branch >= 0 ? tree.branch(m.branch).name : std::string("outside")) << ',' << m.target_distance << ','
-         << m.wall_force << ',' << m.max_contact_force;
+         << branch << ',' << m.target_distance << ',' << m.wall_force << ',' << m.max_contact_force;
+  }
   csv_ << '\n';
   if (!csv_) csv_failed_ = true;
 }

@@ -8,6 +8,7 @@
 #include "support/finite_difference.hpp"
 #include "filum/collision/sphere_collision_model.hpp"
 #include "filum/geometry/arc_length.hpp"
+#include "filum/geometry/spline_basis_factory.hpp"
 #include "filum/geometry/uniform_cubic_bspline.hpp"
 
 namespace filum::collision {
@@ -41,6 +42,27 @@ TEST(SphereSamplingMapping, SpheresAreEquallySpacedAlongTheCurveAndFollowItsStre
   mapping.resample(1.5 * q);
   EXPECT_NEAR(mapping.outputCount() - 1, 1.5 * (before - 1), 1.0);
   EXPECT_LE(mapping.spacing(), h);
+}
+
+TEST(SphereSamplingMapping, APolylinesVerticesAreCentres) {
+  // A rod's centre line: degree 1 through 11 equally spaced vertices on a zigzag (pieces of equal
+  // length). K − 1 is a multiple of the 10 pieces, so every vertex is a centre, exactly where the
+  // arc length puts it: abscissa i/10 to the table's interpolation error (1e-7 of a piece).
+  geometry::SplineBasisSpec spec;
+  spec.name = "nubs";
+  spec.degree = 1;
+  spec.control_points = 11;
+  const auto basis = geometry::makeSplineBasis(spec);
+  Points q(11, 3);
+  for (int i = 0; i < 11; ++i) q.row(i) << 3e-3 * i, (i % 2) * 1e-3, 0.0;
+  const double h = 1e-3;  // each piece is √10 mm long: 4 centres a piece
+  SphereSamplingMapping mapping(*basis, h);
+  mapping.resample(q);
+  ASSERT_EQ((mapping.outputCount() - 1) % 10, 0);
+  EXPECT_EQ(mapping.outputCount(), 10 * 4 + 1);
+  EXPECT_LE(mapping.spacing(), h);
+  const int per_piece = (mapping.outputCount() - 1) / 10;
+  for (int i = 0; i <= 10; ++i) EXPECT_NEAR(mapping.abscissas()[i * per_piece], i / 10.0, 1e-7) << "vertex " << i;
 }
 
 TEST(SphereSamplingMapping, JacobianIsTheBasisValuesAndApplyJTItsTranspose) {

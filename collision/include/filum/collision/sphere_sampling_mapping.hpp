@@ -3,8 +3,8 @@
 // along the curve spline"; talk 002: "dynamic distribution (curvilinear distance)").
 //
 // resample(q) places the centres at the abscissas s_k with L(s_k) = k L / (K − 1), L the arc
-// length of the current curve, and K = ⌈L / h⌉ + 1 for the
-// target spacing h: as the thread stretches, spheres are added so that the spacing never exceeds
+// length of the current curve, and K = ⌈L / h⌉ + 1 for the target spacing h (for a polyline, a
+// rod's centre line, K − 1 is a multiple of its pieces, so that its vertices are centres): as the thread stretches, spheres are added so that the spacing never exceeds
 // h (and neighbouring spheres of radius r >= h keep overlapping — no gaps a thread could slip
 // through). Between two resamplings the abscissas are fixed and the mapping is linear:
 //   x_k = P(s_k) = Σ_i b_i(s_k) q_i,  J = W ⊗ I₃,  W_ki = b_i(s_k),
@@ -117,11 +117,12 @@ class SphereSamplingMapping final : public Mapping {
   std::vector<int> strand_of_;          // strand of every centre
   std::vector<double> strand_spacing_;  // L_t / (K_t − 1) of every strand at the last resample
   std::vector<double> arc_of_;          // arc length from s = 0 to every centre, strands end to end
+  /// K of strand t from its current length (table_length_ filled): ⌈L / h⌉ + 1, or for a polyline
+  /// a multiple of its pieces plus one, so that the vertices of a rod laid out uniformly are
+  /// centres; a double, compared with the limit before it is cast.
+  double centresOnStrand(int t) const;
   /// Places the centres of strand t from index `first` on, at arc lengths from `base` (table
   /// lengths computed); returns K_t.
-  /// K of strand t from its current length (table_length_ filled): ⌈L / h⌉ + 1, or for a polyline
-  /// a multiple of its pieces plus one, so that the vertices of a rod laid out uniformly are centres.
-  int centresOnStrand(int t) const;
   int sampleStrand(int t, int first, double base);
 
   // Arc-length table (model data, from the basis only): abscissas, basis derivatives there and

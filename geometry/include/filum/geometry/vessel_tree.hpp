@@ -8,19 +8,23 @@
 //   t = clamp((x − p_k)·d_k / |d_k|², 0, 1),  d_k = p_{k+1} − p_k,
 //   φ_k(x) = r_k + t (r_{k+1} − r_k) − |x − p_k − t d_k|,
 // positive inside. A branch is the union of its segments, φ_b = max_k φ_k: consecutive segments
-// share their end spheres, so the wall is continuous, and smooth on the outer side of a bend
-// (C¹ on the inner side, where two cones meet at the bend angle: the centrelines are sampled
-// finely enough that it is a few degrees). An end marked open (an inlet, an outlet) is not
+// share their end spheres, so the wall is continuous, and smooth on the outer side of a bend; on
+// its inner side two cones meet in a crease (C⁰) whose normals differ by the centreline's turn
+// there (5° along the shipped arch, up to 28° at the left subclavian's waypoint). An end marked open (an inlet, an outlet) is not
 // closed by its sphere: t is not clamped there, the tube goes on straight with the end radius, so
 // that an instrument leaving the model through an outlet, or entering it through the inlet,
 // meets no wall across the opening.
-// The tree is the union of its branches joined smoothly: the branches' fields combined by the
-// polynomial smooth maximum of blend width k (a fillet at every ostium instead of a crease),
+// The tree is the union of its branches joined smoothly: the largest two branch fields at x
+// combined by the polynomial smooth maximum of blend width k (a fillet at every ostium instead of
+// a crease; taking the two largest keeps it symmetric in the branches and within k/4 of the max),
 //   smax(a, b) = max(a, b) + h² k / 4,  h = max(k − |a − b|, 0) / k,
 // ∇smax = w ∇a + (1 − w) ∇b, w = ½ + (a − b) / (2k) clamped to [0, 1]. It equals the plain
 // maximum wherever the two fields differ by more than k, so away from junctions each branch's
 // radius is exact. φ is a distance to first order near the wall (|∇φ| = 1 exactly on a cylinder,
-// √(1 + r'²) on a taper of slope r'); contact takes n = ∇φ / |∇φ| and the distance φ / |∇φ|.
+// √(1 + r'²) on a taper of slope r'; inside a fillet |∇φ| falls to about 0.7 at a right-angled
+// ostium, where φ / |∇φ| overestimates the distance by up to the fillet's k/4); contact takes
+// n = ∇φ / |∇φ| and the distance φ / |∇φ|. The capped ends of pictures cut the end segment only:
+// the sphere ending the segment before it may show beyond the cut on a short last segment.
 //
 // File (JSON, documented in docs/vessels.md):
 //   {"units": "mm", "blend": 3,
