@@ -25,19 +25,21 @@ TriangleMesh VesselLumenModel::meshWall(const geometry::VesselTree& tree, double
   return meshImplicitSurface(f, gradient, inside, bounding_radius, criteria);
 }
 
+const TriangleMesh& VesselLumenModel::mesh(int) const {
+  if (!meshed_) {
+    mesh_ = meshWall(*tree_, facet_size_, approximation_);
+    meshed_ = true;
+  }
+  return mesh_;
+}
+
 std::unique_ptr<VesselLumenModel> VesselLumenModel::fromParams(const Params& p) {
   const auto tree = collision::readVesselTree(p);
   double smallest = std::numeric_limits<double>::infinity();
   for (int b = 0; b < tree->branchCount(); ++b) smallest = std::min(smallest, tree->branch(b).radii.minCoeff());
   const double facet = p.positive("facet_size", 0.5 * smallest);
   const double approximation = p.positive("approximation", 0.1 * facet);
-  TriangleMesh mesh;
-  try {
-    mesh = meshWall(*tree, facet, approximation);
-  } catch (const std::exception& e) {
-    p.fail("facet_size", "a vessel tree CGAL can mesh", e.what());
-  }
-  auto model = std::make_unique<VesselLumenModel>(std::move(mesh));
+  auto model = std::make_unique<VesselLumenModel>(tree, facet, approximation);
   model->setMaterial(Material::fromParams(p, Material{Vec3(0.8, 0.25, 0.25), 0.35}));
   return model;
 }

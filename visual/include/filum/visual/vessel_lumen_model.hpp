@@ -1,8 +1,10 @@
 // VesselLumenModel (scene type "VesselLumenModel"): the wall of a vessel tree drawn as a
 // translucent shaded surface — the lumen the instruments move in (collision/vessel_lumen_
 // obstacle.hpp takes the same parameters). The tree's field (geometry/vessel_tree.hpp), with its
-// open ends cut flat, is meshed once at load by CGAL's surface mesher (convolution_surface_
-// mesher.hpp: meshImplicitSurface); normals are the field's.
+// open ends cut flat, is meshed by CGAL's surface mesher (convolution_surface_mesher.hpp:
+// meshImplicitSurface; normals are the field's) once, the first time its mesh is asked for — when
+// pictures or meshes are made, not when the scene is loaded, checked or stepped: meshing the aortic
+// arch takes seconds, which a run without pictures, `filum check` or a test should not pay.
 //
 // Scene parameters: "file" (the tree's JSON, relative to the scene file) or the tree inline
 // ("units", "blend", "branches"); "facet_size" (m, default half the smallest radius),
@@ -20,7 +22,9 @@ namespace filum::visual {
 
 class VesselLumenModel final : public VisualModel {
  public:
-  explicit VesselLumenModel(TriangleMesh mesh) : mesh_(std::move(mesh)) {}
+  /// The tree's wall, meshed at the first update with this facet size and approximation (m).
+  VesselLumenModel(std::shared_ptr<const geometry::VesselTree> tree, double facet_size, double approximation)
+      : tree_(std::move(tree)), facet_size_(facet_size), approximation_(approximation) {}
   static std::unique_ptr<VesselLumenModel> fromParams(const Params& p);
 
   /// The tree's wall with its open ends cut flat, meshed (facet size and approximation in metres).
@@ -29,10 +33,15 @@ class VesselLumenModel final : public VisualModel {
   std::string typeName() const override { return "VesselLumenModel"; }
   bool needsBody() const override { return false; }
   void update(const SceneState&) override {}
-  const TriangleMesh& mesh(int = 0) const override { return mesh_; }
+  /// The wall, meshed the first time it is asked for (throws std::runtime_error if CGAL cannot).
+  const TriangleMesh& mesh(int = 0) const override;
 
  private:
-  TriangleMesh mesh_;
+  std::shared_ptr<const geometry::VesselTree> tree_;
+  double facet_size_ = 0.0, approximation_ = 0.0;
+  // Meshed on demand by the drawing thread (the visual side is single-threaded).
+  mutable bool meshed_ = false;
+  mutable TriangleMesh mesh_;
 };
 
 }  // namespace filum::visual
