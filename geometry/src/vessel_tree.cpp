@@ -57,7 +57,6 @@ VesselTree::VesselTree(std::vector<Branch> branches, double blend) : branches_(s
       s.open_after = i + 2 == m && branch.open_end;
       s.centre = s.a + 0.5 * s.d;
       s.cull_radius = 0.5 * std::sqrt(length2) + std::max(branch.radii[i], branch.radii[i + 1]);
-      s.branch = b;
       segments_.push_back(s);
     }
     branch_first_.push_back(static_cast<int>(segments_.size()));

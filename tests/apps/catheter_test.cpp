@@ -88,7 +88,7 @@ TEST(CatheterScene, TurningTheHubSteersTheWireIntoTheCarotid) {
   // The hub was pushed 19.5 cm along the introducer's axis (the path's two ends) and turned by 3.61 rad.
   // The hub's rows hold its position and velocity to the path's (Ẋ in the Baumgarte term), so a
   // path at constant speed is followed without lag, to the solver's tolerance (measured 0.00 mm);
-  // asked within 0.2 mm, a tenth of a segment.
+  // asked within 0.2 mm, under a tenth of a segment (3 mm).
   EXPECT_NEAR(run.inserted, 0.195, 2e-4);
   EXPECT_DOUBLE_EQ(run.roll, 3.61);
   // The wall force was measured (the wire lies on the wall) and stayed below the scene's limit of

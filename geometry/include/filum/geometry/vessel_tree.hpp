@@ -99,7 +99,6 @@ class VesselTree {
     bool open_before, open_after;  // t not clamped below 0 / above 1
     Vec3 centre;          // midpoint (culling)
     double cull_radius;   // half length + largest radius: φ_k < −c when |x − centre| > cull_radius + c
-    int branch;
   };
   /// φ_k and ∇φ_k of one segment.
   static double segmentValue(const Segment& s, const Vec3& x, bool capped, Vec3& gradient);
