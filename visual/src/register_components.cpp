@@ -3,6 +3,7 @@
 #include "filum/visual/convolution_surface_model.hpp"
 #include "filum/visual/generalized_cylinder_model.hpp"
 #include "filum/visual/mesh_model.hpp"
+#include "filum/visual/obstacle_model.hpp"
 #include "filum/visual/sphere_model.hpp"
 #include "filum/visual/vessel_lumen_model.hpp"
 
@@ -14,6 +15,10 @@ void register_components(Factory& factory) {
               [](const Params& p) { return GeneralizedCylinderModel::fromParams(p); });
   factory.add("SphereModel", "visual spheres: fixed, on a spline, evenly along it, or at a constraint's target",
               [](const Params& p) { return SphereModel::fromParams(p); });
+  factory.add("ObstacleModel",
+              "an obstacle drawn as it is (plane patch, sphere, capsule, mesh), in the colour given; "
+              "obstacles nothing names are drawn in default colours",
+              [](const Params& p) { return ObstacleModel::fromParams(p); });
   factory.add("MeshModel", "rigid visual mesh from an .obj, .off or .ply file (organs, vessels)",
               [](const Params& p) { return MeshModel::fromParams(p); });
   if (convolutionSurfaceMeshingAvailable())

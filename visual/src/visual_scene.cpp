@@ -7,6 +7,7 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/core/curve_body.hpp"
 #include "filum/visual/generalized_cylinder_model.hpp"
+#include "filum/visual/obstacle_model.hpp"
 
 namespace filum::visual {
 
@@ -84,12 +85,34 @@ VisualScene::VisualScene(Scene& scene) : scene_(scene), layout_revision_(scene.l
     names_.push_back(safeName(body->node()->path() + "_skin"));
     defaults_.push_back(std::move(skin));
   }
+  addObstacleDefaults(scene);
   // Names must be unique (they become file names).
   std::set<std::string> seen;
   for (std::string& name : names_) {
     std::string unique = name;
     for (int k = 2; !seen.insert(unique).second; ++k) unique = name + "_" + std::to_string(k);
     name = unique;
+  }
+}
+
+void VisualScene::addObstacleDefaults(Scene& scene) {
+  std::set<const collision::Obstacle*> drawn;
+  for (const VisualModel* model : models_)
+    if (const auto* named = dynamic_cast<const ObstacleModel*>(model)) drawn.insert(named->obstacle());
+  std::vector<collision::Obstacle*> obstacles;
+  scene.root().collect(obstacles);
+  for (const collision::Obstacle* obstacle : obstacles) {
+    if (drawn.count(obstacle) || obstacle->shape().kind == collision::ObstacleShape::Kind::kNone) continue;
+    auto model = std::make_unique<ObstacleModel>(*obstacle);
+    const std::string name = obstacle->name().empty() ? obstacle->typeName() : obstacle->name();
+    model->setName(name);
+    model->setOrigin(obstacle->origin() + " (default drawing)");
+    model->setNode(obstacle->node());
+    atOrigin(*model, [&] { model->initWithoutBody(scene); });
+    models_.push_back(model.get());
+    const Node* node = obstacle->node();
+    names_.push_back(safeName((node && !node->path().empty() ? node->path() + "_" : "") + name));
+    defaults_.push_back(std::move(model));
   }
 }
 
@@ -106,7 +129,8 @@ void VisualScene::update(const SceneState& s) {
 
 bool VisualScene::bounds(Vec3& lower, Vec3& upper) const {
   bool any = false;
-  for (const VisualModel* model : models_)
+  for (const VisualModel* model : models_) {
+    if (!model->framed()) continue;
     for (int i = 0; i < model->meshCount(); ++i) {
       const TriangleMesh& mesh = model->mesh(i);
       if (mesh.vertexCount() == 0) continue;
@@ -116,6 +140,7 @@ bool VisualScene::bounds(Vec3& lower, Vec3& upper) const {
       upper = any ? Vec3(upper.cwiseMax(hi)) : hi;
       any = true;
     }
+  }
   return any;
 }
 

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "filum/core/collision_pipeline.hpp"
+#include "filum/collision/obstacle_shape.hpp"
 #include "filum/core/params.hpp"
 
 namespace filum::collision {
@@ -32,6 +33,10 @@ class Obstacle : public CollisionModel {
   /// Largest speed of the surface at the current time (m/s), for the margins of continuous
   /// detection; 0 for fixed obstacles.
   virtual double speed() const { return 0.0; }
+
+  /// What the obstacle looks like now (after the last moveTo), for the pictures; kNone: nothing
+  /// to draw from here.
+  virtual ObstacleShape shape() const { return {}; }
 
   /// Coulomb friction coefficient μ of thread contacts on this obstacle ("friction" in the scene
   /// file); nullopt: the pipeline's.

@@ -24,6 +24,13 @@ class ProbeSphere final : public Obstacle {
   void moveTo(double t) override;
   bool sample(const Vec3& x, double max_distance, SurfaceSample& out) const override;
   double speed() const override { return velocity_.norm(); }
+  ObstacleShape shape() const override {
+    ObstacleShape s;
+    s.kind = ObstacleShape::Kind::kSphere;
+    s.a = center_;
+    s.radius = radius_;
+    return s;
+  }
 
   double radius() const { return radius_; }
   const Vec3& center() const { return center_; }

@@ -20,6 +20,13 @@ class SphereObstacle final : public Obstacle {
 
   std::string typeName() const override { return "SphereObstacle"; }
   bool sample(const Vec3& x, double max_distance, SurfaceSample& out) const override;
+  ObstacleShape shape() const override {
+    ObstacleShape s;
+    s.kind = ObstacleShape::Kind::kSphere;
+    s.a = center_;
+    s.radius = radius_;
+    return s;
+  }
 
  private:
   Vec3 center_;

@@ -33,6 +33,9 @@ class VisualModel : public BodyComponent {
   /// Recomputes the meshes from state s (positions down through the model's mapping).
   virtual void update(const SceneState& s) = 0;
 
+  /// False for a model a camera should not frame (a plane's patch, sized after the bodies).
+  virtual bool framed() const { return true; }
+
   /// The meshes of the last update(); most models have one.
   virtual int meshCount() const { return 1; }
   virtual const TriangleMesh& mesh(int index = 0) const = 0;

@@ -1,7 +1,8 @@
 // VisualScene: the visual side of a loaded scene — every VisualModel of the node tree, bound to
 // its body (its node's, or the node named by "object"), plus a default skin
 // (GeneralizedCylinder with the spline's radius) for each DynamicSpline that no skin or surface
-// follows, so that every scene can be drawn and exported. update(s) maps positions down for the
+// follows, and an ObstacleModel in its kind's colours for each obstacle that no ObstacleModel names
+// (visual/obstacle_model.hpp), so that every scene can be drawn and exported whole. update(s) maps positions down for the
 // frame being drawn (not at every simulation step).
 #pragma once
 
@@ -26,7 +27,8 @@ class VisualScene {
   const std::vector<VisualModel*>& models() const { return models_; }
   /// A unique, file-name-safe name per model: "<node path>_<model name>" with '/' and spaces as '_'.
   const std::string& modelName(std::size_t i) const { return names_[i]; }
-  /// Bounds of every vertex of the last update (false if there is none).
+  /// Bounds of every vertex of the last update (false if there is none), without the models that
+  /// only show where things are bounded (a plane's patch: VisualModel::framed).
   bool bounds(Vec3& lower, Vec3& upper) const;
 
  private:
@@ -34,7 +36,10 @@ class VisualScene {
   long layout_revision_ = 0;  // the scene's layout the models are bound to (Scene::refine)
   std::vector<VisualModel*> models_;
   std::vector<std::string> names_;
-  std::vector<std::unique_ptr<VisualModel>> defaults_;  // default skins (not in the node tree)
+  /// Draws the obstacles no ObstacleModel names, in their kinds' default colours.
+  void addObstacleDefaults(Scene& scene);
+
+  std::vector<std::unique_ptr<VisualModel>> defaults_;  // default skins and obstacles (not in the node tree)
 };
 
 }  // namespace filum::visual
