@@ -1,7 +1,9 @@
 # The installed package, end to end (issue 16; ctest label `package`): installs the build tree to a
-# fresh prefix, configures examples/custom_app against it with find_package(filum) alone (no path
-# into the tree), builds it and runs it (its exit status checks the physics); then asks the package
-# for a component the build lacks and checks that find_package fails naming it.
+# fresh prefix, configures examples/custom_app and examples/custom_component against it with
+# find_package(filum) alone (no path into the tree), builds them and runs them (their exit status
+# checks the physics); custom_component also on a scene with a typo, which must end in its
+# SceneError message and exit status 2 (issue 34: the example of docs/writing-a-component.md);
+# then asks the package for a component the build lacks and checks that find_package fails naming it.
 #   cmake -DBUILD_DIR=<filum build> -DSOURCE_DIR=<filum source> -DWORK_DIR=<scratch>
 #         [-DBUILT_COMPONENT=<component built>] [-DMISSING_COMPONENT=<component built out>]
 #         -P install_and_run_example.cmake
@@ -31,6 +33,28 @@ run("configure examples/custom_app" ${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/c
 run("build examples/custom_app" ${CMAKE_COMMAND} --build ${WORK_DIR}/app)
 run("run custom_app" ${WORK_DIR}/app/custom_app)
 message(STATUS "${last_output}")
+
+# examples/custom_component, the example of docs/writing-a-component.md, on its scene file: the
+# application's AnchorSpring must carry the hanging thread's weight.
+run("configure examples/custom_component" ${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/custom_component
+    -B ${WORK_DIR}/component -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release)
+run("build examples/custom_component" ${CMAKE_COMMAND} --build ${WORK_DIR}/component)
+run("run custom_component" ${WORK_DIR}/component/custom_component
+    ${SOURCE_DIR}/examples/custom_component/thread_on_a_spring.json)
+message(STATUS "${last_output}")
+if(NOT last_output MATCHES "the springs carry the weight")
+  message(FATAL_ERROR "custom_component did not report its check:\n${last_output}")
+endif()
+# The same scene with a misspelt parameter: the SceneError's message, exit status 2, no crash.
+file(READ ${SOURCE_DIR}/examples/custom_component/thread_on_a_spring.json scene)
+string(REPLACE "\"stiffness\"" "\"stifness\"" scene "${scene}")
+file(WRITE ${WORK_DIR}/typo.json "${scene}")
+execute_process(COMMAND ${WORK_DIR}/component/custom_component ${WORK_DIR}/typo.json
+                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT status EQUAL 2 OR NOT err MATCHES "^scene error: .*typo.json: /nodes/0/components/4/stiffness \\(AnchorSpring\\): .*'stifness' a misspelling of 'stiffness'")
+  message(FATAL_ERROR "custom_component on a scene with a typo: expected its message and exit status 2, got ${status}:\n${out}\n${err}")
+endif()
+message(STATUS "custom_component on a scene with a typo: exit status 2, ${err}")
 
 # The installed tool runs a scene.
 run("installed filum check" ${prefix}/bin/filum check ${SOURCE_DIR}/apps/scenes/hanging_thread.json)
