@@ -82,7 +82,8 @@ void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double 
     stats_.spheres += m->sphereCount();
   }
   for (Obstacle* o : obstacles_) o->moveTo(s.time);
-  rememberForces();
+  if (!restored_) rememberForces();
+  restored_ = false;
   contacts_.clear();
 
   NarrowPhaseSettings narrow;
@@ -211,10 +212,39 @@ void ContactPipeline::rememberForces() {
       const Contact& c = contacts_[i];
       remembered_.push_back({c.model_a, c.model_b, c.obstacle, c.abscissa_a, c.abscissa_b, contact_force_[i]});
     }
+  sortRemembered();
+  contact_force_.clear();
+}
+
+void ContactPipeline::sortRemembered() {
   std::sort(remembered_.begin(), remembered_.end(), [](const RememberedContact& x, const RememberedContact& y) {
     return std::tie(x.model_a, x.model_b, x.obstacle, x.abscissa_a) < std::tie(y.model_a, y.model_b, y.obstacle, y.abscissa_a);
   });
+}
+
+void ContactPipeline::saveMemory(StepMemory& memory) const {
+  // What rememberForces will keep at the next beginStep, in the same order (so that the sort
+  // orders it the same way).
+  memory.contacts.clear();
+  if (contact_force_.size() != contacts_.size()) return;
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    const Contact& c = contacts_[i];
+    const Vec3& f = contact_force_[i];
+    memory.contacts.insert(memory.contacts.end(), {double(c.model_a), double(c.model_b), double(c.obstacle), c.abscissa_a,
+                                                   c.abscissa_b, f.x(), f.y(), f.z()});
+  }
+}
+
+void ContactPipeline::restoreMemory(const StepMemory& memory) {
+  remembered_.clear();
+  for (std::size_t k = 0; k + 8 <= memory.contacts.size(); k += 8) {
+    const double* m = &memory.contacts[k];
+    remembered_.push_back({static_cast<int>(m[0]), static_cast<int>(m[1]), static_cast<int>(m[2]), m[3], m[4],
+                           Vec3(m[5], m[6], m[7])});
+  }
+  sortRemembered();
   contact_force_.clear();
+  restored_ = true;
 }
 
 Vec3 ContactPipeline::rememberedForce(const Contact& c) const {

@@ -607,6 +607,26 @@ void LagrangeMultiplierSolver::warmStart(const ConstraintRows& rows) {
   for (int r = 0; r < c; ++r) last_kinds_[r] = rows.kind(r);
 }
 
+void LagrangeMultiplierSolver::saveMemory(StepMemory& memory) const {
+  memory.multipliers.assign(lambda_.data(), lambda_.data() + c_);
+  memory.row_kinds.resize(last_kinds_.size());
+  for (std::size_t r = 0; r < last_kinds_.size(); ++r) memory.row_kinds[r] = static_cast<int>(last_kinds_[r]);
+}
+
+void LagrangeMultiplierSolver::restoreMemory(const StepMemory& memory) {
+  const int c = static_cast<int>(memory.multipliers.size());
+  if (rhs_.size() < c) {  // the row-sized buffers grow together (solve)
+    rhs_.resize(2 * c);
+    diagonal_.resize(2 * c);
+    lambda_.conservativeResize(2 * c);
+  }
+  for (int r = 0; r < c; ++r) lambda_[r] = memory.multipliers[r];
+  c_ = c;
+  last_kinds_.resize(memory.row_kinds.size());
+  for (std::size_t r = 0; r < memory.row_kinds.size(); ++r)
+    last_kinds_[r] = static_cast<ConstraintRows::Kind>(memory.row_kinds[r]);
+}
+
 void LagrangeMultiplierSolver::setCompliance(const ConstraintRows& rows) {
   // R_r = ε W_rr on contact rows (ε_n on normal rows, ε_t on friction rows), 0 on equality rows.
   const int c = rows.rows();

@@ -1,5 +1,7 @@
 #include "filum/mechanics/implicit_step_solver.hpp"
 
+#include <atomic>
+
 #include <algorithm>
 #include <cmath>
 
@@ -189,12 +191,50 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
 }
 
 bool ImplicitStepSolver::assembleAt(const Scene& scene, double h, double theta, double kappa) {
+  static std::atomic<long> next_id{0};
   failure_ = matrix_.assemble(scene, eval_, -kappa * h * h, -theta * h);
   matrix_valid_ = failure_.empty();
   matrix_key_[0] = h;
   matrix_key_[1] = theta;
   matrix_key_[2] = kappa;
+  // Where it was assembled, for StepMemory (copies into storage of the layout's size: no
+  // allocation in a steady step).
+  matrix_id_ = matrix_valid_ ? ++next_id : 0;
+  linearization_time_ = eval_.time;
+  linearization_q_ = eval_.q;
+  linearization_v_ = eval_.v;
   return matrix_valid_;
+}
+
+void ImplicitStepSolver::saveMemory(StepMemory& memory) const {
+  memory.reuse_skip = reuse_skip_;
+  memory.reuse_backoff = reuse_backoff_;
+  memory.fresh_next = fresh_next_;
+  const long id = matrix_valid_ ? matrix_id_ : 0;
+  if (memory.matrix_id == id) return;  // the same matrix as at the last save: nothing to copy
+  memory.matrix_id = id;
+  memory.matrix_key[0] = matrix_key_[0];
+  memory.matrix_key[1] = matrix_key_[1];
+  memory.matrix_key[2] = matrix_key_[2];
+  memory.matrix_time = linearization_time_;
+  memory.matrix_q = linearization_q_;
+  memory.matrix_v = linearization_v_;
+}
+
+void ImplicitStepSolver::restoreMemory(const Scene& scene, const StepMemory& memory) {
+  reuse_skip_ = memory.reuse_skip;
+  reuse_backoff_ = memory.reuse_backoff;
+  fresh_next_ = memory.fresh_next;
+  if (memory.matrix_id == 0) {
+    matrix_valid_ = false;
+    return;
+  }
+  if (matrix_valid_ && matrix_id_ == memory.matrix_id && matrix_.laidOutFor(scene)) return;  // held already
+  eval_.time = memory.matrix_time;
+  eval_.q = memory.matrix_q;
+  eval_.v = memory.matrix_v;
+  if (assembleAt(scene, memory.matrix_key[0], memory.matrix_key[1], memory.matrix_key[2]))
+    matrix_id_ = memory.matrix_id;  // the same matrix, bit for bit
 }
 
 bool ImplicitStepSolver::inContact(const Scene& scene) {

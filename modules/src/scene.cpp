@@ -532,6 +532,7 @@ StepReport Scene::endStep(StepReport report) {
   }
   ++step_count_;
   state_.time = static_cast<double>(++state_.steps) * settings_.dt;
+  saveMemory();
   return report;
 }
 
@@ -629,6 +630,7 @@ void Scene::relayout(const CurveBody& body, const SparseMatrix& A) {
   // the body changed its points (a layout change may allocate).
   const SceneState old = state_;
   const int old_extras = 3 * point_count_;
+  state_.memory.matrix_id = 0;  // a step matrix of the old layout is no use (the integrator assembles anew)
   std::vector<int> old_offsets, old_internal_q, old_internal_v;
   for (const MechanicalState* b : bodies_) {
     old_offsets.push_back(b->offset());
@@ -673,9 +675,24 @@ void Scene::setState(const SceneState& s) {
     throw SceneError(settings_.source, "a state of " + std::to_string(state_.q.size()) +
                                            " coordinates (the scene's current layout)",
                      std::to_string(s.q.size()) + " (a state saved before the points changed?)");
+  if (s.memory.matrix_id != 0 &&
+      (s.memory.matrix_q.size() != s.q.size() || s.memory.matrix_v.size() != s.v.size()))
+    throw SceneError(settings_.source, "a state whose step memory has the state's layout",
+                     "a kept step matrix of another layout (a state put together by hand?)");
   state_ = s;
   // Releases are a function of the state: restoring a state before a cut restores the rows.
   for (Constraint* c : constraints_) c->updateRelease(state_);
+  // What the next step reads beyond q and v (StepMemory): the run from here is the one that first
+  // left this state, bit for bit.
+  if (collision_) collision_->restoreMemory(state_.memory);
+  if (constraint_solver_) constraint_solver_->restoreMemory(state_.memory);
+  integrator_->restoreMemory(*this, state_.memory);
+}
+
+void Scene::saveMemory() {
+  if (collision_) collision_->saveMemory(state_.memory);
+  if (constraint_solver_) constraint_solver_->saveMemory(state_.memory);
+  integrator_->saveMemory(state_.memory);
 }
 
 }  // namespace filum

@@ -84,8 +84,10 @@ constraints::TargetConstraint& targetConstraint(const PythonScene& owner, const 
 void steer(PythonScene& owner, const std::string& name, const Vec3& position, const Vec3& velocity) {
   if (!position.allFinite() || !velocity.allFinite())
     throw py::value_error("steer('" + name + "'): expected finite position and velocity");
-  if (!targetConstraint(owner, name).target().steer(position, velocity, owner.scene().state().time))
-    throw py::value_error("steer('" + name + "'): its target is a point of another body, it moves with that body");
+  targetConstraint(owner, name);  // KeyError listing the point constraints
+  for (Constraint* c : owner.scene().constraints())
+    if (c->name() == name && dynamic_cast<constraints::TargetConstraint*>(c))
+      return constraints::steerTarget(*c, owner.scene().state(), position, velocity);  // SceneError if released
 }
 
 /// Warns (RuntimeWarning) when the steps it watched changed the scene's point layout (a scheduled
@@ -193,7 +195,8 @@ void bindScene(py::module_& m) {
           py::arg("constraint"), py::arg("position"), py::arg("velocity") = py::none(),
            "moves the target of a point constraint (a grip, a needle hole: its \"name\") between steps:\n"
            "from now on X(t) = position + velocity (t - now), m and m/s, until steered again. The\n"
-           "constraint pulls its point there (Baumgarte stabilization); not part of state()")
+           "constraint pulls its point there (Baumgarte stabilization); not part of state(). A constraint\n"
+           "that has let its point go (\"release_at\", a cut) is refused (SceneError)")
       .def(
           "target",
           [](const PythonScene& s, const std::string& name) {

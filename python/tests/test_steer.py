@@ -42,3 +42,14 @@ def test_steering_names_the_constraints():
         scene.steer("needle", [0, 0, 0])
     with pytest.raises(ValueError, match="finite"):
         scene.steer("grip", [0, 0, float("nan")])
+
+
+def test_steering_a_grip_that_has_let_go_is_refused():
+    # A grip that opens at 0.01 s holds nothing afterwards: steering it would report a target no
+    # point follows. Refused with the constraint's name and why; before the release it is accepted.
+    scene = filum.load_dict(free_thread(extra=[{"type": "FixedPointConstraint", "name": "grip", "abscissa": 1.0,
+                                                "release_at": 0.01}]))
+    scene.steer("grip", scene.target("grip"))
+    scene.run(0.02)
+    with pytest.raises(filum.SceneError, match=r"'grip'.*release_at"):
+        scene.steer("grip", [0.2, 0.0, 0.0])

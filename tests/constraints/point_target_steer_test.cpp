@@ -2,6 +2,8 @@
 // between steps — a tool driven by a script, a device or Python's Scene.steer.
 #include <gtest/gtest.h>
 
+#include "filum/core/scene_error.hpp"
+
 #include <iostream>
 
 #include "filum/constraints/point_target.hpp"
@@ -57,6 +59,32 @@ TEST(PointTargetSteer, AHeldEndFollowsItsSteeredTarget) {
   std::cout << "  steered grip: |P(0) - X(t)| = " << error << " m after 5 mm of travel\n";
   EXPECT_LE(error, 1e-14);
   EXPECT_NEAR(expected.y() - start.y(), 0.005, 1e-12);
+}
+
+TEST(PointTargetSteer, AConstraintThatHasLetGoIsNotSteered) {
+  // A grip that opens at 0.05 s holds nothing afterwards: steering it would move a target no
+  // point follows. Accepted before the release, refused after it with the constraint's name and
+  // the reason; the same for a constraint switched off.
+  test::ThreadSceneOptions o;
+  auto scene = test::loadThreadScene(o);
+  Constraint& grip = *scene->constraints().front();
+  grip.setReleaseTime(0.05);
+  auto& target = dynamic_cast<constraints::TargetConstraint&>(grip).target();
+  const Vec3 start = target.position(scene->state());
+  EXPECT_NO_THROW(constraints::steerTarget(grip, scene->state(), start, Vec3::Zero()));
+  while (scene->state().time < 0.06) ASSERT_TRUE(scene->step().ok);
+  try {
+    constraints::steerTarget(grip, scene->state(), start + Vec3(0.0, 0.01, 0.0), Vec3::Zero());
+    FAIL() << "steering a released grip was accepted";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(grip.describe()), std::string::npos) << what;
+    EXPECT_NE(what.find("release_at"), std::string::npos) << what;
+  }
+  EXPECT_EQ(target.position(scene->state()), start);  // the refused steer changed nothing
+  grip.setReleaseTime(std::nullopt);
+  grip.setActive(false);
+  EXPECT_THROW(constraints::steerTarget(grip, scene->state(), start, Vec3::Zero()), SceneError);
 }
 
 }  // namespace

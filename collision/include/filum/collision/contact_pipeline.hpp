@@ -103,6 +103,9 @@ class ContactPipeline final : public CollisionPipeline {
   void takeMultipliers(Eigen::Ref<const VecX> lambda, int first) override;
   bool addsContactRows() const override { return settings_.response == Response::kUnilateral; }
   ConstraintSolver* defaultConstraintSolver() override { return &default_solver_; }
+  /// The last contacts with their forces (the next detection's warm start), 8 numbers each.
+  void saveMemory(StepMemory& memory) const override;
+  void restoreMemory(const StepMemory& memory) override;
   /// Unilateral response: the centre lines of the step's start (the spheres of beginStep) and of
   /// `after` (the same material points), chords moving linearly in between, tested pair by pair
   /// for a meeting (segment_continuous_collision.hpp) after a swept broad phase: kPassThrough.
@@ -165,6 +168,9 @@ class ContactPipeline final : public CollisionPipeline {
   std::vector<RememberedContact> remembered_;
   /// Moves the last solve's contact forces into remembered_ (before a new detection).
   void rememberForces();
+  /// remembered_ in the order rememberedForce searches.
+  void sortRemembered();
+  bool restored_ = false;  // remembered_ was restored (restoreMemory): the next beginStep keeps it
   /// The remembered force of the same contact in the last solve, or zero.
   Vec3 rememberedForce(const Contact& c) const;
   constraints::LagrangeMultiplierSolver default_solver_;

@@ -154,6 +154,9 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
 
   /// Multipliers of the last solve (N for a fixed point: the force holding it).
   Eigen::Ref<const VecX> multipliers() const override { return lambda_.head(c_); }
+  /// λ of the last call and its rows' kinds: the warm start of the next call (warmStart).
+  void saveMemory(StepMemory& memory) const override;
+  void restoreMemory(const StepMemory& memory) override;
   const Statistics& statistics() const { return stats_; }
   const Options& options() const { return options_; }
 

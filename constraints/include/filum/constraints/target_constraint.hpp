@@ -5,6 +5,7 @@
 #pragma once
 
 #include "filum/constraints/point_target.hpp"
+#include "filum/core/constraint.hpp"
 
 namespace filum::constraints {
 
@@ -15,5 +16,11 @@ class TargetConstraint {
   /// Changing the target changes what the constraint's rows hold from the next step on.
   virtual PointTarget& target() = 0;
 };
+
+/// Steers the target of `constraint` (a TargetConstraint) from state `now` on: X(t) = position +
+/// velocity (t − now.time). Throws SceneError naming the constraint when it is not one that holds
+/// its point to a target, when it holds nothing any more (released by its "release_at", by a cut,
+/// or switched off) or when its target is a point of another body, which moves with that body.
+void steerTarget(Constraint& constraint, const SceneState& now, const Vec3& position, const Vec3& velocity);
 
 }  // namespace filum::constraints

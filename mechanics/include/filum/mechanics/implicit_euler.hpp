@@ -23,6 +23,8 @@ class ImplicitEuler final : public Integrator {
   }
   std::string typeName() const override { return "ImplicitEuler"; }
   void step(Scene& scene, SceneState& s, double dt) override;
+  void saveMemory(StepMemory& memory) const override { solver_.saveMemory(memory); }
+  void restoreMemory(const Scene& scene, const StepMemory& memory) override { solver_.restoreMemory(scene, memory); }
   int order() const override { return 1; }
   bool needsJacobians() const override { return true; }
 

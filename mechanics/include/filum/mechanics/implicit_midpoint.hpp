@@ -29,6 +29,8 @@ class ImplicitMidpoint final : public Integrator {
   }
   std::string typeName() const override { return "ImplicitMidpoint"; }
   void step(Scene& scene, SceneState& s, double dt) override;
+  void saveMemory(StepMemory& memory) const override { solver_.saveMemory(memory); }
+  void restoreMemory(const Scene& scene, const StepMemory& memory) override { solver_.restoreMemory(scene, memory); }
   int order() const override { return 2; }
   bool needsJacobians() const override { return true; }
   /// A rod's frames (internal DOFs): their shear modes (ω ~ 1e5–1e6 rad/s) are stiff, and the

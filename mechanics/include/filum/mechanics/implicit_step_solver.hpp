@@ -169,6 +169,12 @@ class ImplicitStepSolver {
   const std::string& lastFailure() const { return failure_; }
   const StepMatrix& matrix() const { return matrix_; }
 
+  /// The kept factorization (its id, key and linearization point) and the reuse schedule into
+  /// `memory`; restoreMemory puts them back, assembling the kept matrix again at its point when it
+  /// is not the one held (the same bits: assembly is a function of that state).
+  void saveMemory(StepMemory& memory) const;
+  void restoreMemory(const Scene& scene, const StepMemory& memory);
+
  private:
   bool advance(Scene& scene, SceneState& s, double h, double theta, double kappa, double position_factor,
                int depth);
@@ -220,6 +226,9 @@ class ImplicitStepSolver {
   /// Assembles and factors A at eval_ for (h, θ, κ); remembers them for reuse.
   bool assembleAt(const Scene& scene, double h, double theta, double kappa);
   bool matrix_valid_ = false;        // matrix_ holds a factorization for matrix_key_
+  long matrix_id_ = 0;               // unique in the process per assembly (StepMemory::matrix_id)
+  double linearization_time_ = 0.0;  // the state matrix_ was assembled at (eval_ then)
+  VecX linearization_q_, linearization_v_;
   double matrix_key_[3] = {0, 0, 0};  // h, θ, κ of that factorization
 };
 

@@ -89,6 +89,10 @@ class CollisionPipeline : public Component {
   /// allow pass-through (penalties) return kNone.
   virtual Miss missedContact(const SceneState& /*after*/) { return Miss::kNone; }
   virtual ConstraintSolver* defaultConstraintSolver() { return nullptr; }
+  /// Writes what the next detection starts from (the last contacts and forces) into `memory`
+  /// (Scene::endStep), and takes it back (Scene::setState): see StepMemory.
+  virtual void saveMemory(StepMemory& /*memory*/) const {}
+  virtual void restoreMemory(const StepMemory& /*memory*/) {}
 };
 
 }  // namespace filum

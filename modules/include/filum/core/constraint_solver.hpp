@@ -39,6 +39,10 @@ class ConstraintSolver : public Component {
   virtual void solve(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a) = 0;
   /// λ of the last solve, one per row (N for a point row; contact rows report their force).
   virtual Eigen::Ref<const VecX> multipliers() const = 0;
+  /// Writes its warm start for the next call into `memory` (Scene::endStep), and takes it back
+  /// (Scene::setState): see StepMemory.
+  virtual void saveMemory(StepMemory& /*memory*/) const {}
+  virtual void restoreMemory(const StepMemory& /*memory*/) {}
   /// Contact solves since construction or the last resetContactTally().
   const ContactSolveTally& contactTally() const { return tally_; }
   void resetContactTally() { tally_ = ContactSolveTally(); }

@@ -24,6 +24,10 @@ class Integrator : public Component {
   /// Why this scheme does not step bodies with internal DOFs (the scene refuses them at init),
   /// or "" when it does.
   virtual std::string internalDofsRefusal() const { return ""; }
+  /// Writes what the next step depends on beyond q and v (a kept factorization, the reuse
+  /// schedule) into `memory` (Scene::endStep), and takes it back (Scene::setState).
+  virtual void saveMemory(StepMemory& /*memory*/) const {}
+  virtual void restoreMemory(const Scene& /*scene*/, const StepMemory& /*memory*/) {}
 };
 
 }  // namespace filum

@@ -122,7 +122,9 @@ class Scene {
   VecX constraintViolation(const SceneState& s) const;
 
   const SceneState& state() const { return state_; }
-  /// Replaces the state (e.g. restores a saved one); scheduled releases follow its time.
+  /// Replaces the state (e.g. restores a saved one); scheduled releases follow its time, and the
+  /// components take back the step memory it carries (SceneState::memory), so that the run from
+  /// a restored state repeats bit for bit the run that first left it.
   void setState(const SceneState& s);
   long stepCount() const { return step_count_; }
 
@@ -236,6 +238,8 @@ class Scene {
   /// releases of constraints) and keeps the last good state. A layout change that fails is the
   /// step's fault (reported, nothing advanced).
   void beginStep();
+  /// The components' step memory into state_.memory (after a step that succeeded).
+  void saveMemory();
   /// Control points scheduled for insertion, and cuts (CurveBody::layoutChangeDue), at this step.
   void applyScheduledLayoutChanges();
   /// Bodies whose tension exceeds their strength (ForceField::tearsAt) cut where it does.

@@ -18,15 +18,43 @@
 // internal DOFs.
 #pragma once
 
+#include <vector>
+
 #include "filum/core/types.hpp"
 
 namespace filum {
+
+/// What the next step reads beyond q and v: the linearization point of a step matrix an implicit
+/// integrator keeps factored and when it reuses it, the constraint solver's last multipliers (its
+/// warm start) and the collision pipeline's last contact forces (the next detection's warm start).
+/// The step leaves it in the state (Scene::endStep) and Scene::setState hands it back, so that a
+/// restored state reruns bit for bit what followed it the first time. The components fill and
+/// read it (Integrator, ConstraintSolver, CollisionPipeline: saveMemory, restoreMemory); empty
+/// (the default) means a fresh start, as after Scene::init.
+struct StepMemory {
+  // Integrator: a kept factorization (an id unique in the process, so that restoring the matrix
+  // the integrator holds costs nothing), its (h, θ, κ), the state it was assembled at, and the
+  // reuse schedule.
+  long matrix_id = 0;  // 0: none kept
+  double matrix_key[3] = {0.0, 0.0, 0.0};
+  double matrix_time = 0.0;
+  VecX matrix_q, matrix_v;
+  int reuse_skip = 0, reuse_backoff = 0;
+  bool fresh_next = false;
+  // Constraint solver: λ of its last call and the kinds of those rows.
+  std::vector<double> multipliers;
+  std::vector<int> row_kinds;
+  // Collision pipeline: its last contacts with their forces, packed by the pipeline.
+  std::vector<double> contacts;
+};
+
 
 struct SceneState {
   double time = 0.0;  // simulated time (s), steps × dt: no running-sum round-off
   long steps = 0;     // steps taken since t = 0
   VecX q;             // positions: 3N point coordinates x0 y0 z0 x1 ..., E extra DOFs, internal DOFs
   VecX v;             // velocities: the same up to the internal DOFs (m/s for points)
+  StepMemory memory;  // what the next step reads beyond q and v (above)
 
   bool allFinite() const { return std::isfinite(time) && q.allFinite() && v.allFinite(); }
 };
