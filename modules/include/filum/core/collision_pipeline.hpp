@@ -21,9 +21,9 @@
 //                                        another, or overlap it deeply, or slide along it further
 //                                        than the step's rows follow? If so the scene halves the step.
 // The contact set is a function of the step's start state only (no history). The contact solve
-// starts from the last step's forces (warm start), so a saved and restored SceneState continues
-// with the same contacts and to within the sweeps' tolerance, not bit for bit; a rerun from the
-// scene's start is bit-identical.
+// starts from the last step's forces (warm start): the pipeline keeps them in the state's step
+// memory (saveMemory, restoreMemory; scene_state.hpp), so a saved and restored SceneState
+// continues bit for bit as the run that first left it.
 #pragma once
 
 #include "filum/core/block_inverse.hpp"
