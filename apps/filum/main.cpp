@@ -8,6 +8,7 @@
 
 #include "filum/all_components.hpp"
 #include "filum/check_command.hpp"
+#include "filum/list_command.hpp"
 #include "filum/run_command.hpp"
 #include "filum/view_command.hpp"
 
@@ -66,7 +67,9 @@ int main(int argc, char** argv) {
       ->required();
   check_cmd->footer("Exit status: 0 all good, 2 some scene refused.");
 
-  CLI::App* list_cmd = app.add_subcommand("list", "list the component types this build knows");
+  std::string list_type;
+  CLI::App* list_cmd = app.add_subcommand("list", "list the component types this build knows, or one type's parameters");
+  list_cmd->add_option("type", list_type, "a component type: its parameters, required or with their defaults, and their checks");
 
   CLI11_PARSE(app, argc, argv);
 
@@ -86,7 +89,8 @@ int main(int argc, char** argv) {
   }
   if (*list_cmd) {
     const filum::Factory factory = filum::app::makeFactory();
-    for (const auto& type : factory.typeNames()) std::cout << type << "\t" << factory.summary(type) << '\n';
+    if (list_type.empty()) return filum::app::listTypes(factory, std::cout);
+    return filum::app::listParameters(factory, list_type, std::cout, std::cerr);
   }
   return 0;
 }

@@ -75,12 +75,65 @@ std::string describeJson(const json& value) {
   }
 }
 
+namespace {
+thread_local ParameterRecorder* active_recorder = nullptr;
+
+std::string numberText(double d) {
+  std::ostringstream text;
+  text << d;
+  return text.str();
+}
+std::string vec3Text(const Vec3& v) { return "[" + numberText(v.x()) + ", " + numberText(v.y()) + ", " + numberText(v.z()) + "]"; }
+}  // namespace
+
+// `count` distinct points along x, 1 cm apart (a placeholder polyline).
+static json placeholderPoints(int count) {
+  json points = json::array();
+  for (int i = 0; i < std::max(count, 8); ++i) points.push_back({0.01 * i, 0.0, 0.0});
+  return points;
+}
+
+// Recording, and the key is not in the object: an accessor with a default returns the default
+// (valid by construction), one without returns a placeholder.
+static bool absentWhileRecording(const json& obj, const std::string& key) {
+  return active_recorder && !(obj.is_object() && obj.contains(key));
+}
+
+ParameterRecorder::ParameterRecorder() : outer_(active_recorder) { active_recorder = this; }
+ParameterRecorder::~ParameterRecorder() { active_recorder = outer_; }
+
+void Params::record(const std::string& key, const std::string& expected, const std::string& fallback) const {
+  if (!active_recorder) return;
+  // The key as a path below the component's object ("outer/key" for a nested one): the recorded
+  // component's own Params has the empty path (ParameterRecorder's use).
+  const std::string full = path_.empty() ? key : path_.substr(1) + "/" + key;
+  auto& reads = active_recorder->reads_;
+  for (ParameterRead& r : reads)
+    if (r.key == full) {
+      if (r.expected.empty()) r.expected = expected;  // first asked by has(): optional, now typed
+      return;
+    }
+  // expected "" : only has() asked (an optional parameter whose reader runs when it is given).
+  reads.push_back({full, expected, expected.empty() ? "optional" : fallback, !expected.empty() && fallback.empty()});
+}
+
+const json& Params::require(const std::string& key, const json& placeholder) const {
+  if (active_recorder && !(obj_.is_object() && obj_.contains(key))) {
+    known_.insert(key);
+    return active_recorder->placeholders_.emplace_back(placeholder);
+  }
+  return require(key);
+}
+
 Params::Params(const json& obj, std::string file, std::string path, std::string owner)
     : obj_(obj), file_(std::move(file)), path_(std::move(path)), owner_(std::move(owner)) {}
 
 bool Params::has(const std::string& key) const {
   known_.insert(key);
-  return obj_.is_object() && obj_.contains(key);
+  record(key, "", "");
+  // Recording, every parameter is "given" (as a placeholder): the reads it guards run and say
+  // what the parameter must be.
+  return active_recorder || (obj_.is_object() && obj_.contains(key));
 }
 
 std::string Params::pointer(const std::string& key) const {
@@ -93,7 +146,8 @@ std::string Params::where(const std::string& key) const {
 }
 
 void Params::fail(const std::string& key, const std::string& expected) const {
-  if (has(key)) fail(key, expected, describeJson(obj_.at(key)));
+  if (obj_.is_object() && obj_.contains(key)) fail(key, expected, describeJson(obj_.at(key)));
+  if (active_recorder) fail(key, expected, "the placeholder of `filum list`");
   fail(key, expected, missing(key));
 }
 
@@ -117,12 +171,14 @@ std::string Params::missing(const std::string& key) const {
 }
 
 const json& Params::require(const std::string& key) const {
+  if (active_recorder && !(obj_.is_object() && obj_.contains(key))) return require(key, json());
   if (!has(key)) fail(key, "parameter '" + key + "'", missing(key));
   return obj_.at(key);
 }
 
 double Params::number(const std::string& key) const {
-  const json& value = require(key);
+  record(key, "a number", "");
+  const json& value = require(key, 1.0);
   if (!value.is_number()) fail(key, "a number");
   const double d = value.get<double>();
   if (!std::isfinite(d)) fail(key, "a finite number");
@@ -130,27 +186,33 @@ double Params::number(const std::string& key) const {
 }
 
 double Params::number(const std::string& key, double fallback) const {
-  return has(key) ? number(key) : fallback;
+  record(key, "a number", numberText(fallback));
+  return has(key) && !absentWhileRecording(obj_, key) ? number(key) : fallback;
 }
 
 double Params::positive(const std::string& key) const {
+  record(key, "a number > 0", "");
   const double d = number(key);
   if (!(d > 0.0)) fail(key, "a positive number");
   return d;
 }
 
 double Params::positive(const std::string& key, double fallback) const {
-  return has(key) ? positive(key) : fallback;
+  record(key, "a number > 0", numberText(fallback));
+  return has(key) && !absentWhileRecording(obj_, key) ? positive(key) : fallback;
 }
 
 double Params::nonNegative(const std::string& key, double fallback) const {
-  if (!has(key)) return fallback;
+  record(key, "a number >= 0", numberText(fallback));
+  if (!has(key) || absentWhileRecording(obj_, key)) return fallback;
   const double d = number(key);
   if (d < 0.0) fail(key, "a number >= 0");
   return d;
 }
 
 double Params::abscissa(const std::string& key) const {
+  record(key, "a curve abscissa in [0, 1]", "");
+  if (active_recorder && !(obj_.is_object() && obj_.contains(key))) return 0.5;
   const double d = number(key);
   if (d < 0.0 || d > 1.0) fail(key, "a curve abscissa in [0, 1]");
   return d;
@@ -162,8 +224,10 @@ int Params::integer(const std::string& key, int minimum) const {
 }
 
 int Params::integer(const std::string& key, int minimum, int maximum, const std::string& why) const {
-  const json& value = require(key);
   const std::string range = "an integer >= " + std::to_string(minimum);
+  record(key, maximum < 100000000 ? range + " and <= " + std::to_string(maximum) : range, "");
+  // A placeholder count: small, allowed (4 points make a cubic spline).
+  const json& value = require(key, std::clamp(4, minimum, maximum));
   if (!value.is_number_integer()) fail(key, range);
   // Unsigned values beyond 2^63 (18446744073709551615) are out of range, not negative.
   const bool huge = value.is_number_unsigned() && value.get<unsigned long long>() > 9223372036854775807ull;
@@ -174,25 +238,30 @@ int Params::integer(const std::string& key, int minimum, int maximum, const std:
 }
 
 int Params::integer(const std::string& key, int minimum, int maximum, int fallback, const std::string& why) const {
-  return has(key) ? integer(key, minimum, maximum, why) : fallback;
+  record(key, "an integer >= " + std::to_string(minimum) + " and <= " + std::to_string(maximum), std::to_string(fallback));
+  return has(key) && !absentWhileRecording(obj_, key) ? integer(key, minimum, maximum, why) : fallback;
 }
 
 int Params::integer(const std::string& key, int minimum, int fallback) const {
-  return has(key) ? integer(key, minimum) : fallback;
+  record(key, "an integer >= " + std::to_string(minimum), std::to_string(fallback));
+  return has(key) && !absentWhileRecording(obj_, key) ? integer(key, minimum) : fallback;
 }
 
 std::string Params::string(const std::string& key) const {
-  const json& value = require(key);
+  record(key, "a string", "");
+  const json& value = require(key, "");
   if (!value.is_string()) fail(key, "a string");
   return value.get<std::string>();
 }
 
 std::string Params::string(const std::string& key, const std::string& fallback) const {
-  return has(key) ? string(key) : fallback;
+  record(key, "a string", "\"" + fallback + "\"");
+  return has(key) && !absentWhileRecording(obj_, key) ? string(key) : fallback;
 }
 
 bool Params::boolean(const std::string& key, bool fallback) const {
-  if (!has(key)) return fallback;
+  record(key, "true or false", fallback ? "true" : "false");
+  if (!has(key) || absentWhileRecording(obj_, key)) return fallback;
   const json& value = require(key);
   if (!value.is_boolean()) fail(key, "true or false");
   return value.get<bool>();
@@ -214,15 +283,18 @@ Vec3 Params::toVec3(const json& value, const std::string& at, const std::string&
 }
 
 Vec3 Params::vec3(const std::string& key) const {
-  return toVec3(require(key), pointer(key), "a 3-vector [x, y, z]");
+  record(key, "[x, y, z]", "");
+  return toVec3(require(key, json::array({1.0, 0.0, 0.0})), pointer(key), "a 3-vector [x, y, z]");
 }
 
 Vec3 Params::vec3(const std::string& key, const Vec3& fallback) const {
-  return has(key) ? vec3(key) : fallback;
+  record(key, "[x, y, z]", vec3Text(fallback));
+  return has(key) && !absentWhileRecording(obj_, key) ? vec3(key) : fallback;
 }
 
 Points Params::points(const std::string& key, int minimum, int maximum, const std::string& why) const {
-  const json& value = require(key);
+  record(key, "a list of " + std::to_string(minimum) + " to " + std::to_string(maximum) + " points [x, y, z]", "");
+  const json& value = require(key, placeholderPoints(minimum));
   if (value.is_array() && value.size() > static_cast<std::size_t>(maximum))
     fail(key, "a list of at most " + std::to_string(maximum) + " points (" + why + ")",
          "a list of " + std::to_string(value.size()));
@@ -230,7 +302,8 @@ Points Params::points(const std::string& key, int minimum, int maximum, const st
 }
 
 Points Params::points(const std::string& key, int minimum) const {
-  const json& value = require(key);
+  record(key, "a list of at least " + std::to_string(minimum) + " points [x, y, z]", "");
+  const json& value = require(key, placeholderPoints(minimum));
   const std::string what = "a list of at least " + std::to_string(minimum) + " points [x, y, z]";
   if (!value.is_array() || static_cast<int>(value.size()) < minimum) fail(key, what);
   Points out(value.size(), 3);
@@ -240,13 +313,15 @@ Points Params::points(const std::string& key, int minimum) const {
 }
 
 Params Params::object(const std::string& key) const {
-  const json& value = require(key);
+  record(key, "an object", "");
+  const json& value = require(key, json::object());
   if (!value.is_object()) fail(key, "an object");
   return Params(value, file_, pointer(key), owner_);
 }
 
 std::vector<Params> Params::objects(const std::string& key) const {
-  const json& value = require(key);
+  record(key, "a list of objects", "");
+  const json& value = require(key, json::array());
   if (!value.is_array()) fail(key, "an array of objects");
   std::vector<Params> out;
   for (std::size_t i = 0; i < value.size(); ++i) {
@@ -257,7 +332,10 @@ std::vector<Params> Params::objects(const std::string& key) const {
   return out;
 }
 
-const json& Params::raw(const std::string& key) const { return require(key); }
+const json& Params::raw(const std::string& key) const {
+  record(key, "a JSON value (the component's page says which)", "");
+  return require(key);
+}
 
 void Params::finish() const {
   if (!obj_.is_object()) return;

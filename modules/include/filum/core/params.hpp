@@ -3,6 +3,7 @@
 // found. finish() refuses parameters that nobody read (typos such as "stifness").
 #pragma once
 
+#include <deque>
 #include <optional>
 #include <set>
 #include <string>
@@ -16,6 +17,35 @@ namespace filum {
 
 /// Levenshtein distance (insertions, deletions, substitutions): how far a typo is from a name.
 std::size_t editDistance(const std::string& a, const std::string& b);
+
+/// One parameter a component's fromParams asked for: its key ("outer/key" inside a nested
+/// object), what it must be (the accessor's own check: "a number > 0", "an integer >= 2 and <=
+/// 100000"), and its default as text ("" when it is required).
+struct ParameterRead {
+  std::string key, expected, fallback;
+  bool required = false;
+};
+
+/// While one is alive (in this thread), every Params records the parameters it is asked for, and
+/// a required parameter that is missing yields a harmless placeholder (a number 1, the smallest
+/// allowed count, an empty string or list) instead of an error: a component created from an
+/// empty object lists what it reads (`filum list TYPE`), from the code that reads it, so the
+/// listing cannot drift from the checks. A creator may still refuse a placeholder (a file name,
+/// an enumeration): the listing then stops there with the creator's message.
+class ParameterRecorder {
+ public:
+  ParameterRecorder();
+  ~ParameterRecorder();
+  ParameterRecorder(const ParameterRecorder&) = delete;
+  ParameterRecorder& operator=(const ParameterRecorder&) = delete;
+  const std::vector<ParameterRead>& reads() const { return reads_; }
+
+ private:
+  friend class Params;
+  std::vector<ParameterRead> reads_;
+  std::deque<nlohmann::json> placeholders_;  // stable addresses: Params return references to them
+  ParameterRecorder* outer_ = nullptr;
+};
 
 class Params {
  public:
@@ -80,6 +110,11 @@ class Params {
 
  private:
   const nlohmann::json& require(const std::string& key) const;
+  /// require(), with `placeholder` for a missing key while a ParameterRecorder records.
+  const nlohmann::json& require(const std::string& key, const nlohmann::json& placeholder) const;
+  /// Tells the active ParameterRecorder (if any) that `key` is read: what it must be and its
+  /// default ("" and required when it has none). The first read of a key wins.
+  void record(const std::string& key, const std::string& expected, const std::string& fallback) const;
   /// "nothing (the parameter is missing)", naming an unread key that looks like a misspelling.
   std::string missing(const std::string& key) const;
   /// The JSON pointer of a key of this object.
