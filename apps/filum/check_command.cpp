@@ -34,6 +34,7 @@ int checkScene(const std::string& path, std::ostream& out) {
     }
     out << path << ": ok (" << scene->bodies().size() << " bodies, " << scene->dofPointCount() << " control points, "
         << scene->constraints().size() << " constraints)\n";
+    for (const std::string& line : scaleSummary(*scene)) out << "  " << line << '\n';
     return 0;
   } catch (const SceneError& e) {
     out << "error: " << e.what() << '\n';

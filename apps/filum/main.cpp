@@ -63,7 +63,8 @@ int main(int argc, char** argv) {
 
   std::vector<std::string> check_scenes;
   CLI::App* check_cmd = app.add_subcommand("check", "load and check scene files without simulating them");
-  check_cmd->add_option("scenes", check_scenes, "scene files: one line each, \"<file>: ok (...)\" or \"error: <file>: ...\"")
+  check_cmd->add_option("scenes", check_scenes, "scene files: one line each, \"<file>: ok (...)\" or \"error: <file>: ...\"; after ok, indented: "
+                       "each body's length, radius and mass, and the stiffest mode's period against dt")
       ->required();
   check_cmd->footer("Exit status: 0 all good, 2 some scene refused.");
 

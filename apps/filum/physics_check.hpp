@@ -24,6 +24,14 @@ namespace filum::app {
 /// empty when there is none.
 std::vector<std::string> physicsProblems(const Scene& scene, const nlohmann::json& document);
 
+/// What a user needs to see a unit mistake at a glance: per curve body its length, radius and mass,
+/// then the stiffest mode's period against dt and the integrator (one line each).
+std::vector<std::string> scaleSummary(const Scene& scene);
+
+/// For a run that failed in its first steps: the likely causes (dt against the stiffest mode and the
+/// integrator's limit, units), naming `filum check` for the scales.
+std::string earlyFailureHint(const Scene& scene);
+
 /// ω_max (rad/s) of the scene at its start state: power iteration on M⁻¹(−K); 0 when the scene
 /// has no stiffness Jacobian, internal DOFs, or more than 20,000 points (not estimated).
 double stiffestFrequency(const Scene& scene);

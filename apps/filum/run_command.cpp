@@ -17,6 +17,7 @@
 #include "filum/haptics/instrument_set.hpp"
 #include "filum/haptics/navigation_metrics.hpp"
 #include "filum/output_settings.hpp"
+#include "filum/physics_check.hpp"
 #include "filum/run_output.hpp"
 #include "filum/run_visual.hpp"
 #include "filum/timing_summary.hpp"
@@ -27,6 +28,10 @@
 namespace filum::app {
 
 namespace {
+
+// A run that fails before this many steps is most likely set up wrong (dt, integrator, units):
+// the error says so (earlyFailureHint).
+constexpr long kEarlySteps = 10;
 
 using Clock = std::chrono::steady_clock;
 
@@ -213,8 +218,10 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     finishNavigation();
     if (instruments) finishInstruments(*instruments, directory, log);
     else logRuptures(*scene, log);
-    log << "error: " << message << '\n'
-        << "the " << (output_files ? output_files->frames() : 0) << " frames written so far in " << directory
+    log << "error: " << message << '\n';
+    // Rolled back to the last good state: its step count is the failed step's index.
+    if (scene->state().steps < kEarlySteps) log << earlyFailureHint(*scene) << '\n';
+    log << "the " << (output_files ? output_files->frames() : 0) << " frames written so far in " << directory
         << " are intact\n";
     if (visuals) visuals->finish(*scene);
     writeSummary(directory, summary(), log);

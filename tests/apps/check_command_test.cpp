@@ -30,6 +30,12 @@ TEST(CheckCommand, AGoodSceneIsOk) {
   const std::string out = check(test::threadScene({}), "good", status);
   EXPECT_EQ(status, 0) << out;
   EXPECT_NE(out.find(": ok ("), std::string::npos) << out;
+  // What shows a unit mistake at a glance: the body's length, radius and mass as the scene gives
+  // them (10 cm, 2.86e-6 kg; the polyline through 201 points of a straight curve is its length),
+  // and the stiffest mode against dt.
+  EXPECT_NE(out.find("length 0.1 m"), std::string::npos) << out;
+  EXPECT_NE(out.find("mass 2.86e-06 kg"), std::string::npos) << out;
+  EXPECT_NE(out.find("stiffest mode: period"), std::string::npos) << out;
 }
 
 TEST(CheckCommand, TheOutputBlockIsChecked) {

@@ -83,6 +83,11 @@ TEST(RunRobustness, AnOverflowingEnergyIsADivergenceAndNothingNonFiniteIsWritten
   std::string log;
   EXPECT_EQ(runQuietly(scene, dir / "out", 0.01, log), kRunDiverged) << log;
   EXPECT_NE(log.find(scene.string() + ": refusing to write a non-finite energy"), std::string::npos) << log;
+  // At the first step: the message points at the set-up (dt, integrator, units), not only at
+  // the output that noticed.
+  EXPECT_NE(log.find("likely cause: "), std::string::npos) << log;
+  EXPECT_NE(log.find("wrong units"), std::string::npos) << log;
+  EXPECT_NE(log.find("filum check " + scene.string()), std::string::npos) << log;
   for (const auto& entry : fs::recursive_directory_iterator(dir / "out")) {
     if (!entry.is_regular_file()) continue;
     std::ifstream in(entry.path());
