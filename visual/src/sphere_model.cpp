@@ -92,6 +92,8 @@ void SphereModel::init(const Scene& scene) {
               .equallySpacedAbscissas(options_.count);
     mapping_ = std::make_unique<SplineAxisMapping>(spline->basis(), s);
     count = mapping_->outputCount();
+  } else if (options_.placement == Placement::kConstraintTarget && options_.target) {
+    constraint_ = options_.target;
   } else if (options_.placement == Placement::kConstraintTarget) {
     for (const Constraint* c : scene.constraints())
       if (c->name() == options_.constraint) constraint_ = c;

@@ -1,5 +1,6 @@
 #include "filum/visual/visual_scene.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <iterator>
 #include <set>
@@ -8,6 +9,7 @@
 #include "filum/core/curve_body.hpp"
 #include "filum/visual/generalized_cylinder_model.hpp"
 #include "filum/visual/obstacle_model.hpp"
+#include "filum/visual/sphere_model.hpp"
 
 namespace filum::visual {
 
@@ -86,6 +88,7 @@ VisualScene::VisualScene(Scene& scene) : scene_(scene), layout_revision_(scene.l
     defaults_.push_back(std::move(skin));
   }
   addObstacleDefaults(scene);
+  addTargetMarkers(scene);
   // Names must be unique (they become file names).
   std::set<std::string> seen;
   for (std::string& name : names_) {
@@ -113,6 +116,39 @@ void VisualScene::addObstacleDefaults(Scene& scene) {
     const Node* node = obstacle->node();
     names_.push_back(safeName((node && !node->path().empty() ? node->path() + "_" : "") + name));
     defaults_.push_back(std::move(model));
+  }
+}
+
+void VisualScene::addTargetMarkers(Scene& scene) {
+  std::set<const Constraint*> marked;
+  for (const VisualModel* model : models_)
+    if (const auto* spheres = dynamic_cast<const SphereModel*>(model))
+      if (spheres->markedConstraint()) marked.insert(spheres->markedConstraint());
+  for (const Constraint* c : scene.constraints()) {
+    if (marked.count(c) || !c->hasTargetPoint()) continue;
+    // Size: three radii of the thread it holds, and at least a hundredth of the thread's length
+    // (a 3-0 suture's 0.1 mm would be a speck); a hole (a constraint with an abscissa of its own:
+    // a sliding point) grey, a grip or a fixed point green.
+    double radius = 1e-3;
+    if (c->bound() && c->body().curve()) {
+      const CurveBody& curve = *c->body().curve();
+      const double length = (curve.position(scene.state().q, 1.0) - curve.position(scene.state().q, 0.0)).norm();
+      radius = std::max(3.0 * curve.radius(), 0.01 * length);
+    }
+    SphereModel::Options options;
+    options.placement = SphereModel::Placement::kConstraintTarget;
+    options.target = c;
+    options.radius = radius;
+    auto marker = std::make_unique<SphereModel>(options);
+    marker->setName(c->name());
+    marker->setOrigin(c->origin() + " (default marker)");
+    marker->setNode(c->node());
+    marker->setMaterial(Material{c->extraDofCount() > 0 ? Vec3(0.5, 0.5, 0.5) : Vec3(0.2, 0.7, 0.3), 1.0});
+    atOrigin(*marker, [&] { marker->initWithoutBody(scene); });
+    models_.push_back(marker.get());
+    const Node* node = c->node();
+    names_.push_back(safeName((node && !node->path().empty() ? node->path() + "_" : "") + c->name() + "_marker"));
+    defaults_.push_back(std::move(marker));
   }
 }
 

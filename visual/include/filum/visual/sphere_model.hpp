@@ -37,7 +37,8 @@ class SphereModel final : public VisualModel {
     Vec3 center = Vec3::Zero();       // kFixed
     std::vector<double> abscissas;    // kOnCurve
     int count = 0;                    // kEvenlyOnCurve
-    std::string constraint;           // kConstraintTarget
+    std::string constraint;           // kConstraintTarget, by name
+    const Constraint* target = nullptr;  // kConstraintTarget set in code (VisualScene's markers): this one
     geometry::ScriptedPath path;   // kScriptedPath
     std::optional<double> radius;     // m
     int resolution = 12;
@@ -54,6 +55,8 @@ class SphereModel final : public VisualModel {
 
   /// Centres and radius of the last update.
   const Points& centers() const { return centers_; }
+  /// The constraint whose target it marks (kConstraintTarget, after init), else null.
+  const Constraint* markedConstraint() const { return constraint_; }
   double radius() const { return radius_; }
 
  protected:

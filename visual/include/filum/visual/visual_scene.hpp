@@ -2,7 +2,8 @@
 // its body (its node's, or the node named by "object"), plus a default skin
 // (GeneralizedCylinder with the spline's radius) for each DynamicSpline that no skin or surface
 // follows, and an ObstacleModel in its kind's colours for each obstacle that no ObstacleModel names
-// (visual/obstacle_model.hpp), so that every scene can be drawn and exported whole. update(s) maps positions down for the
+// (visual/obstacle_model.hpp), and a sphere at the target of every point constraint no SphereModel
+// marks, so that every scene can be drawn and exported whole. update(s) maps positions down for the
 // frame being drawn (not at every simulation step).
 #pragma once
 
@@ -38,6 +39,9 @@ class VisualScene {
   std::vector<std::string> names_;
   /// Draws the obstacles no ObstacleModel names, in their kinds' default colours.
   void addObstacleDefaults(Scene& scene);
+  /// Marks the target of every point constraint no SphereModel marks (a grip, a fixed point, a
+  /// needle hole), hidden once it lets go.
+  void addTargetMarkers(Scene& scene);
 
   std::vector<std::unique_ptr<VisualModel>> defaults_;  // default skins and obstacles (not in the node tree)
 };
