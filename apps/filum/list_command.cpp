@@ -26,14 +26,23 @@ int listParameters(const Factory& factory, const std::string& type, std::ostream
     }
     return 2;
   }
-  // The component created from an empty object, recording every parameter it asks for.
+  // The component created from an empty object, recording every parameter it asks for; when it
+  // refuses a placeholder, again with that parameter absent, until it runs through or stops
+  // getting further (each try reads at least the parameters before the refused one again).
   const nlohmann::json empty = nlohmann::json::object();
   ParameterRecorder recorder;
   std::string stopped;
-  try {
-    factory.create(type, Params(empty, "filum list", ""), "filum list");
-  } catch (const std::exception& e) {
-    stopped = e.what();
+  for (int attempt = 0; attempt < 64; ++attempt) {
+    try {
+      factory.create(type, Params(empty, "filum list", ""), "filum list");
+      stopped.clear();
+      break;
+    } catch (const std::exception& e) {
+      stopped = e.what();
+    }
+    const std::string refused = recorder.lastKey();
+    if (refused.empty() || recorder.treatedAsAbsent(refused)) break;
+    recorder.treatAsAbsent(refused);
   }
   out << type << ": " << factory.summary(type) << "\n\n";
   std::size_t width = 9;
@@ -51,9 +60,10 @@ int listParameters(const Factory& factory, const std::string& type, std::ostream
   out << "  object" << std::string(width - 6 + 2, ' ')
       << "\"\"        a node path: the body it acts on, when not its own node's\n";
   if (!stopped.empty())
-    out << "\nThe list stops where the component needs a real value to go on (its other parameters depend\n"
-           "on it); with the placeholder it said: "
+    out << "\nThe list may stop short where the component needs a real value to go on (its other\n"
+           "parameters depend on it); with the placeholders it said: "
         << stopped << '\n';
+  out << "\n\"-\": no default (given or not, as the component's checks say).\n";
   out << "\nUnits are SI (m, kg, s, N, Pa) unless the README's tables say otherwise.\n";
   return 0;
 }

@@ -66,6 +66,7 @@ void ContactPipeline::init(const Scene& scene) {
   margin_ = settings_.margin >= 0.0 ? settings_.margin : (std::isfinite(smallest) ? 0.5 * smallest : 0.0);
   broad_phase_ = UniformGridBroadPhase(settings_.cell_size);
   contacts_.clear();
+  restored_ = false;  // a new layout: the next detection starts afresh, restored or not
 }
 
 void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double h) {
@@ -243,6 +244,8 @@ void ContactPipeline::restoreMemory(const StepMemory& memory) {
                            Vec3(m[5], m[6], m[7])});
   }
   sortRemembered();
+  // The contacts of the state left behind are not this state's: none until the next detection.
+  contacts_.clear();
   contact_force_.clear();
   restored_ = true;
 }

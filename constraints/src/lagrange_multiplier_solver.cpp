@@ -608,6 +608,8 @@ void LagrangeMultiplierSolver::warmStart(const ConstraintRows& rows) {
 }
 
 void LagrangeMultiplierSolver::saveMemory(StepMemory& memory) const {
+  if (memory.multipliers.capacity() < static_cast<std::size_t>(c_))  // geometric growth (StepMemory)
+    memory.multipliers.reserve(std::max<std::size_t>(c_, 2 * memory.multipliers.capacity()));
   memory.multipliers.assign(lambda_.data(), lambda_.data() + c_);
   memory.row_kinds.resize(last_kinds_.size());
   for (std::size_t r = 0; r < last_kinds_.size(); ++r) memory.row_kinds[r] = static_cast<int>(last_kinds_[r]);

@@ -102,19 +102,25 @@ static bool absentWhileRecording(const json& obj, const std::string& key) {
 ParameterRecorder::ParameterRecorder() : outer_(active_recorder) { active_recorder = this; }
 ParameterRecorder::~ParameterRecorder() { active_recorder = outer_; }
 
+std::string Params::recordedKey(const std::string& key) const {
+  return path_.empty() ? key : path_.substr(1) + "/" + key;
+}
+
 void Params::record(const std::string& key, const std::string& expected, const std::string& fallback) const {
   if (!active_recorder) return;
   // The key as a path below the component's object ("outer/key" for a nested one): the recorded
   // component's own Params has the empty path (ParameterRecorder's use).
-  const std::string full = path_.empty() ? key : path_.substr(1) + "/" + key;
+  const std::string full = recordedKey(key);
+  active_recorder->last_key_ = full;
   auto& reads = active_recorder->reads_;
   for (ParameterRead& r : reads)
     if (r.key == full) {
       if (r.expected.empty()) r.expected = expected;  // first asked by has(): optional, now typed
       return;
     }
-  // expected "" : only has() asked (an optional parameter whose reader runs when it is given).
-  reads.push_back({full, expected, expected.empty() ? "optional" : fallback, !expected.empty() && fallback.empty()});
+  // expected "" : has() asked first (a parameter read when given, with no default: optional, or
+  // required by a check of the component's own).
+  reads.push_back({full, expected, expected.empty() ? "-" : fallback, !expected.empty() && fallback.empty()});
 }
 
 const json& Params::require(const std::string& key, const json& placeholder) const {
@@ -131,9 +137,10 @@ Params::Params(const json& obj, std::string file, std::string path, std::string 
 bool Params::has(const std::string& key) const {
   known_.insert(key);
   record(key, "", "");
-  // Recording, every parameter is "given" (as a placeholder): the reads it guards run and say
-  // what the parameter must be.
-  return active_recorder || (obj_.is_object() && obj_.contains(key));
+  // Recording, every parameter is "given" (as a placeholder), unless the recorder was told
+  // otherwise: the reads it guards run and say what the parameter must be.
+  if (obj_.is_object() && obj_.contains(key)) return true;
+  return active_recorder && !active_recorder->treatedAsAbsent(recordedKey(key));
 }
 
 std::string Params::pointer(const std::string& key) const {

@@ -524,6 +524,7 @@ StepReport Scene::endStep(StepReport report) {
   }
   if (!culprit.empty()) {
     state_ = last_good_;
+    restoreMemory();  // the components as they were too: the failed step's factors and forces are not kept
     report.ok = false;
     report.culprit = culprit;
     report.message = "diverged at step " + std::to_string(report.step) + " (t = " + std::to_string(report.time) +
@@ -630,7 +631,9 @@ void Scene::relayout(const CurveBody& body, const SparseMatrix& A) {
   // the body changed its points (a layout change may allocate).
   const SceneState old = state_;
   const int old_extras = 3 * point_count_;
-  state_.memory.matrix_id = 0;  // a step matrix of the old layout is no use (the integrator assembles anew)
+  // The step memory of the old layout: no kept matrix (the integrator assembles anew), and the
+  // current layout's revision (a state taken now restores into this layout).
+  state_.memory.matrix_id = 0;
   std::vector<int> old_offsets, old_internal_q, old_internal_v;
   for (const MechanicalState* b : bodies_) {
     old_offsets.push_back(b->offset());
@@ -667,6 +670,7 @@ void Scene::relayout(const CurveBody& body, const SparseMatrix& A) {
     b->internalVelocities(state_.v) = old.v.segment(old_internal_v[k], b->internalVelocityCount());
   }
   ++layout_revision_;
+  state_.memory.layout_revision = layout_revision_;
   bindComponents();
 }
 
@@ -675,24 +679,35 @@ void Scene::setState(const SceneState& s) {
     throw SceneError(settings_.source, "a state of " + std::to_string(state_.q.size()) +
                                            " coordinates (the scene's current layout)",
                      std::to_string(s.q.size()) + " (a state saved before the points changed?)");
+  // Same size is not same layout: points inserted and removed since leave the count as it was.
+  if (s.memory.layout_revision >= 0 && s.memory.layout_revision != layout_revision_)
+    throw SceneError(settings_.source, "a state of the scene's current layout (layout revision " +
+                                           std::to_string(layout_revision_) + ")",
+                     "a state saved at layout revision " + std::to_string(s.memory.layout_revision) +
+                         " (points were inserted, removed or cut since)");
   if (s.memory.matrix_id != 0 &&
       (s.memory.matrix_q.size() != s.q.size() || s.memory.matrix_v.size() != s.v.size()))
-    throw SceneError(settings_.source, "a state whose step memory has the state's layout",
-                     "a kept step matrix of another layout (a state put together by hand?)");
+    throw SceneError(settings_.source, "a state whose step memory has the state's size",
+                     "a kept step matrix of another size (a state put together by hand?)");
   state_ = s;
   // Releases are a function of the state: restoring a state before a cut restores the rows.
   for (Constraint* c : constraints_) c->updateRelease(state_);
   // What the next step reads beyond q and v (StepMemory): the run from here is the one that first
   // left this state, bit for bit.
-  if (collision_) collision_->restoreMemory(state_.memory);
-  if (constraint_solver_) constraint_solver_->restoreMemory(state_.memory);
-  integrator_->restoreMemory(*this, state_.memory);
+  restoreMemory();
 }
 
 void Scene::saveMemory() {
+  state_.memory.layout_revision = layout_revision_;
   if (collision_) collision_->saveMemory(state_.memory);
   if (constraint_solver_) constraint_solver_->saveMemory(state_.memory);
   integrator_->saveMemory(state_.memory);
+}
+
+void Scene::restoreMemory() {
+  if (collision_) collision_->restoreMemory(state_.memory);
+  if (constraint_solver_) constraint_solver_->restoreMemory(state_.memory);
+  integrator_->restoreMemory(*this, state_.memory);
 }
 
 }  // namespace filum

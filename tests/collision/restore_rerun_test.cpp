@@ -11,6 +11,9 @@
 #include <string>
 
 #include "filum/all_components.hpp"
+#include "filum/constraints/target_constraint.hpp"
+#include "filum/core/curve_body.hpp"
+#include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 
 namespace filum {
@@ -69,6 +72,45 @@ TEST(RestoreRerun, AStateRestoredIntoAnotherSceneOfTheSameFileRerunsTheSame) {
   run(*second, 1.8);
   EXPECT_TRUE(second->state().q == first->state().q)
       << "max |Δq| " << (second->state().q - first->state().q).cwiseAbs().maxCoeff() << " m";
+}
+
+TEST(RestoreRerun, AStateOfAnotherLayoutWithTheSameSizeIsRefused) {
+  // A point inserted and removed again: as many coordinates as before, another layout (a basis
+  // and a rest shape of their own). The saved state's step memory names its layout.
+  auto scene = loadShipped("hanging_thread.json");
+  run(*scene, 0.1);
+  const SceneState saved = scene->state();
+  CurveBody& thread = *scene->bodies().front()->curve();
+  scene->refine(thread, {0.55});
+  ASSERT_TRUE(scene->coarsen(thread, 0.55, 1e-3));
+  ASSERT_EQ(scene->state().q.size(), saved.q.size());
+  EXPECT_THROW(scene->setState(saved), SceneError);
+  EXPECT_NO_THROW(scene->setState(scene->state()));  // a state of the current layout
+}
+
+TEST(RestoreRerun, ARolledBackStepLeavesTheComponentsAsTheStateWas) {
+  // A step that fails is rolled back; the components' memory (the kept factorization, the warm
+  // starts) goes back with the state, so running on from the rolled-back state is what a restore
+  // of it gives. The grip jumps 1 m (the thread's end then moves faster than max_speed, 5 m/s:
+  // the step fails) and is put back.
+  const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/hanging_thread.json";
+  nlohmann::json document = readJsonFile(path);
+  document["max_speed"] = 5.0;
+  auto scene = loadScene(document, path, app::makeFactory());
+  scene->init();
+  run(*scene, 0.5);
+  Constraint& grip = *scene->constraints().front();
+  const Vec3 held = *grip.targetPoint(scene->state());
+  constraints::steerTarget(grip, scene->state(), held + Vec3(1.0, 0.0, 0.0), Vec3::Zero());
+  ASSERT_FALSE(scene->step().ok);
+  constraints::steerTarget(grip, scene->state(), held, Vec3::Zero());
+  const SceneState rolled_back = scene->state();
+  run(*scene, 0.6);
+  const SceneState first = scene->state();
+  scene->setState(rolled_back);
+  run(*scene, 0.6);
+  EXPECT_TRUE(scene->state().q == first.q)
+      << "max |Δq| " << (scene->state().q - first.q).cwiseAbs().maxCoeff() << " m";
 }
 
 }  // namespace

@@ -125,11 +125,10 @@ TEST(ObstacleModel, AProbeIsDrawnWhereItIs) {
   const ObstacleModel* probe = drawingOf(visuals, "probe");
   ASSERT_NE(probe, nullptr);
   const Vec3 centre = probe->mesh().vertices.colwise().mean();
-  // Drawn where the last step's contacts saw it: an obstacle moves to the time a step starts at,
-  // so the probe (2 m/s) is up to one step's travel, 2 m/s × 0.1 ms, behind the state's time; the
-  // UV sphere's vertices are symmetric about its centre to round-off.
-  EXPECT_LE((centre - Vec3(0.05, 0.0, 0.03)).norm(), 2.0 * 1e-4 + 1e-12);
-  EXPECT_GT(centre.z(), 0.03 - 1e-12);
+  // Drawn on its path at the state's time (not where the last step's contacts saw it, one step
+  // of 2 m/s × 0.1 ms = 0.2 mm earlier); the UV sphere's vertices are symmetric about its centre
+  // to round-off (a mean of a few hundred coordinates of 0.05 m: far below 1e-14 m).
+  EXPECT_NEAR((centre - Vec3(0.05, 0.0, 0.03)).norm(), 0.0, 1e-14);
 }
 
 TEST(ObstacleModel, ARenderedFrameShowsTheTablesColourWhereTheTableIs) {

@@ -64,11 +64,11 @@ void ObstacleModel::init(const Scene& scene) {
                            (names.empty() ? std::string("the node has no obstacle") : "its obstacles: " + names));
     if (!explicit_material_) setMaterial(defaultMaterial(obstacle_->shape()));
   }
-  build(obstacle_->shape(), scene.state());
+  build(obstacle_->shapeAt(scene.state().time), scene.state());
 }
 
 void ObstacleModel::update(const SceneState& s) {
-  const collision::ObstacleShape shape = obstacle_->shape();
+  const collision::ObstacleShape shape = obstacle_->shapeAt(s.time);
   // Only a moving primitive changes; a plane's patch and a mesh are built once.
   const bool moved = shape.kind != drawn_.kind || shape.a != drawn_.a || shape.b != drawn_.b ||
                      shape.radius != drawn_.radius || shape.normal != drawn_.normal || shape.mesh != drawn_.mesh;

@@ -37,6 +37,9 @@ class Obstacle : public CollisionModel {
   /// What the obstacle looks like now (after the last moveTo), for the pictures; kNone: nothing
   /// to draw from here.
   virtual ObstacleShape shape() const { return {}; }
+  /// What it looks like at time t, without moving it (a frame drawn at a state's time, after a
+  /// restore): a scripted obstacle's shape on its path; the others' current one.
+  virtual ObstacleShape shapeAt(double /*t*/) const { return shape(); }
 
   /// Coulomb friction coefficient μ of thread contacts on this obstacle ("friction" in the scene
   /// file); nullopt: the pipeline's.

@@ -24,13 +24,8 @@ class ProbeSphere final : public Obstacle {
   void moveTo(double t) override;
   bool sample(const Vec3& x, double max_distance, SurfaceSample& out) const override;
   double speed() const override { return velocity_.norm(); }
-  ObstacleShape shape() const override {
-    ObstacleShape s;
-    s.kind = ObstacleShape::Kind::kSphere;
-    s.a = center_;
-    s.radius = radius_;
-    return s;
-  }
+  ObstacleShape shape() const override { return shapeAt(center_); }
+  ObstacleShape shapeAt(double t) const override { return shapeAt(path_.position(t)); }
 
   double radius() const { return radius_; }
   const Vec3& center() const { return center_; }
@@ -38,6 +33,13 @@ class ProbeSphere final : public Obstacle {
   const geometry::ScriptedPath& path() const { return path_; }
 
  private:
+  ObstacleShape shapeAt(const Vec3& center) const {
+    ObstacleShape s;
+    s.kind = ObstacleShape::Kind::kSphere;
+    s.a = center;
+    s.radius = radius_;
+    return s;
+  }
   double radius_;
   geometry::ScriptedPath path_;
   Vec3 center_ = Vec3::Zero();    // at the last moveTo (m)

@@ -31,7 +31,8 @@ struct ParameterRead {
 /// allowed count, an empty string or list) instead of an error: a component created from an
 /// empty object lists what it reads (`filum list TYPE`), from the code that reads it, so the
 /// listing cannot drift from the checks. A creator may still refuse a placeholder (a file name,
-/// an enumeration): the listing then stops there with the creator's message.
+/// an enumeration), or two exclusive parameters both "given": `filum list` then tries again with
+/// that parameter absent (treatAsAbsent), until the creator runs through or stops going further.
 class ParameterRecorder {
  public:
   ParameterRecorder();
@@ -39,10 +40,18 @@ class ParameterRecorder {
   ParameterRecorder(const ParameterRecorder&) = delete;
   ParameterRecorder& operator=(const ParameterRecorder&) = delete;
   const std::vector<ParameterRead>& reads() const { return reads_; }
+  /// The key read last (the one a creator most likely refused, when it threw).
+  const std::string& lastKey() const { return last_key_; }
+  /// From now on has(key) says no for this key, so that a creator that refused its placeholder
+  /// (or refused two exclusive parameters both "given") goes past it on the next try.
+  void treatAsAbsent(const std::string& key) { absent_.insert(key); }
+  bool treatedAsAbsent(const std::string& key) const { return absent_.count(key) > 0; }
 
  private:
   friend class Params;
   std::vector<ParameterRead> reads_;
+  std::string last_key_;
+  std::set<std::string> absent_;
   std::deque<nlohmann::json> placeholders_;  // stable addresses: Params return references to them
   ParameterRecorder* outer_ = nullptr;
 };
@@ -115,6 +124,8 @@ class Params {
   /// Tells the active ParameterRecorder (if any) that `key` is read: what it must be and its
   /// default ("" and required when it has none). The first read of a key wins.
   void record(const std::string& key, const std::string& expected, const std::string& fallback) const;
+  /// The key as the recorder names it: "outer/key" inside a nested object.
+  std::string recordedKey(const std::string& key) const;
   /// "nothing (the parameter is missing)", naming an unread key that looks like a misspelling.
   std::string missing(const std::string& key) const;
   /// The JSON pointer of a key of this object.

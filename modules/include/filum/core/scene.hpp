@@ -238,8 +238,10 @@ class Scene {
   /// releases of constraints) and keeps the last good state. A layout change that fails is the
   /// step's fault (reported, nothing advanced).
   void beginStep();
-  /// The components' step memory into state_.memory (after a step that succeeded).
+  /// The components' step memory into state_.memory (after a step that succeeded), and back from
+  /// it (setState, rollback).
   void saveMemory();
+  void restoreMemory();
   /// Control points scheduled for insertion, and cuts (CurveBody::layoutChangeDue), at this step.
   void applyScheduledLayoutChanges();
   /// Bodies whose tension exceeds their strength (ForceField::tearsAt) cut where it does.

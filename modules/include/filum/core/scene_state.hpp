@@ -18,6 +18,7 @@
 // internal DOFs.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "filum/core/types.hpp"
@@ -32,6 +33,13 @@ namespace filum {
 /// read it (Integrator, ConstraintSolver, CollisionPipeline: saveMemory, restoreMemory); empty
 /// (the default) means a fresh start, as after Scene::init.
 struct StepMemory {
+  StepMemory() = default;
+  StepMemory(const StepMemory&) = default;
+  /// Copies into storage that grows geometrically: a state copied every step (Scene's last good
+  /// state) allocates only when the contact count reaches a new power of two, not at every new
+  /// maximum.
+  StepMemory& operator=(const StepMemory& other);
+  long layout_revision = -1;  // Scene::layoutRevision() when saved (-1: never saved, not checked)
   // Integrator: a kept factorization (an id unique in the process, so that restoring the matrix
   // the integrator holds costs nothing), its (h, θ, κ), the state it was assembled at, and the
   // reuse schedule.
@@ -48,6 +56,33 @@ struct StepMemory {
   std::vector<double> contacts;
 };
 
+
+namespace detail {
+/// to = from, growing to's capacity geometrically (std::vector's copy assignment allocates exactly
+/// the new size, so a copy every step would allocate at every new maximum).
+template <class T>
+void assignGrowing(std::vector<T>& to, const std::vector<T>& from) {
+  if (to.capacity() < from.size()) to.reserve(std::max(from.size(), 2 * to.capacity()));
+  to.assign(from.begin(), from.end());
+}
+}  // namespace detail
+
+inline StepMemory& StepMemory::operator=(const StepMemory& other) {
+  if (this == &other) return *this;
+  layout_revision = other.layout_revision;
+  matrix_id = other.matrix_id;
+  for (int k = 0; k < 3; ++k) matrix_key[k] = other.matrix_key[k];
+  matrix_time = other.matrix_time;
+  matrix_q = other.matrix_q;  // the layout's size: resized only when the layout changes
+  matrix_v = other.matrix_v;
+  reuse_skip = other.reuse_skip;
+  reuse_backoff = other.reuse_backoff;
+  fresh_next = other.fresh_next;
+  detail::assignGrowing(multipliers, other.multipliers);
+  detail::assignGrowing(row_kinds, other.row_kinds);
+  detail::assignGrowing(contacts, other.contacts);
+  return *this;
+}
 
 struct SceneState {
   double time = 0.0;  // simulated time (s), steps × dt: no running-sum round-off
