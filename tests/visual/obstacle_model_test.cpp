@@ -68,9 +68,8 @@ TEST(ObstacleModel, EveryObstacleIsDrawnOnItsSurfaceInItsKindsColours) {
   const Vec3 e1 = patch.vertices.row(patch.triangles(0, 1)) - patch.vertices.row(patch.triangles(0, 0));
   const Vec3 e2 = patch.vertices.row(patch.triangles(0, 2)) - patch.vertices.row(patch.triangles(0, 0));
   EXPECT_GT(e1.cross(e2).z(), 0.0);
-  collision::ObstacleShape plane;
-  plane.kind = collision::ObstacleShape::Kind::kPlane;
-  EXPECT_EQ(table->material().color, ObstacleModel::defaultMaterial(plane).color);
+  EXPECT_EQ(table->material().color,
+            ObstacleModel::defaultMaterial(collision::ObstacleShape::plane(Vec3::Zero(), Vec3::UnitZ())).color);
 
   const ObstacleModel* peg = drawingOf(visuals, "peg");
   ASSERT_NE(peg, nullptr);

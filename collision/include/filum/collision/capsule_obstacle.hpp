@@ -17,14 +17,7 @@ class CapsuleObstacle final : public Obstacle {
 
   std::string typeName() const override { return "CapsuleObstacle"; }
   bool sample(const Vec3& x, double max_distance, SurfaceSample& out) const override;
-  ObstacleShape shape() const override {
-    ObstacleShape s;
-    s.kind = ObstacleShape::Kind::kCapsule;
-    s.a = a_;
-    s.b = b_;
-    s.radius = radius_;
-    return s;
-  }
+  ObstacleShape shape() const override { return ObstacleShape::capsule(a_, b_, radius_); }
 
  private:
   Vec3 a_, b_;

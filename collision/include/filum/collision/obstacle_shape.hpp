@@ -24,6 +24,19 @@ struct ObstacleShape {
   double radius = 0.0;
   const TriangleMeshSurface* mesh = nullptr;
   bool cavity = false;
+
+  static ObstacleShape plane(const Vec3& point, const Vec3& normal) {
+    return {Kind::kPlane, point, Vec3::Zero(), normal, 0.0, nullptr, false};
+  }
+  static ObstacleShape sphere(const Vec3& center, double radius) {
+    return {Kind::kSphere, center, Vec3::Zero(), Vec3::UnitZ(), radius, nullptr, false};
+  }
+  static ObstacleShape capsule(const Vec3& a, const Vec3& b, double radius) {
+    return {Kind::kCapsule, a, b, Vec3::UnitZ(), radius, nullptr, false};
+  }
+  static ObstacleShape closedMesh(const TriangleMeshSurface& surface, bool cavity) {
+    return {Kind::kMesh, Vec3::Zero(), Vec3::Zero(), Vec3::UnitZ(), 0.0, &surface, cavity};
+  }
 };
 
 }  // namespace filum::collision

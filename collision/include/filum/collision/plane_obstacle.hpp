@@ -18,13 +18,7 @@ class PlaneObstacle final : public Obstacle {
   std::string typeName() const override { return "PlaneObstacle"; }
   bool sample(const Vec3& x, double max_distance, SurfaceSample& out) const override;
 
-  ObstacleShape shape() const override {
-    ObstacleShape s;
-    s.kind = ObstacleShape::Kind::kPlane;
-    s.a = point_;
-    s.normal = normal_;
-    return s;
-  }
+  ObstacleShape shape() const override { return ObstacleShape::plane(point_, normal_); }
 
   const Vec3& point() const { return point_; }
   const Vec3& normal() const { return normal_; }

@@ -24,8 +24,8 @@ class ProbeSphere final : public Obstacle {
   void moveTo(double t) override;
   bool sample(const Vec3& x, double max_distance, SurfaceSample& out) const override;
   double speed() const override { return velocity_.norm(); }
-  ObstacleShape shape() const override { return shapeAt(center_); }
-  ObstacleShape shapeAt(double t) const override { return shapeAt(path_.position(t)); }
+  ObstacleShape shape() const override { return ObstacleShape::sphere(center_, radius_); }
+  ObstacleShape shapeAt(double t) const override { return ObstacleShape::sphere(path_.position(t), radius_); }
 
   double radius() const { return radius_; }
   const Vec3& center() const { return center_; }
@@ -33,13 +33,6 @@ class ProbeSphere final : public Obstacle {
   const geometry::ScriptedPath& path() const { return path_; }
 
  private:
-  ObstacleShape shapeAt(const Vec3& center) const {
-    ObstacleShape s;
-    s.kind = ObstacleShape::Kind::kSphere;
-    s.a = center;
-    s.radius = radius_;
-    return s;
-  }
   double radius_;
   geometry::ScriptedPath path_;
   Vec3 center_ = Vec3::Zero();    // at the last moveTo (m)

@@ -20,13 +20,7 @@ class SphereObstacle final : public Obstacle {
 
   std::string typeName() const override { return "SphereObstacle"; }
   bool sample(const Vec3& x, double max_distance, SurfaceSample& out) const override;
-  ObstacleShape shape() const override {
-    ObstacleShape s;
-    s.kind = ObstacleShape::Kind::kSphere;
-    s.a = center_;
-    s.radius = radius_;
-    return s;
-  }
+  ObstacleShape shape() const override { return ObstacleShape::sphere(center_, radius_); }
 
  private:
   Vec3 center_;

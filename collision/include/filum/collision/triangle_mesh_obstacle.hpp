@@ -33,13 +33,7 @@ class TriangleMeshObstacle final : public Obstacle {
   std::string typeName() const override { return "TriangleMeshObstacle"; }
   bool sample(const Vec3& x, double max_distance, SurfaceSample& out) const override;
 
-  ObstacleShape shape() const override {
-    ObstacleShape s;
-    s.kind = ObstacleShape::Kind::kMesh;
-    s.mesh = surface_.get();
-    s.cavity = cavity_;
-    return s;
-  }
+  ObstacleShape shape() const override { return ObstacleShape::closedMesh(*surface_, cavity_); }
 
   const TriangleMeshSurface& surface() const { return *surface_; }
   /// The bodies stay inside the mesh ("side": "inside").
