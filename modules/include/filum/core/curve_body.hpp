@@ -7,9 +7,10 @@
 // Everything a client needs of the curve goes through its basis row at s (BasisRow: the first
 // point and the weights b_j(s), b'_j(s), b''_j(s)): the position, tangent and second derivative,
 // and the mapping row of a point on the body — a force F at s adds b_j(s) F to point first + j
-// (DESIGN.md "mappings"). The parameter range is [0, 1]; pointCount() is the number of control
-// points, which changes only between steps (Scene::refine, coarsen and cut). A cut curve is a
-// sequence of strands (CurveBasis::strands), each a curve of its own between its two ends.
+// (docs/architecture.md, "The three-sided model"). The parameter range is [0, 1]; pointCount()
+// is the number of control points, which changes only between steps (Scene::refine, coarsen and
+// cut). A cut curve is a sequence of strands (CurveBasis::strands), each a curve of its own
+// between its two ends.
 #pragma once
 
 #include "filum/core/curve_basis.hpp"
