@@ -1,5 +1,5 @@
 // Drift of every constraint type over 10^5 steps (10 s), with and without Baumgarte
-// stabilization (paper §4; talk 002 "Lagrange multipliers + Baumgarte scheme").
+// stabilization (paper §4; [Lenoir talk 2008] "Lagrange multipliers + Baumgarte scheme").
 #include <gtest/gtest.h>
 
 #include <limits>

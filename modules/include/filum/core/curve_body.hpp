@@ -58,7 +58,7 @@ class CurveBody : public MechanicalState {
   /// the model, or an empty matrix and changes nothing when the bound exceeds the tolerance.
   /// Use Scene::coarsen. Throws SceneError when s is not at a knot of the body.
   virtual SparseMatrix coarsen(double abscissa, ConstPointsRef q, double tolerance) = 0;
-  /// Cuts the curve at s ∈ (0, 1) (talk 002: "multiple insertion at the same parametric
+  /// Cuts the curve at s ∈ (0, 1) ([Lenoir talk 2008]: "multiple insertion at the same parametric
   /// abscissa decreases the local continuity; local C-1 continuity => cut"): the knot at s raised
   /// to multiplicity degree + 1, so that the body becomes two strands (CurveBasis::strands) that
   /// share no control point, each with its own end at s. The curve is unchanged at that instant;
