@@ -1,4 +1,4 @@
-# The installed CMake package (issue 16): `cmake --install build --prefix P` puts the libraries,
+# The installed CMake package: `cmake --install build --prefix P` puts the libraries,
 # their public headers and the `filum` tool under P, and P/lib/cmake/filum/ holds
 #   filumTargets.cmake        the exported targets filum::<name> of every library made by
 #                             filum_add_library (cmake/FilumLibrary.cmake), filum::kernel (= core)

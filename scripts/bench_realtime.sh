@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The real-time benchmark of issue 12 with its peers: installs what is missing (the quick start's
+# The real-time benchmark with its peers: installs what is missing (the quick start's
 # packages, plus Debian's libbullet-dev and libmujoco-dev for the peer programs), builds with
 # -DFILUM_WITH_PEERS=ON and runs bench_realtime, writing apps/bench/results/realtime/
 # (realtime.csv, realtime.png, the printed log). About 15 minutes on 2 cores.

@@ -1,16 +1,16 @@
-// accuracy_pareto: run time against error (issue 4, item 4). For each reference problem with an
+// accuracy_pareto: run time against error. For each reference problem with an
 // analytic solution (apps/validation: catenary, taut string, cantilever), each integrator, time
 // step and number of control points: the error against the analytic solution and the wall time
 // per simulated second. Writes pareto_<problem>.csv and, through apps/tools/plot_pareto.py
 // (Debian python3-matplotlib), pareto_<problem>.png: log-log error against cost, one colour per
 // integrator, one marker per n, the Pareto front (no run both cheaper and more accurate) drawn.
 // Implicit schemes twice: "ImplicitEuler" / "ImplicitMidpoint" are the linearized default with its
-// error estimate, ".../newton" the same schemes solved by Newton (issue 12).
+// error estimate, ".../newton" the same schemes solved by Newton.
 //
 //   build/apps/bench/accuracy_pareto [--quick] [--out DIR] [--no-plot] [--problem NAME]
 //
 // One configuration at a time, for sweeps that spread the runs over processes or machines
-// (python/filum_sweeps, issue 16): --list prints the configurations (index, problem, integrator,
+// (python/filum_sweeps): --list prints the configurations (index, problem, integrator,
 // dt, n) in the order of the serial run; --configuration K runs configuration K alone and prints
 // its result row (full precision); --rows FILE takes such rows instead of running, and writes the
 // same CSV, report and plot as a serial run.

@@ -1,4 +1,4 @@
-// bench_collision: the cost of collision handling (issue 6).
+// bench_collision: the cost of collision handling.
 //
 //  - BroadPhase/<n>: one UniformGridBroadPhase::findPairs over the n chord bounding spheres of
 //    threads made of n spheres (radius 1 mm, 1 mm apart, as SphereCollisionModel places them),

@@ -1,4 +1,4 @@
-// bench_instruments: what two instruments cost per step (issue 29) — a 10 cm 3-0 silk suture
+// bench_instruments: what two instruments cost per step — a 10 cm 3-0 silk suture
 // hanging from its top end (apps/scenes/instruments.json's), grasped by two graspers from either
 // side (at 4 and 7 cm, closed by 0.3 s) that then carry it slowly to and fro, against the same
 // scene without them (the suture hanging, the same contact pipeline). Implicit Euler, dt = 1 ms.

@@ -11,7 +11,7 @@
 //   - copyRhs:               X := B alone — the copy both solves above include, to subtract;
 //   - bandedCholeskyFactor / simplicialLltFactor: building each factorisation from the sparse M
 //                            (done once per body, at load time).
-// Why: DESIGN.md "Numbers that matter" asks for an O(n) per-step solve and the class comment of
+// Why: docs/architecture.md, "Numbers that matter", asks for an O(n) per-step solve and the class comment of
 // BandedCholesky claims that a hand-written band solver beats the sparse one; these numbers are
 // the justification (or not).
 //

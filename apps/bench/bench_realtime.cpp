@@ -1,4 +1,4 @@
-// bench_realtime: is a stiff thread real time? (issue 12). Wall time per simulated millisecond,
+// bench_realtime: is a stiff thread real time? Wall time per simulated millisecond,
 // largest strain and energy drift of the benchmark rope (apps/scenes/rope.json: 1 m, 0.1 kg,
 // radius 5 mm, E = 1e8 Pa, held at one end, released horizontally) at n = 30, 50, 165, 1000
 // control points with each implicit scheme at dt = 1 ms, and with the explicit schemes at the

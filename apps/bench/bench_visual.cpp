@@ -1,4 +1,4 @@
-// Skinning cost (issue 7): one update of a GeneralizedCylinder — the SplineAxisMapping of the
+// Skinning cost: one update of a GeneralizedCylinder — the SplineAxisMapping of the
 // control points down to the axis samples and derivatives, the rotation-minimizing frames and the
 // ring vertices and normals — against the number of axis samples (rings), 16 sides per ring, on
 // a 30-control-point thread bent into a helix. Linear in the samples: Time / rings (the

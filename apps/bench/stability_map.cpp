@@ -1,5 +1,5 @@
-// stability_map: the largest stable time step of every integrator as the thread's stiffness grows
-// (issue 4, item 5). For each Young's modulus E and each integrator, bisection on log dt over
+// stability_map: the largest stable time step of every integrator as the thread's stiffness grows.
+// For each Young's modulus E and each integrator, bisection on log dt over
 // [1e-9, 1e-1] s of runs of 2000 steps of apps/validation/stability.hpp's problem (a 10 cm thread,
 // 20 control points, Green-Lagrange stretching and quadratic bending of modulus E, one end fixed,
 // released under gravity, viscous γ = 1/s); unstable = a failed step (non-finite, faster than
@@ -13,7 +13,7 @@
 // is tests/mechanics/stability_map_test.cpp).
 //
 // One configuration (a modulus and an integrator) at a time, for sweeps that spread the runs over
-// processes or machines (python/filum_sweeps, issue 16): --list prints the configurations (index,
+// processes or machines (python/filum_sweeps): --list prints the configurations (index,
 // integrator, E) in the order of the CSV; --configuration K runs configuration K alone and prints
 // its result row (K, ω_max, largest stable dt at full precision); --rows FILE takes such rows
 // instead of running and writes the same CSV and plot as a serial run.

@@ -1,5 +1,5 @@
 // The factory of every component this build has: one explicit register_components call per
-// library (DESIGN.md "Libraries and their direction").
+// library (docs/architecture.md, "Libraries, top to bottom").
 #pragma once
 
 #include "filum/core/factory.hpp"

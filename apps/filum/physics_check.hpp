@@ -1,4 +1,4 @@
-// Physics mistakes `filum check` refuses before anything runs (issue 34): what loads and is
+// Physics mistakes `filum check` refuses before anything runs: what loads and is
 // well-formed but cannot run as written.
 //  - An explicit integrator whose step exceeds its stability limit: the stiffest mode of the
 //    scene, ω_max² the largest eigenvalue of M⁻¹(−K) at the start (K the force fields' own

@@ -5,7 +5,7 @@ COLOURS = {
     "RungeKutta4": "tab:blue",
     "ImplicitEuler": "tab:red",
     "ImplicitMidpoint": "tab:green",
-    # "solve": "newton" (issue 12); the plain names are the linearized default
+    # "solve": "newton"; the plain names are the linearized default
     "ImplicitEuler/newton": "tab:brown",
     "ImplicitMidpoint/newton": "tab:olive",
 }

@@ -1,4 +1,4 @@
-// Reference problems with analytic solutions (issue 4 "validation against analytic physics"):
+// Reference problems with analytic solutions (validation against analytic physics):
 // a scene builder, the analytic solution and an error measure, shared by the tests
 // (tests/mechanics/*_validation_test.cpp) and the run-time-against-error benchmark
 // (apps/bench/accuracy_pareto.cpp). Scenes are JSON documents loaded by the same path as scene

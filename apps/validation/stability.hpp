@@ -1,4 +1,4 @@
-// Stability map (issue 4): the largest stable time step of an integrator as the thread's
+// Stability map: the largest stable time step of an integrator as the thread's
 // stiffness grows. Problem: a 10 cm thread of 3-0 suture geometry (r = 0.1 mm, ρ = 910 kg/m³)
 // with GreenLagrangeStretching and ParametricBending of Young's modulus E, held at one end
 // (FixedPointConstraint), released horizontally under gravity, lightly damped (viscous γ = 1/s).

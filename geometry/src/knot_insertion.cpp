@@ -29,7 +29,7 @@ void checkInsertable(int d, int n, const std::vector<double>& knots, double u, i
   }
 }
 
-/// α^d_{μ−d+k, row} for k = 0..d (talk 002 recurrence) into alpha[k]; returns μ. Entries with
+/// α^d_{μ−d+k, row} for k = 0..d ([Lenoir talk 2008] recurrence) into alpha[k]; returns μ. Entries with
 /// μ − d + k < 0 (no such B-spline: t̃_row left of t_d on an unclamped vector) stay 0; the others
 /// only depend on entries of index >= their own, so they are computed exactly as if the knot
 /// vector extended further left.

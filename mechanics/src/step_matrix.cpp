@@ -219,7 +219,8 @@ void StepMatrix::addRankOne(int first, ConstPointsRef u, double factor) {
 }
 
 bool StepMatrix::fillConstant(const Scene& scene, const SceneState& s, double k_factor, double d_factor) {
-  // M ⊗ I₃ and the constant Jacobians, once per step size (DESIGN.md: "store them once").
+  // M ⊗ I₃ and the constant Jacobians, once per step size (docs/architecture.md, "Numbers that
+  // matter": assembled once per step size and stored).
   fits_ = true;
   constant_pass_ = true;
   for (Block& block : blocks_) block.constant.setZero();

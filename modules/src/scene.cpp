@@ -296,7 +296,7 @@ void Scene::applyConstraints(const SceneState& s, const BlockInverse& inverse, V
   if (rows_.rows() > 0) constraint_solver_->solve(*this, rows_, inverse, a);
   if (contact_rows > 0) collision_->takeMultipliers(constraint_solver_->multipliers(), first_contact_row);
   // Stage 3d: accelerations of the constraints' extra DOFs (a sliding point's s̈ by the direct
-  // relation of talk 002), from the constrained point accelerations.
+  // relation of [Lenoir talk 2008]), from the constrained point accelerations.
   if (extra_count_ > 0 && a.size() == velocitySize())
     for (const Constraint* c : constraints_)
       if (c->extraDofCount() > 0) c->extraAcceleration(s, a);

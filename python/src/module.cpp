@@ -1,4 +1,4 @@
-// The Python module `filum` (issue 16): scenes loaded from files or dicts, stepped from Python,
+// The Python module `filum`: scenes loaded from files or dicts, stepped from Python,
 // their state read and written as NumPy arrays, frames rendered to arrays. Documentation:
 // docs/python.md. Exceptions:
 //   filum.SceneError (ValueError)     a scene that does not load, naming the file and JSON path;

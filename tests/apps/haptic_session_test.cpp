@@ -1,4 +1,4 @@
-// The headless haptic demo (apps/scenes/haptic_grasp.json, issue 15) end to end: the scripted
+// The headless haptic demo (apps/scenes/haptic_grasp.json) end to end: the scripted
 // Phantom's jaws close on the real suture where the stylus is, the thread pulled taut pushes
 // back with the tension of the thread and the coupling in series, the forces the device gets
 // stay within its limits, haptics.csv has every servo tick, and a run is bit-identical to the

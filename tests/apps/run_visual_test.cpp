@@ -1,4 +1,4 @@
-// `filum run --meshes --render` end to end (issue 7): the mesh series is a ParaView .pvd whose
+// `filum run --meshes --render` end to end: the mesh series is a ParaView .pvd whose
 // .vtp files parse and match the final OBJ, and the render writes PNG frames, a video and a
 // contact sheet. Rendering needs an X display: an Xvfb is started when DISPLAY is unset; the
 // render part is skipped only if Xvfb is not installed.

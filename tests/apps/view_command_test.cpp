@@ -1,4 +1,4 @@
-// `filum view` under Xvfb (issue 7): the window opens, plays the scene, and mouse events sent to
+// `filum view` under Xvfb: the window opens, plays the scene, and mouse events sent to
 // it through the X server (a Shift + left press on the thread, drags, release) make the probe
 // grab the thread and pull it; q closes it. Skipped only if there is no DISPLAY and Xvfb is not
 // installed.

@@ -1,5 +1,5 @@
 // A body cut between steps (Scene::cut, CurveBody::cut: the knot at s raised to multiplicity
-// d + 1, talk 002 "local C-1 continuity => cut"), with constraints and contacts attached, on the
+// d + 1, [Lenoir talk 2008] "local C-1 continuity => cut"), with constraints and contacts attached, on the
 // scene apps/scenes/cut_thread.json (10 cm of 3-0 polypropylene held at both ends, cut in the
 // middle, implicit Euler at 1 ms).
 //   - At the instant of the cut nothing moves: the curve, its velocity field and the energy are

@@ -116,11 +116,11 @@ TEST(KnotRealMaterial, ASilkKnotTightenedAtOneMillisecondHoldsWhenOneEndIsPulled
 }
 
 TEST(KnotRealMaterial, AControlPointThrownAMetreAwayIsReportedNotSearchedQuadratically) {
-  // A mutated knot.json (issue 14's mutation experiment): control point 66 at y = −1 m makes
-  // a loop 1.3 m long of ~4,000 chords that springs back within a step, so the chords' swept
-  // bounds all overlap and the candidate pairs number ~n²/2. The broad phase stops at its budget
-  // (linear in n), every halving does the same, and the step is reported and rolled back instead
-  // of testing ~10⁷ pairs in each of its 127 sub-steps (which took 18 s of CPU).
+  // A mutated knot.json (the mutation experiment of scripts/mutate_scenes.py): control point 66
+  // at y = −1 m makes a loop 1.3 m long of ~4,000 chords that springs back within a step, so the
+  // chords' swept bounds all overlap and the candidate pairs number ~n²/2. The broad phase stops
+  // at its budget (linear in n), every halving does the same, and the step is reported and rolled
+  // back instead of testing ~10⁷ pairs in each of its 127 sub-steps (which took 18 s of CPU).
   nlohmann::json document = readJsonFile(kScene);
   nlohmann::json& spline = document["nodes"][0]["components"][0];
   ASSERT_EQ(spline["type"], "DynamicSpline");

@@ -1,5 +1,5 @@
 // Drift of every constraint type over 10^5 steps (10 s), with and without Baumgarte
-// stabilization (paper §4; talk 002 "Lagrange multipliers + Baumgarte scheme").
+// stabilization (paper §4; [Lenoir talk 2008] "Lagrange multipliers + Baumgarte scheme").
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -19,7 +19,7 @@ using nlohmann::json;
 using test::ConstraintThread;
 
 // Bounds of the stabilized violation over 10 s at dt = 1e-4 s, each derived from where the
-// violation comes from (measured values in the comments, issue 14):
+// violation comes from (measured values in the comments):
 //  - g linear in q with a fixed target: only round-off. g sums a few products of coordinates of
 //    about 0.1 m, and the Baumgarte terms pull each step's round-off back before it accumulates:
 //    64 ulps of 0.1 m, 1.4e-15 m (measured 4e-18 .. 4.5e-16 m, the C2 junction's curvature rows

@@ -7,7 +7,7 @@
 //    below the tolerance 1e-8 (1 + max |L|) (|L| reaches ~n² for the curvature rows).
 //    For the sliding point, whose violation is the whole gap g(q, s) = P(s) − X (3 entries)
 //    while its 2 rows are Nᵀ ∂g/∂q, the test checks Nᵀ (∂g/∂q)_FD = L and Nᵀ (∂g/∂s)_FD = 0:
-//    the multiplier λ = N μ satisfies the sliding equation (∂g/∂s)ᵀλ = 0 of talk 002.
+//    the multiplier λ = N μ satisfies the sliding equation (∂g/∂s)ᵀλ = 0 of [Lenoir talk 2008].
 // 2. Acceleration level, without stabilization (ω = 0): along q(τ) = q + τ v + ½ τ² A (and
 //    s(τ) = s + τ ṡ + ½ τ² s̈), g̈(0) must equal L A − E. Central second difference with
 //    h = 2e-4 s: g(τ) is a quadratic in τ for the linear constraints (exact up to round-off

@@ -1,5 +1,5 @@
 // Scene-file checks of the constraint components: every bad value is refused before the
-// simulation starts, with the file, the JSON path and what was expected (DESIGN.md "Scene
+// simulation starts, with the file, the JSON path and what was expected (README, "Scene
 // files").
 #include <gtest/gtest.h>
 

@@ -30,7 +30,7 @@ TEST(FixedPointConstraint, HoldsItsTargetToRoundOffOver10000Steps) {
   // with a fixed target: Runge-Kutta and symplectic Euler preserve linear invariants exactly,
   // so only round-off is left, pulled back by the Baumgarte terms before it accumulates. g
   // sums a few products of coordinates of about 0.1 m: the bound is 64 ulps of 0.1 m,
-  // 1.4e-15 m (measured about 1e-17 m; the "micrometre" is 9 orders looser).
+  // 1.4e-15 m (measured about 1e-17 m; the micrometre first asked for is 9 orders looser).
   const double bound = 64 * std::numeric_limits<double>::epsilon() * 0.1;
   for (const char* integrator : {"RungeKutta4", "SymplecticEuler"}) {
     ThreadSceneOptions o;

@@ -1,4 +1,4 @@
-// Steered targets (PointTarget::steer, issue 16): an application moves a constraint's target
+// Steered targets (PointTarget::steer): an application moves a constraint's target
 // between steps — a tool driven by a script, a device or Python's Scene.steer.
 #include <gtest/gtest.h>
 

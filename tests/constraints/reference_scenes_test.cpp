@@ -1,6 +1,7 @@
-// The reference scenes of issue 5 run to the end without diverging, and do what their comments
-// say: apps/scenes/constraints.json and paper_constraints.json (paper Fig. 1a), fallopian.json (C2 junctions, cut at
-// t = 2 s), sliding.json (a thread pulled through two holes).
+// The reference scenes of the paper and of [Lenoir talk 2008] run to the end without diverging,
+// and do what their comments say: apps/scenes/constraints.json and paper_constraints.json (paper
+// Fig. 1a), fallopian.json (C2 junctions, cut at t = 2 s), sliding.json (a thread pulled through
+// two holes).
 #include <gtest/gtest.h>
 
 #include <iostream>

@@ -1,4 +1,4 @@
-// The sliding point of talk 002 (suturing): the thread passes through a hole P0 while the
+// The sliding point of [Lenoir talk 2008] (suturing): the thread passes through a hole P0 while the
 // abscissa s(t) in the hole is a free unknown, (∂g/∂s)ᵀλ = 0.
 #include <gtest/gtest.h>
 

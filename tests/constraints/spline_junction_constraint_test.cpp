@@ -1,4 +1,4 @@
-// Spline junctions (talk 002, fallopian tubes: three splines joined with C2 continuity, cut by
+// Spline junctions ([Lenoir talk 2008], fallopian tubes: three splines joined with C2 continuity, cut by
 // releasing a junction) and releases at run time.
 #include <gtest/gtest.h>
 

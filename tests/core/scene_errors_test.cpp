@@ -1,4 +1,4 @@
-// Scene-file errors (DESIGN.md "Scene files"): every bad scene in data/bad_scenes/ is refused by
+// Scene-file errors (README, "Scene files"): every bad scene in data/bad_scenes/ is refused by
 // loadScene before the simulation starts, with a message that names the file, the place of the
 // offending value (JSON pointer, or line:column when the text does not parse), what was expected
 // and what was found.

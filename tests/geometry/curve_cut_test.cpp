@@ -1,5 +1,5 @@
 // Cut curves at the basis level (CurveBasis::cuts, evaluateFromLeft, strands): a knot of
-// multiplicity d + 1 splits the curve into strands (talk 002, "local C-1 continuity => cut").
+// multiplicity d + 1 splits the curve into strands ([Lenoir talk 2008], "local C-1 continuity => cut").
 //   - no basis function straddles the cut: the row from the left ends at point a − 1, the row
 //     from the right starts at point a;
 //   - at the instant of the cut the curve is unchanged: both limits are P(u) of the curve before

@@ -1,4 +1,4 @@
-// Mesh files (mesh_file.hpp, issue 14 item 7): one reader for collision and visual. The quirks
+// Mesh files (mesh_file.hpp): one reader for collision and visual. The quirks
 // of real exports that CGAL's OBJ reader refused, one small file each; STL ascii and binary and
 // PLY of both byte orders giving the same connected surface as an OFF; the units of a scene;
 // errors that name the file and the line; headers announcing more than the file holds, refused

@@ -1,5 +1,6 @@
-// The mapping contract (DESIGN.md): applyJT is the transpose of applyJ, applyJ matches finite
-// differences of apply, jacobian() matches applyJ — for the spline point mapping.
+// The mapping contract (docs/architecture.md, "The three-sided model"): applyJT is the transpose
+// of applyJ, applyJ matches finite differences of apply, jacobian() matches applyJ — for the
+// spline point mapping.
 #include <gtest/gtest.h>
 
 #include "filum/geometry/uniform_cubic_bspline.hpp"

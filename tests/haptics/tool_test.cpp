@@ -1,5 +1,5 @@
-// The interaction tool (haptics/tool.hpp; the mouse probe of `filum view`, issue 7, and the
-// haptic device's tool, issue 15): its push and grasp forces pass the generic force-field test
+// The interaction tool (haptics/tool.hpp; the mouse probe of `filum view` and the haptic
+// device's tool): its push and grasp forces pass the generic force-field test
 // (forces = −∂E/∂q, analytic K and D against finite differences), its reaction on the tool is
 // their opposite with the right Jacobians, a grasped point follows the tool, and a pushed
 // thread leaves the sphere.

@@ -1,4 +1,5 @@
-# Fails when a library includes a library below it in DESIGN.md's order (an upward include).
+# Fails when a library includes a library below it in the order of docs/architecture.md, "Libraries,
+# top to bottom" (an upward include).
 # cmake -DSOURCE_DIR=<tree> -P check_dependencies.cmake
 set(order core geometry mechanics constraints collision haptics visual)
 set(folders modules geometry mechanics constraints collision haptics visual)

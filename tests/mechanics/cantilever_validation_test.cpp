@@ -1,9 +1,9 @@
-// Cantilever under its own weight (issue 4, validation against analytic physics): a 3 cm piece
+// Cantilever under its own weight (validation against analytic physics): a 3 cm piece
 // of 3-0 polypropylene suture (E I = 1.57e-7 N·m², μ g = 2.8e-4 N/m) clamped at s = 0
 // (ClampConstraint: position and tangent exactly, 5 rows) sags by δ = q L⁴/(8 E I) = 0.18 mm
 // (δ/L = 0.6 %) at its tip (apps/validation/cantilever.hpp).
 //
-// Error budget for the static tip deflection (the issue asks 2 %):
+// Error budget for the static tip deflection (2 % is asked):
 //  - geometric nonlinearity: the linear beam theory neglects O((q L³/E I)²) = O(2e-3) relative;
 //  - axial coupling: the thread's stretch under the load, O(q L / E A) = O(1e-7);
 //  - spline discretization: cubic B-splines reproduce the quartic w_s(x) up to O(h⁴); the

@@ -1,4 +1,4 @@
-// Catenary (issue 4, validation against analytic physics): a 10 cm 3-0 polypropylene suture
+// Catenary (validation against analytic physics): a 10 cm 3-0 polypropylene suture
 // (E = 2 GPa, r = 0.1 mm, ρ = 910 kg/m³, GreenLagrangeStretching, no bending) hangs between two
 // fixed points 8 cm apart and comes to rest on z = a cosh((x − S/2)/a) + c, 2a sinh(S/2a) = L
 // (apps/validation/catenary.hpp). Implicit Euler, dt = 5 ms, strong viscous damping

@@ -1,4 +1,4 @@
-// Energy behaviour of the integrators (issue 4):
+// Energy behaviour of the integrators:
 //  - undamped symplectic Euler keeps the energy bounded over 10^5 steps: no drift, only the
 //    O(h ω) oscillation of a symplectic scheme (it conserves a modified energy H̃ = H + O(h));
 //  - implicit Euler never increases the energy of a system with a convex energy, whatever the

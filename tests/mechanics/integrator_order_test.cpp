@@ -1,4 +1,4 @@
-// Integrator orders on a smooth problem (issue 4): measured global order ≈ 1 for explicit,
+// Integrator orders on a smooth problem: measured global order ≈ 1 for explicit,
 // symplectic and implicit Euler, 2 for the implicit midpoint rule, 4 for RK4.
 //
 // Problem: a free soft thread (no constraint: the Baumgarte rate ω = 0.1/dt would change the ODE

@@ -8,7 +8,7 @@
 // forces, node 0 held (support/rod_statics.hpp); RodEndFrame holds the frame at the clamp.
 //
 // Material, real: a polymer catheter-like rod, r = 1 mm, L = 0.2 m, ρ = 1100 kg/m³, ν = 0.5, with
-// E set from the load parameter Γ = ρ A g L³ / (E I) the measurements used (Γ = 5:
+// E set from the load parameter Γ = ρ A g L³ / (E I) of the two rods asked for (Γ = 5:
 // E ≈ 69 MPa, polyurethane; Γ = 20: 17 MPa, silicone).
 #include <gtest/gtest.h>
 
@@ -132,7 +132,7 @@ TEST(RodMechanics, EndLoadedElasticaMatchesTheShootingSolution) {
 }
 
 TEST(RodMechanics, SelfWeightElasticaMatchesTheShootingSolution) {
-  // The rods: Γ = 5 (tip drop 0.496 L) and Γ = 20 (0.830 L) by the elastica. To 1 % at
+  // The two rods asked for: Γ = 5 (tip drop 0.496 L) and Γ = 20 (0.830 L) by the elastica. To 1 % at
   // 21 nodes, second order as the segments halve.
   for (const double gamma : {5.0, 20.0}) {
     const double E = modulusFor(gamma), w = kDensity * kArea * kGravity;

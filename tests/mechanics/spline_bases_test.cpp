@@ -1,4 +1,4 @@
-// The dynamic spline on every basis geometry/ has (issue 30): Catmull-Rom (C1, interpolating) and
+// The dynamic spline on every basis geometry/ has: Catmull-Rom (C1, interpolating) and
 // NUBS of degree 2 to 5, besides the uniform cubic B-spline. Checked against their definitions
 // and against physics:
 //  - the mass matrix M_ij = m ∫ b_i b_j ds (exact Gauss per piece in the code) against composite

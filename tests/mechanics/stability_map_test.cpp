@@ -1,4 +1,4 @@
-// Stability map, short form (issue 4; the full map is apps/bench/stability_map): the largest
+// Stability map, short form (the full map is apps/bench/stability_map): the largest
 // stable step of symplectic Euler and RK4 as the Young's modulus grows 100-fold, and the implicit
 // schemes at the real suture's stiffness (apps/validation/stability.hpp).
 // Mathematics: ω_max ∝ √E, and explicit schemes are stable for ω_max dt below a constant: 2 for

@@ -1,4 +1,4 @@
-// Taut string (issue 4, validation against analytic physics): a 3-0 polypropylene suture of rest
+// Taut string (validation against analytic physics): a 3-0 polypropylene suture of rest
 // length L0 = S/1.01 held at both ends S = 10 cm apart (GreenLagrangeStretching, no bending, no
 // gravity) vibrates transversally at f_k = k/(2S) √(T/μ), μ = m/S (apps/validation/taut_string.hpp).
 //
@@ -10,7 +10,7 @@
 //    reaction of the fixed end, λ from Lᵀλ = −Q (least squares on the equilibrium's forces).
 //    Error of the discrete frequencies: a Galerkin (Rayleigh-Ritz) method with cubic splines
 //    overestimates ω_k², by O((k π h)^{2p}) = O(h⁶) relative (p = 3): at n = 40 and k = 3,
-//    (3π/37)⁶ ≈ 3e-4 before the constant; the issue asks 1 %. Asserted: within 1 % at
+//    (3π/37)⁶ ≈ 3e-4 before the constant; 1 % is asked. Asserted: within 1 % at
 //    n = 40 and 80, from above, and at least 2⁵ more accurate for n = 40 than for n = 20
 //    (order >= 5 of the frequency error; theory 6).
 // 2. Dynamics: started in the first mode's shape (amplitude 1e-5 m), the implicit midpoint rule

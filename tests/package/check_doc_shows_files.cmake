@@ -1,4 +1,4 @@
-# A page of docs/ that shows an example's files verbatim (issue 34: every code example in docs/
+# A page of docs/ that shows an example's files verbatim (every code example in docs/
 # is complete and compiled or run by a test). The page marks each copy with a comment on the line
 # before its fence,
 #   <!-- verbatim: examples/custom_component/main.cpp -->

@@ -1,8 +1,8 @@
-# The installed package, end to end (issue 16; ctest label `package`): installs the build tree to a
+# The installed package, end to end (ctest label `package`): installs the build tree to a
 # fresh prefix, configures examples/custom_app and examples/custom_component against it with
 # find_package(filum) alone (no path into the tree), builds them and runs them (their exit status
 # checks the physics); custom_component also on a scene with a typo, which must end in its
-# SceneError message and exit status 2 (issue 34: the example of docs/writing-a-component.md);
+# SceneError message and exit status 2 (the example of docs/writing-a-component.md);
 # then asks the package for a component the build lacks and checks that find_package fails naming it.
 #   cmake -DBUILD_DIR=<filum build> -DSOURCE_DIR=<filum source> -DWORK_DIR=<scratch>
 #         [-DBUILT_COMPONENT=<component built>] [-DMISSING_COMPONENT=<component built out>]

@@ -1,5 +1,6 @@
-// The generic force-field test (SOFA's force-field test harness is the model; DESIGN.md and
-// STYLE.md: "one generic finite-difference test that every force field passes"). For one field:
+// The generic force-field test (SOFA's force-field test harness is the model; docs/architecture.md,
+// "Where new things go": one generic finite-difference test that every force field passes). For
+// one field:
 //  1. gradient: Q = −∂E/∂q against central differences of potentialEnergy, coordinate by coordinate;
 //  2. stiffness: K = ∂Q/∂q from addJacobian(k_factor = 1, d_factor = 0) against central
 //     differences of addForce in q, column by column;

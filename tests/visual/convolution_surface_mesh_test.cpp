@@ -1,4 +1,4 @@
-// Implicit surfaces meshed for display (issue 7): CGAL's surface mesher on a convolution surface
+// Implicit surfaces meshed for display: CGAL's surface mesher on a convolution surface
 // gives a closed, outward-oriented 2-manifold lying on the surface within the approximation
 // bound; the ConvolutionSurfaceModel wraps a spline. Without CGAL (FILUM_WITH_CGAL=OFF) the
 // component is refused with an error naming the option.

@@ -1,4 +1,4 @@
-// Skinning (issue 7): the generalized cylinder around a spline axis is a closed, consistently
+// Skinning: the generalized cylinder around a spline axis is a closed, consistently
 // oriented 2-manifold, its vertices lie at the requested radius from the axis (to 1e-9 m), its
 // frames do not twist on a planar curve, its normals are unit and outward, and the mapping that
 // carries the control points down to the axis passes the generic mapping test.

@@ -1,4 +1,4 @@
-// Mesh files (issue 7): meshes read from files (geometry/mesh_file.hpp, tested on its own in
+// Mesh files: meshes read from files (geometry/mesh_file.hpp, tested on its own in
 // tests/geometry/mesh_file_test.cpp) with their normals, OBJ and PLY writers read back, and the
 // MeshModel and SphereModel components.
 #include <gtest/gtest.h>

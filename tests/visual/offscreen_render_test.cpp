@@ -1,4 +1,4 @@
-// Headless rendering (issue 7): a rendered frame of a known scene is not blank — the projected
+// Headless rendering: a rendered frame of a known scene is not blank — the projected
 // axis of the thread falls on thread-coloured pixels, and pixels away from the thread show the
 // background — with no golden image: the expected pixels come from the pinhole model of
 // camera.hpp. The test starts its own Xvfb when DISPLAY is unset and skips only if Xvfb is not

@@ -1,4 +1,4 @@
-// ParaView export (issue 7): the .vtp files of the skinned meshes and their .pvd index, read back
+// ParaView export: the .vtp files of the skinned meshes and their .pvd index, read back
 // by an independent parser (tests/support/vtk_xml_reader.hpp), match the meshes exactly.
 #include <gtest/gtest.h>
 

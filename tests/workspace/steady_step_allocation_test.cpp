@@ -1,4 +1,4 @@
-// The step workspace (DESIGN.md "Model and state", issue 12): a steady-state step allocates
+// The step workspace (docs/architecture.md, "Model and state"): a steady-state step allocates
 // nothing. This executable replaces the global operator new (and its variants) with a counting
 // one, runs every reference scene (apps/scenes/*.json, each with its own integrator, explicit or
 // implicit) for a warm-up — the first steps size the workspace: step matrices, constraint

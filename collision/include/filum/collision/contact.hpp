@@ -4,10 +4,10 @@
 // Points of threads are weights on control points (PointWeights: the basis values at a sphere
 // centre, or a blend of two rows on the chord between centres), so every contact quantity maps
 // to the DOFs through the Jacobian row of its point (paper §3: "forces can be applied on any
-// point of the spline"; DESIGN.md, mappings). The contact is linearized over the step, as
-// contacts are in SOFA or Bullet: the normal n (unit, from B towards A) and the chord parameters
-// are those found at the step's start; only positions and velocities change between integrator
-// stages. The gap, positive when apart,
+// point of the spline"; docs/architecture.md, "The three-sided model"). The contact is linearized
+// over the step, as contacts are in SOFA or Bullet: the normal n (unit, from B towards A) and the
+// chord parameters are those found at the step's start; only positions and velocities change
+// between integrator stages. The gap, positive when apart,
 //   g(q, t) = n·(x_A(q) − x_B(q, t)) − R,   R = r_A + r_B (thread–thread), r_A (thread–obstacle),
 // with x_B(t) = p_0 + v_B (t − t_0) for an obstacle (surface point p_0 moving with the surface
 // velocity v_B), has the constant gradient ∂g/∂q_j = w_{A,j} n − w_{B,j} n, and

@@ -1,6 +1,6 @@
-// ContactPipeline: the collision pipeline of a scene (core/collision_pipeline.hpp; DESIGN.md "One
-// time step", stage 2 and 3): detection once per step at the step's start state, the response at
-// every integrator stage with that step's contact set.
+// ContactPipeline: the collision pipeline of a scene (core/collision_pipeline.hpp;
+// docs/architecture.md, "One step": detectCollisions and integrate): detection once per step at
+// the step's start state, the response at every integrator stage with that step's contact set.
 //
 // beginStep (stage 2):
 //   1. every SphereCollisionModel resamples its spheres on the current curve and maps centres and

@@ -1,5 +1,5 @@
 // ImplicitSurfaceObstacle: a convolution surface f(x) = T − F(x) = 0 around a skeleton polyline
-// (geometry::ConvolutionSurface; talk 002, catheter navigation: "convolution surface for contact
+// (geometry::ConvolutionSurface; [Lenoir talk 2008], catheter navigation: "convolution surface for contact
 // f(x) = 0 ... collision detection achieved by evaluating f(x), collision response along f(x)").
 // Inside where f < 0. The distance to the surface is estimated to first order by the Newton
 // step of f along its gradient,

@@ -1,4 +1,4 @@
-// Is a thread still knotted? A topological check for knot tying (issue 6: the knot of knot.json
+// Is a thread still knotted? A topological check for knot tying (the knot of knot.json
 // must still be a knot after 10 s and after a fast pull): close the open thread far away from
 // itself, project it on a plane and compute the knot determinant |Δ(−1)| of the diagram — 1 for
 // the unknot, 3 for the trefoil (the overhand knot closed), 5 for the figure-eight knot.

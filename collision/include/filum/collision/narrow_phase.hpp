@@ -1,5 +1,6 @@
 // Narrow phase: from candidate pairs to the contacts of one step (contact.hpp), at the step's
-// start state, with continuous detection over the step (DESIGN.md step 2).
+// start state, with continuous detection over the step (docs/architecture.md, "One step":
+// detectCollisions).
 //
 // Thread–obstacle, per sphere k of radius r at centre x_k moving at v_k, against an obstacle
 // whose surface moves at most at speed u: the sphere may touch the surface within the step if

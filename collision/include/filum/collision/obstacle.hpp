@@ -3,7 +3,7 @@
 // probe). Its one query is the signed distance of a point to its surface with the closest
 // surface point, the outward normal and the velocity of the surface there; a thread sphere of
 // radius r at centre x is in contact when distance(x) < r (paper §3: penalty response to sphere
-// contacts; talk 002: collision against f(x) = 0, response along ∇f).
+// contacts; [Lenoir talk 2008]: collision against f(x) = 0, response along ∇f).
 #pragma once
 
 #include <optional>

@@ -2,7 +2,7 @@
 // spheres ... in the case of the thread, spheres are created by a sampling along the curve
 // spline"). Spheres of radius r are placed along the DynamicSpline of the component's node at
 // curvilinear spacing <= h by a SphereSamplingMapping, resampled at every step as the thread
-// stretches (talk 002). Between two consecutive centres the union of the spheres is taken as the
+// stretches ([Lenoir talk 2008]). Between two consecutive centres the union of the spheres is taken as the
 // capsule around their chord: thread–thread contacts are computed between chords (segment
 // closest points, continuous detection between moving segments), thread–obstacle contacts per
 // sphere.

@@ -1,6 +1,6 @@
 // SphereSamplingMapping: the collision side of a spline — K sphere centres at (near) equal
 // curvilinear spacing along P(s) = Σ_i b_i(s) q_i (paper §3: "spheres are created by a sampling
-// along the curve spline"; talk 002: "dynamic distribution (curvilinear distance)").
+// along the curve spline"; [Lenoir talk 2008]: "dynamic distribution (curvilinear distance)").
 //
 // resample(q) places the centres at the abscissas s_k with L(s_k) = k L / (K − 1), L the arc
 // length of the current curve, and K = ⌈L / h⌉ + 1 for the target spacing h (for a polyline, a

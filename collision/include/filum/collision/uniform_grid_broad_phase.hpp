@@ -1,5 +1,5 @@
 // Broad phase: every pair of bounding spheres that overlap, |c_i − c_j| <= r_i + r_j, in time
-// linear in the number of spheres — the "voxel grid" broad phase of talk 002 (intestines), as a
+// linear in the number of spheres — the "voxel grid" broad phase of [Lenoir talk 2008] (intestines), as a
 // spatial hash (Teschner, Heidelberger, Müller, Pomeranets & Gross, "Optimized spatial hashing for
 // collision detection of deformable objects", VMV 2003).
 //

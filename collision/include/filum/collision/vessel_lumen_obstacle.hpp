@@ -2,7 +2,7 @@
 // catheter or a coil stays in. The lumen is a geometry::VesselTree (centrelines with radii,
 // branches joined smoothly, open inlet and outlets), queried as its field: the wall's signed
 // distance φ(x) / |∇φ(x)| (positive inside the lumen, where the instruments are free) and the
-// normal n = ∇φ / |∇φ|, pointing from the wall into the lumen (talk 002, catheter navigation:
+// normal n = ∇φ / |∇φ|, pointing from the wall into the lumen ([Lenoir talk 2008], catheter navigation:
 // "collision detection achieved by evaluating f(x), collision response along f(x)").
 //
 // Scene: "file": the tree's JSON file (relative to the scene file; format in vessel_tree.hpp and

@@ -1,5 +1,5 @@
 // Baumgarte stabilization (J. Baumgarte, 1972) of a position constraint g(q, t) = 0 solved at
-// the acceleration level (paper §4, talk 002 "Lagrange multipliers + Baumgarte scheme"):
+// the acceleration level (paper §4, [Lenoir talk 2008] "Lagrange multipliers + Baumgarte scheme"):
 //   g̈ = −2ω ġ − ω² g,
 // the critically damped choice (both roots at −ω): a violation left by the integrator decays
 // like (1 + ω t) e^{−ω t} instead of drifting. ω = 0 keeps only g̈ = 0 (drift grows).

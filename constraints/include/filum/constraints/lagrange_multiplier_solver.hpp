@@ -1,6 +1,6 @@
 // LagrangeMultiplierSolver: the constraint solver of a scene — bilateral constraints of every
 // body and unilateral contacts with Coulomb friction together, on one Delassus operator, by the
-// acceleration decomposition (paper §4, talk 002 "fallopian tubes"):
+// acceleration decomposition (paper §4, [Lenoir talk 2008] "fallopian tubes"):
 //   M A_t = B                       (tendency acceleration, done by the scene)
 //   W λ = E − L A_t,  W = L M⁻¹ Lᵀ  (c × c Delassus system)
 //   A = A_t + M⁻¹ Lᵀ λ
@@ -48,7 +48,7 @@
 // short one. τ = 0 keeps every entry (exact, sparse only across bodies).
 //
 // Contacts (ConstraintRows::Kind; the rows are built by collision/contact_pipeline.hpp). With
-// inequality rows the same W and β = E − L A_t give a mixed complementarity problem (talk 002,
+// inequality rows the same W and β = E − L A_t give a mixed complementarity problem ([Lenoir talk 2008],
 // catheter: "Signorini's law 0 <= d ⊥ f >= 0 ... Delassus operator W = H C Hᵀ"):
 //   equality rows B:  (W λ − β)_B = 0,                   λ_B free;
 //   normal rows:      (W λ − β)_n >= 0, λ_n >= 0,         λ_n (W λ − β)_n = 0;

@@ -1,4 +1,4 @@
-// PointTarget: what a point constraint holds the curve point P(s) to (paper Fig. 1a, talk 002):
+// PointTarget: what a point constraint holds the curve point P(s) to (paper Fig. 1a, [Lenoir talk 2008]):
 //   fixed      X(t) = X0              "target": [x, y, z]   (default: where P(s) starts)
 //   scripted   X(t) = path(t)         "path": [{"time": t, "position": [x, y, z]}, ...]
 //   attached   X(t) = P2(s2, t) = Σ_k b_k(s2) q2_k, a point of another spline (or of the same

@@ -1,4 +1,4 @@
-// Scheduled release of a constraint (a cut at a predefined time, talk 002 "release appropriate
+// Scheduled release of a constraint (a cut at a predefined time, [Lenoir talk 2008] "release appropriate
 // constraints to cut"): "release_at": t (s, >= 0) in the scene file. From the first step that
 // starts at or after t the constraint contributes no rows (Constraint::releasedAt); nothing is
 // refactored. Read by every constraint of this library, so that only constraints accept it.

@@ -1,4 +1,4 @@
-// SlidingPointConstraint: the suture constraint of talk 002 — a thread passes through a point
+// SlidingPointConstraint: the suture constraint of [Lenoir talk 2008] — a thread passes through a point
 // P0 (a needle hole in tissue) and may slide through it:
 //   g(q, s, t) = P(s(t), t) − X(t) = 0,
 // where the abscissa s(t) of the curve point in the hole is a free unknown (an extra DOF of
@@ -11,7 +11,7 @@
 // and the Baumgarte law g̈ = −2ω ġ − ω² g splits along the normal plane N = [n1 n2] ⊥ t and
 // along t (the multiplier only has normal components, λ = N μ):
 //   rows (2):        Nᵀ (Σ_j b_j A_j − Ẍ) = Nᵀ r,    r = −2 Ṗ' ṡ − P'' ṡ² − 2ω ġ − ω² g,
-//   direct relation: s̈ = tᵀ (r − (Σ_j b_j A_j − Ẍ)) / |t|²   (talk 002: "resolution
+//   direct relation: s̈ = tᵀ (r − (Σ_j b_j A_j − Ẍ)) / |t|²   ([Lenoir talk 2008]: "resolution
 //                    acceleration by giving a direct relation to compute s").
 // (a known Ẍ — a scripted hole — is moved into r; an attached hole's Ẍ = Σ b2 A2 stays in L).
 // So the sliding point costs 2 rows in the multiplier system and one scalar after it.

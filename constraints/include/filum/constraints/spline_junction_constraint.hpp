@@ -1,4 +1,4 @@
-// SplineJunctionConstraint: joins two splines (talk 002, fallopian tubes: "3 dynamic splines
+// SplineJunctionConstraint: joins two splines ([Lenoir talk 2008], fallopian tubes: "3 dynamic splines
 // connected to keep the continuity ... 9 constraints per junction", released to cut). The
 // point of abscissa s1 of this body (default 1, its end) and the point of abscissa s2 of the
 // other body (default 0, its start) are joined with parametric continuity C^k, k ∈ {0, 1, 2}:

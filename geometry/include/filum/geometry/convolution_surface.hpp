@@ -4,7 +4,7 @@
 // whole skeleton,
 //   F(x) = Σ_segments ∫ k(|x − c(t)|) dt,
 // so a polyline gives a smooth tube with no bulge at its joints (the line integral is additive:
-// splitting a segment does not change F). The surface is F(x) = T. Lenoir's talk 002 renders
+// splitting a segment does not change F). The surface is F(x) = T. [Lenoir talk 2008] renders
 // intestines this way and uses f(x) = 0 for catheter contact against vessels built on an
 // animated skeleton: collision test by the sign of f, response along ∇f.
 //

@@ -1,4 +1,4 @@
-// Splitting a B-spline curve in two, the way a thread is cut (talk 002: "multiple insertion at
+// Splitting a B-spline curve in two, the way a thread is cut ([Lenoir talk 2008]: "multiple insertion at
 // the same parametric abscissa decreases the local continuity; local C-1 continuity => cut").
 // Inserting u until its multiplicity is d + 1 (Boehm/Oslo, exact) makes the representation
 // C−1 at u: with u at knot indices a..a+d, no basis function straddles u, so

@@ -1,5 +1,5 @@
 // Exact knot insertion: a B-spline curve on knots t is rewritten on a refined knot vector
-// t̃ ⊃ t without changing P(s) (Lenoir's talk 002, "adaptive resolution of the geometry":
+// t̃ ⊃ t without changing P(s) ([Lenoir talk 2008], "adaptive resolution of the geometry":
 // more control points where the knot is tied).
 //
 // Boehm (1980), one knot u with t_k <= u < t_{k+1}:
@@ -8,7 +8,7 @@
 //   q̃_i = q_{i−1}                              for i >= k + 1.
 //
 // Oslo algorithm (Cohen, Lyche & Riesenfeld 1980), any number of knots at once, with the
-// discrete B-splines α of talk 002:  B_i(u) = Σ_j α^d_{i,j} B̃_j(u),  q̃_j = Σ_i α^d_{i,j} q_i,
+// discrete B-splines α of [Lenoir talk 2008]:  B_i(u) = Σ_j α^d_{i,j} B̃_j(u),  q̃_j = Σ_i α^d_{i,j} q_i,
 //   α^0_{i,j} = 1 if t_i <= t̃_j < t_{i+1}, else 0,
 //   α^r_{i,j} = (t̃_{j+r} − t_i)/(t_{i+r} − t_i) α^{r−1}_{i,j} + (t_{i+r+1} − t̃_{j+r})/(t_{i+r+1} − t_{i+1}) α^{r−1}_{i+1,j}
 // (Cox–de Boor with the evaluation point moving to t̃_{j+r} at level r). Only the d + 1 values

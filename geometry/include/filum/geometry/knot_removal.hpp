@@ -1,5 +1,5 @@
 // Knot removal (the inverse of Boehm insertion; Tiller 1992, Piegl & Tiller §5.4) with a
-// guaranteed error bound. Removal is in general an approximation (talk 002: "simplification is
+// guaranteed error bound. Removal is in general an approximation ([Lenoir talk 2008]: "simplification is
 // often an approximation"): the curve on the coarser knots τ = t \ {u} can only reproduce P if
 // P is one order smoother at u than its knot multiplicity allows.
 //

@@ -11,7 +11,7 @@
 // Parameterisation: s ∈ [0, 1] is mapped affinely onto the valid domain [t_d, t_n] (n control
 // points, knots t_0..t_{n+d}): u(s) = t_d + s (t_n − t_d), so d^k/ds^k = (t_n − t_d)^k d^k/du^k.
 // Inside the domain the functions are non-negative and sum to one. At an interior knot of
-// multiplicity m the curve is C^{d−m} (m = d + 1: the curve may break there — a cut, talk 002).
+// multiplicity m the curve is C^{d−m} (m = d + 1: the curve may break there — a cut, [Lenoir talk 2008]).
 // Derivatives at a knot are the right-hand limits (the span with t_k <= u < t_{k+1}); at
 // u = t_n they are the left-hand limits of the last span.
 #pragma once

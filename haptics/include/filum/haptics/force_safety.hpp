@@ -1,5 +1,5 @@
-// ForceSafety: the last stage before every device write (DESIGN.md: "no NaN reaches a file or a
-// device"). In order, for the commanded force F at servo time t:
+// ForceSafety: the last stage before every device write (docs/architecture.md, "One step": nothing
+// non-finite reaches a file or a device). In order, for the commanded force F at servo time t:
 //   1. a non-finite component makes the whole force zero at once, with no slew (and is counted);
 //   2. watchdog: when the simulation has not published a model for `watchdog` seconds (50 ms),
 //      a gain g falls linearly to 0 over `fade` seconds, and rises back the same way once models

@@ -1,6 +1,6 @@
 // LocalLinearModel: what the simulation tells the 1 kHz servo loop about the force on the tool,
-// linearised around the last simulated state (the multi-rate scheme of the seeds and of
-// OpenSurgSim's VirtualToolCoupler), so that the servo never waits for a step:
+// linearised around the last simulated state (the multi-rate scheme of docs/haptics.md, "What
+// runs", as in OpenSurgSim's VirtualToolCoupler), so that the servo never waits for a step:
 //   F(x, v) = F0 + K (x − x0) + D (v − v0)
 // with x, v the stylus position and velocity in the scene frame, F the force on the stylus in
 // the scene frame (N), K = ∂F/∂x (N/m) and D = ∂F/∂v (N·s/m) the Jacobians at (x0, v0). For a

@@ -1,4 +1,4 @@
-// ServoLoop: the 1 kHz loop between a device and the simulation (DESIGN.md, haptics/).
+// ServoLoop: the 1 kHz loop between a device and the simulation (docs/haptics.md, "What runs").
 //
 // One tick, at servo time t (the device's servo thread, or the caller's in lockstep):
 //   1. read the stylus (device frame) and map it into the scene (DeviceFrame);

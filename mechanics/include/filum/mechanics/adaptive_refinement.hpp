@@ -1,4 +1,4 @@
-// AdaptiveRefinement: adaptive NUBS at run time (talk 002: "adaptive NUBS by Oslo insertion") —
+// AdaptiveRefinement: adaptive NUBS at run time ([Lenoir talk 2008]: "adaptive NUBS by Oslo insertion") —
 // control points where the thread bends or is held or touched, few where it is straight.
 // Every `every` steps, before the step, for each span [b_k, b_k+1] of the curve (its breakpoints)
 // in the current state:

@@ -1,5 +1,6 @@
 // BlockBandLdlt: A = L D Lᵀ by 3 × 3 blocks for the symmetric block-band matrix of an implicit
-// step, A = M − θh D − κh² K over one spline's n control points (DESIGN.md "Numbers that matter").
+// step, A = M − θh D − κh² K over one spline's n control points (docs/architecture.md, "Numbers
+// that matter").
 // Control points i and j interact only when |i − j| <= r (r = d, the degree, for a spline), so A
 // has 2r + 1 block diagonals; L is unit block lower triangular with the same band, D block
 // diagonal (3 × 3 symmetric blocks). For block rows i, j < i:

@@ -1,5 +1,5 @@
 // CurvatureBending: the exact bending energy of an inextensible-or-not thread with a straight
-// natural shape (Kirchhoff rod without twist; DESIGN.md "Numbers that matter"):
+// natural shape (Kirchhoff rod without twist; docs/architecture.md, "Numbers that matter"):
 //   E = ½ E·I ∫ κ² dℓ = ½ E·I ∫_0^1 κ(s)² |P'(s)| ds,   κ = |P' × P''| / |P'|³,
 // so with x = P'(s), y = P''(s), C = |x × y|² = |x|²|y|² − (x·y)² and r = |x|²:
 //   e(x, y) = ½ E·I C r^(−5/2)  per unit of s.

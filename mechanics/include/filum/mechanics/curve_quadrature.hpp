@@ -1,6 +1,6 @@
 // CurveQuadrature: the Gauss-Legendre nodes of every polynomial piece of a spline basis, with the
 // basis row (b_i, b'_i, b''_i) and the rest speed |P0'(s)| at each node, computed once (model
-// data, DESIGN.md "Model and state"). Continuous energies integrate with it:
+// data, docs/architecture.md, "Model and state"). Continuous energies integrate with it:
 //   ∫_0^1 f(s) ds ≈ Σ_g w_g f(s_g),
 // exact when f is a polynomial of degree <= 2k − 1 on each piece (k nodes per piece).
 //

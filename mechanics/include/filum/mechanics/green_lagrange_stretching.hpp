@@ -1,5 +1,5 @@
 // GreenLagrangeStretching: continuous stretching energy of a thread with the Green-Lagrange
-// strain (Nocent & Rémion, CAS 2001; talk 002 "continuous stretching"):
+// strain (Nocent & Rémion, CAS 2001; [Lenoir talk 2008] "continuous stretching"):
 //   ε(s) = (|P'(s)|² − |P0'(s)|²) / (2 |P0'(s)|²),
 //   E = ½ ∫_0^1 E·A ε(s)² |P0'(s)| ds            (|P0'| ds = rest arc length dσ),
 // E Young's modulus (Pa), A = π r² the cross-section of the body's radius, P0 the rest

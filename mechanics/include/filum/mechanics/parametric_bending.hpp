@@ -1,5 +1,5 @@
-// ParametricBending: the quadratic bending energy of a thread (DESIGN.md "Numbers that matter";
-// talk 002 "continuous bending, approx. using parametric curvature"):
+// ParametricBending: the quadratic bending energy of a thread (docs/architecture.md, "Numbers that
+// matter"; [Lenoir talk 2008]: "continuous bending, approx. using parametric curvature"):
 //   E = ½ E·I ∫ |d²P/dσ²|² dσ,   σ the rest arc length,
 // which, with d²P/dσ² ≈ P''/|P0'|² (exact for a uniformly parametrized rest curve, |P0'| constant)
 // and dσ = |P0'| ds, is

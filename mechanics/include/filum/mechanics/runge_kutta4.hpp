@@ -1,5 +1,5 @@
 // Classical fourth-order Runge-Kutta on y = (q, v), y' = (v, A(q, v, t)) — the explicit
-// integrator of the paper (§3) and of the intestine model (talk 002). Stage k evaluates the
+// integrator of the paper (§3) and of the intestine model ([Lenoir talk 2008]). Stage k evaluates the
 // scene's accelerations at a stage state; the stage states reuse preallocated storage.
 #pragma once
 

@@ -1,9 +1,10 @@
 // SparseLdlt: factorization of a sparse symmetric matrix that is not banded — the step matrix
 // M − θh D − κh² K of several coupled bodies, or of one body whose energy couples distant
 // control points (the paper's global stretching, whose Hessian holds the dense rank-one term
-// ∇l ∇lᵀ). DESIGN.md: "Large sparse systems go to SuiteSparse (CHOLMOD) through Eigen's
-// wrappers". With FILUM_WITH_SUITESPARSE (CMake option, default ON) this is CHOLMOD (supernodal
-// LLᵀ, switching to LDLᵀ when the matrix is indefinite); without it, Eigen's SimplicialLDLT.
+// ∇l ∇lᵀ). docs/architecture.md, "Numbers that matter": "Large sparse systems go to SuiteSparse
+// (CHOLMOD) through Eigen's wrappers". With FILUM_WITH_SUITESPARSE (CMake option, default ON)
+// this is CHOLMOD (supernodal LLᵀ, switching to LDLᵀ when the matrix is indefinite); without it,
+// Eigen's SimplicialLDLT.
 //
 // precompute/solve split (libigl style): the symbolic analysis is redone only when the sparsity
 // pattern changes; the numeric factorization is redone on every factor().

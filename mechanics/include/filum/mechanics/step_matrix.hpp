@@ -4,7 +4,7 @@
 // works through during an implicit step, so constraints keep the acceleration decomposition of
 // paper §4 with A in place of M.
 //
-// Direct band assembly (DESIGN.md "Numbers that matter"). StepMatrix is the JacobianAccumulator
+// Direct band assembly (docs/architecture.md, "Numbers that matter"). StepMatrix is the JacobianAccumulator
 // the bodies and force fields write to: a 3 × 3 block lands straight in its body's band, with no
 // triplet list, scatter or sort. Per block:
 //   - band (BlockBandLdlt: LDLᵀ by 3 × 3 blocks, O(n d²)): the half bandwidth comes from the

@@ -2,7 +2,7 @@
 // row at s kept: P(s) = Σ_j b_j(s) q_{first + j} (CurveBody). The one form in which a point on a
 // body is named by those who hold one: constraints (their own point, an attached target,
 // junctions), the haptic tool's grasp and attachments. A force F at the point maps up as
-// B_{first+j} += b_j(s) F (DESIGN.md "mappings").
+// B_{first+j} += b_j(s) F (docs/architecture.md, "The three-sided model").
 //
 // The row belongs to the body's layout when it was evaluated; after the body changes its points
 // (CurveBody::refine, coarsen, Scene::refine) every accessor evaluates it again at the same s in

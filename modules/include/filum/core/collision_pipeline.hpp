@@ -1,6 +1,7 @@
-// CollisionModel and CollisionPipeline: the kernel's view of the collision side (DESIGN.md "The
-// three-sided model" and "One time step", stage 2; paper §3: spheres sampled along the spline,
-// penalty response "directly integrated in the system equations (2)").
+// CollisionModel and CollisionPipeline: the kernel's view of the collision side
+// (docs/architecture.md, "The three-sided model" and "One step": detectCollisions; paper §3:
+// spheres sampled along the spline, penalty response "directly integrated in the system
+// equations (2)").
 //
 // The kernel only knows two small interfaces; everything else (sphere sampling, broad and narrow
 // phases, penalty and unilateral responses) lives in the collision library:

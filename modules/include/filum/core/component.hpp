@@ -1,5 +1,5 @@
 // Component: the unit a scene is assembled from (paper's three-sided model: mechanical,
-// collision and visual sides, joined by mappings; DESIGN.md "The three-sided model").
+// collision and visual sides, joined by mappings; docs/architecture.md, "The three-sided model").
 #pragma once
 
 #include <string>

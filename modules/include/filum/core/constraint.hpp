@@ -4,7 +4,7 @@
 //
 // Besides its rows a constraint may own scalar degrees of freedom of its own ("extra" DOFs,
 // laid out after the points in SceneState::q and v, see scene_state.hpp): a sliding point's
-// abscissa s(t) (talk 002, suturing), whose acceleration follows from the point accelerations
+// abscissa s(t) ([Lenoir talk 2008], suturing), whose acceleration follows from the point accelerations
 // once the multipliers are known (extraAcceleration). It may also apply known forces
 // (addForce: friction along a sliding point's tangent), and it may be released at a scheduled
 // time ("release_at" in the scene file) or when its own state says so (a thread that slid out

@@ -14,7 +14,8 @@
 // factors with e = x, y, z.
 //
 // Kinds of rows. Most rows are equalities (bilateral constraints, L_r A = E_r, λ_r free). Contacts
-// add inequality rows (DESIGN.md, one constraint solver for both; talk 002: Signorini's law):
+// add inequality rows (one constraint solver for both: docs/architecture.md, "One step"; Signorini's
+// law, [Lenoir talk 2008]):
 //   a normal row   n·(A_A − A_B) >= E_r,   λ_r >= 0,  λ_r (L_r A − E_r) = 0;
 //   a friction pair t_j·(A_A − A_B) = E_r (j = 1, 2), |(λ_t1, λ_t2)| <= μ λ_n of its normal row
 //     (Coulomb's disc).

@@ -1,5 +1,5 @@
 // ConstraintSolver: turns the unconstrained (tendency) accelerations A_t = M⁻¹B into
-// accelerations that satisfy L A = E (paper §4; talk 002 "acceleration decomposition") — and,
+// accelerations that satisfy L A = E (paper §4; [Lenoir talk 2008] "acceleration decomposition") — and,
 // for the inequality rows of contacts (ConstraintRows::Kind), Signorini's and Coulomb's laws.
 // One solver serves every integrator: explicit stages pass the mass matrix as A, implicit steps
 // their step matrix.

@@ -49,7 +49,7 @@ class CurveBasis {
   /// polynomial (so that Gauss-Legendre quadrature per piece is exact).
   virtual std::vector<double> breakpoints() const = 0;
   /// Abscissas in (0, 1), sorted, where the curve is cut: C⁻¹, no basis function straddles them
-  /// (a knot of multiplicity degree + 1: talk 002, "local C-1 continuity => cut"). Between two
+  /// (a knot of multiplicity degree + 1: [Lenoir talk 2008], "local C-1 continuity => cut"). Between two
   /// consecutive cuts the curve is one strand (strands()); empty for an uncut curve.
   virtual std::vector<double> cuts() const = 0;
 

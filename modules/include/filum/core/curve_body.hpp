@@ -7,9 +7,10 @@
 // Everything a client needs of the curve goes through its basis row at s (BasisRow: the first
 // point and the weights b_j(s), b'_j(s), b''_j(s)): the position, tangent and second derivative,
 // and the mapping row of a point on the body — a force F at s adds b_j(s) F to point first + j
-// (DESIGN.md "mappings"). The parameter range is [0, 1]; pointCount() is the number of control
-// points, which changes only between steps (Scene::refine, coarsen and cut). A cut curve is a
-// sequence of strands (CurveBasis::strands), each a curve of its own between its two ends.
+// (docs/architecture.md, "The three-sided model"). The parameter range is [0, 1]; pointCount()
+// is the number of control points, which changes only between steps (Scene::refine, coarsen and
+// cut). A cut curve is a sequence of strands (CurveBasis::strands), each a curve of its own
+// between its two ends.
 #pragma once
 
 #include "filum/core/curve_basis.hpp"
@@ -57,7 +58,7 @@ class CurveBody : public MechanicalState {
   /// the model, or an empty matrix and changes nothing when the bound exceeds the tolerance.
   /// Use Scene::coarsen. Throws SceneError when s is not at a knot of the body.
   virtual SparseMatrix coarsen(double abscissa, ConstPointsRef q, double tolerance) = 0;
-  /// Cuts the curve at s ∈ (0, 1) (talk 002: "multiple insertion at the same parametric
+  /// Cuts the curve at s ∈ (0, 1) ([Lenoir talk 2008]: "multiple insertion at the same parametric
   /// abscissa decreases the local continuity; local C-1 continuity => cut"): the knot at s raised
   /// to multiplicity degree + 1, so that the body becomes two strands (CurveBasis::strands) that
   /// share no control point, each with its own end at s. The curve is unchanged at that instant;

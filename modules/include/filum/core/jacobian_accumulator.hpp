@@ -1,5 +1,5 @@
 // JacobianAccumulator: where the matrix of an implicit step, A = M − θh D − κh² K, is assembled
-// (DESIGN.md "Numbers that matter"). Bodies add their mass, force fields their Jacobians
+// (docs/architecture.md, "Numbers that matter"). Bodies add their mass, force fields their Jacobians
 // k·K + d·D (ForceField::addJacobian), contact pipelines their penalty Jacobians, each straight
 // into the structure the accumulator owns: the step matrix adds 3 × 3 blocks into one band per
 // body (mechanics/step_matrix.hpp), with no triplet list, scatter or sort in the step.

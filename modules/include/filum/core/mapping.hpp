@@ -1,6 +1,7 @@
 // Mapping: child = f(parent), joining the mechanical side to the collision and visual sides
-// (DESIGN.md). For a spline P(s) = Σ b_i(s) q_i the Jacobian row of a point at abscissa s holds
-// the basis values b_i(s), so a force F at s adds b_i(s) F to control point i (paper §3).
+// (docs/architecture.md, "The three-sided model"). For a spline P(s) = Σ b_i(s) q_i the Jacobian
+// row of a point at abscissa s holds the basis values b_i(s), so a force F at s adds b_i(s) F to
+// control point i (paper §3).
 #pragma once
 
 #include "filum/core/component.hpp"

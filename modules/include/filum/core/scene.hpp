@@ -1,6 +1,6 @@
-// Scene: the node tree, its settings and its state, and the step pipeline (DESIGN.md
-// "One time step"):
-//   1. map positions down (later issues: collision and visual sides);
+// Scene: the node tree, its settings and its state, and the step pipeline (docs/architecture.md,
+// "One step"):
+//   1. map positions down (the collision models at detection, the visual models after the step);
 //   2. collision detection, only if collision models exist (CollisionPipeline::beginStep, see
 //      collision_pipeline.hpp; the collision library implements it);
 //   3. per integrator stage: accumulate B (gravity, force fields), solve M A = B, and with
@@ -231,7 +231,7 @@ class Scene {
   SceneSettings settings_;
   SceneState state_;
   SceneState last_good_;
-  // The step pipeline (DESIGN.md "One time step"), one function per stage; step() runs
+  // The step pipeline (docs/architecture.md, "One step"), one function per stage; step() runs
   // beginStep, advance (detectCollisions, integrate, again in halves for missed contacts) and
   // endStep.
   /// Applies the events due at the step's start (scheduled refinements and cuts of bodies, then

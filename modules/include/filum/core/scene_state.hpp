@@ -1,4 +1,4 @@
-// SceneState: everything that changes during a step, in one copyable value (DESIGN.md
+// SceneState: everything that changes during a step, in one copyable value (docs/architecture.md,
 // "Model and state"). Copying it gives save/restore, rollback on divergence, determinism
 // checks and the RK4 stages.
 //

@@ -1,5 +1,5 @@
 // ConvolutionSurfaceModel (scene type "ConvolutionSurfaceModel"): a spline drawn as a
-// convolution surface (talk 002 draws intestines this way: neighbouring loops blend smoothly
+// convolution surface ([Lenoir talk 2008] draws intestines this way: neighbouring loops blend smoothly
 // where they touch) — the skeleton is the curve as a polyline of chords at equal arc length
 // (geometry::ConvolutionSurface::addCurve), the surface is meshed by CGAL
 // (convolution_surface_mesher.hpp). Meshing costs far more than skinning, so the mesh may be

@@ -1,7 +1,8 @@
-// VisualModel: the visual side of the three-sided model (DESIGN.md): what is drawn or exported
-// for a body — a skinned tube, spheres, a mesh from a file, a meshed implicit surface. It reads
-// the body's DOFs through a mapping (positions down only: nothing drawn pushes back) and hands
-// triangle meshes to the exporters (OBJ, PLY, VTK) and the renderers.
+// VisualModel: the visual side of the three-sided model (docs/architecture.md, "The three-sided
+// model"): what is drawn or exported for a body — a skinned tube, spheres, a mesh from a file, a
+// meshed implicit surface. It reads the body's DOFs through a mapping (positions down only:
+// nothing drawn pushes back) and hands triangle meshes to the exporters (OBJ, PLY, VTK) and the
+// renderers.
 //
 // A visual model is a component of the scene file like any other. It acts on the body of its
 // node, or of the node named by "object"; models that need no body (a fixed sphere, an organ
