@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Mutation experiment on the reference scenes (issue 14, acceptance).
+"""Mutation experiment on the reference scenes.
 
 Every field of every scene in apps/scenes/ is mutated in turn: numbers pushed to 0, negative,
 1e308, 5e-324 and huge counts; values replaced by the wrong type; arrays emptied, shortened and

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Stress suite (issue 14, item 6): every reference scene pushed past what it was made for.
+"""Stress suite: every reference scene pushed past what it was made for.
 
 Variants of each scene in apps/scenes/:
   dt10       the time step ×10

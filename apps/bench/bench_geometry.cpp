@@ -55,7 +55,7 @@ std::vector<double> randomClampedKnots(int d, int n, unsigned seed) {
   return t;
 }
 
-std::unique_ptr<SplineBasis> makeBasis(int which, int n) {
+std::unique_ptr<CurveBasis> makeBasis(int which, int n) {
   switch (which) {
     case 0: return std::make_unique<UniformCubicBSpline>(n);
     case 1: return std::make_unique<CatmullRomSpline>(n);

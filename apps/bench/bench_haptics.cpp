@@ -62,7 +62,7 @@ double percentile(std::vector<double> v, double p) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Servo loop rate, jitter and tick cost (issue 15)"};
+  CLI::App app{"Servo loop rate, jitter and tick cost"};
   double seconds = 10.0;
   int repeats = 5;
   std::string scene_path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/knot.json";

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Plot of bench_realtime (issue 12): largest strain of the benchmark rope against wall time per
+"""Plot of bench_realtime: largest strain of the benchmark rope against wall time per
 simulated millisecond, one point per scheme and control point count; the vertical line is real
 time (1 ms per ms). Reads DIR/realtime.csv, writes DIR/realtime.png.
 

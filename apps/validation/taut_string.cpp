@@ -48,7 +48,7 @@ void TautString::prepare(Scene& scene) const {
   //   [G Lᵀ; L 0] [y; λ] = [r; 0],  G_ij = ∫ b_i b_j ds,  r_i = ∫ b_i A sin(kπ s) ds,
   // L the basis rows at s = 0 and s = 1 (the fixed ends).
   const CurveBody& spline = *scene.bodies().front()->curve();  // a spline: built above
-  const geometry::SplineBasis& basis = spline.basis();
+  const CurveBasis& basis = spline.basis();
   const int n = spline.pointCount();
   MatX kkt = MatX::Zero(n + 2, n + 2);
   kkt.topLeftCorner(n, n) = MatX(mechanics::massMatrix(basis, 1.0));

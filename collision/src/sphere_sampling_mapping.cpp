@@ -20,7 +20,7 @@ constexpr int kTablePerPiece = 8;  // table entries per polynomial piece of the 
 
 }  // namespace
 
-SphereSamplingMapping::SphereSamplingMapping(const geometry::SplineBasis& basis, double spacing)
+SphereSamplingMapping::SphereSamplingMapping(const CurveBasis& basis, double spacing)
     : basis_(basis.clone()), spacing_(spacing), strands_(filum::strands(basis)) {
   if (!(spacing > 0.0) || !std::isfinite(spacing))
     throw std::invalid_argument("SphereSamplingMapping: the spacing must be positive and finite");

@@ -21,7 +21,7 @@ const QuadratureRule& rule8() {
   return rule;
 }
 
-void checkInput(const SplineBasis& basis, ConstPointsRef q, double relative_tolerance, const char* what) {
+void checkInput(const CurveBasis& basis, ConstPointsRef q, double relative_tolerance, const char* what) {
   if (q.rows() != basis.controlPointCount())
     throw std::invalid_argument(std::string(what) + ": the basis has " + std::to_string(basis.controlPointCount()) +
                                 " control points but q has " + std::to_string(q.rows()) + " rows");
@@ -31,7 +31,7 @@ void checkInput(const SplineBasis& basis, ConstPointsRef q, double relative_tole
 }
 
 struct SpeedIntegrator {
-  const SplineBasis& basis;
+  const CurveBasis& basis;
   ConstPointsRef q;
   mutable BasisRow row;
 
@@ -62,7 +62,7 @@ void adaptive(const SpeedIntegrator& g, double a, double b, double whole, double
 }
 
 /// Accepted intervals of the whole curve: ends (without 0) and their lengths.
-double buildTable(const SplineBasis& basis, ConstPointsRef q, double relative_tolerance, std::vector<double>& ends,
+double buildTable(const CurveBasis& basis, ConstPointsRef q, double relative_tolerance, std::vector<double>& ends,
                   std::vector<double>& lengths) {
   const SpeedIntegrator g{basis, q, {}};
   const std::vector<double> pieces = basis.breakpoints();
@@ -84,7 +84,7 @@ double buildTable(const SplineBasis& basis, ConstPointsRef q, double relative_to
 
 }  // namespace
 
-double curveLength(const SplineBasis& basis, ConstPointsRef q, double relative_tolerance) {
+double curveLength(const CurveBasis& basis, ConstPointsRef q, double relative_tolerance) {
   checkInput(basis, q, relative_tolerance, "curveLength");
   std::vector<double> ends, lengths;
   buildTable(basis, q, relative_tolerance, ends, lengths);
@@ -93,7 +93,7 @@ double curveLength(const SplineBasis& basis, ConstPointsRef q, double relative_t
   return total;
 }
 
-ArcLengthParameterization::ArcLengthParameterization(const SplineBasis& basis, ConstPointsRef q,
+ArcLengthParameterization::ArcLengthParameterization(const CurveBasis& basis, ConstPointsRef q,
                                                      double relative_tolerance)
     : basis_(basis.clone()), q_(q) {
   checkInput(basis, q, relative_tolerance, "ArcLengthParameterization");

@@ -36,7 +36,7 @@ BSplineCurve catmullRomInKnotForm(ConstPointsRef q) {
 
 }  // namespace
 
-BSplineCurve toBSplineCurve(const SplineBasis& basis, ConstPointsRef q) {
+BSplineCurve toBSplineCurve(const CurveBasis& basis, ConstPointsRef q) {
   if (q.rows() != basis.controlPointCount())
     throw std::invalid_argument("toBSplineCurve: the " + basis.name() + " basis has " +
                                 std::to_string(basis.controlPointCount()) + " control points but " +

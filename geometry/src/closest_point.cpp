@@ -21,7 +21,7 @@ struct Candidate {
 
 /// Newton on g(s) = (P − x)·P' inside [lo, hi] from s0, bisection as safeguard; returns the best
 /// of the refined point and the bracket ends.
-Candidate refine(const SplineBasis& basis, ConstPointsRef q, const Vec3& x, double lo, double hi, double s0) {
+Candidate refine(const CurveBasis& basis, ConstPointsRef q, const Vec3& x, double lo, double hi, double s0) {
   BasisRow row;
   auto squaredDistance = [&](double s) {
     basis.evaluate(s, row);
@@ -68,7 +68,7 @@ Candidate refine(const SplineBasis& basis, ConstPointsRef q, const Vec3& x, doub
 
 }  // namespace
 
-ClosestPoint closestPoint(const SplineBasis& basis, ConstPointsRef q, const Vec3& x, int samples_per_piece) {
+ClosestPoint closestPoint(const CurveBasis& basis, ConstPointsRef q, const Vec3& x, int samples_per_piece) {
   if (q.rows() != basis.controlPointCount())
     throw std::invalid_argument("closestPoint: the basis has " + std::to_string(basis.controlPointCount()) +
                                 " control points but q has " + std::to_string(q.rows()) + " rows");

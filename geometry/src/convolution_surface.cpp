@@ -34,7 +34,7 @@ void ConvolutionSurface::addPolyline(ConstPointsRef points) {
     addSegment(points.row(i).transpose(), points.row(i + 1).transpose());
 }
 
-void ConvolutionSurface::addCurve(const SplineBasis& basis, ConstPointsRef q, int segments, const Strand& strand) {
+void ConvolutionSurface::addCurve(const CurveBasis& basis, ConstPointsRef q, int segments, const Strand& strand) {
   if (segments < 1)
     throw std::invalid_argument("ConvolutionSurface::addCurve: segments must be >= 1, got " + std::to_string(segments));
   const ArcLengthParameterization arc(basis, q, 1e-10);

@@ -4,7 +4,7 @@
 
 namespace filum::geometry {
 
-std::optional<CurveFrame> frenetFrame(const SplineBasis& basis, ConstPointsRef q, double s,
+std::optional<CurveFrame> frenetFrame(const CurveBasis& basis, ConstPointsRef q, double s,
                                       double relative_threshold) {
   const CurveDerivatives c = curveDerivatives(basis, q, s);
   const double speed = c.first.norm();
@@ -19,7 +19,7 @@ std::optional<CurveFrame> frenetFrame(const SplineBasis& basis, ConstPointsRef q
   return frame;
 }
 
-double curveCurvature(const SplineBasis& basis, ConstPointsRef q, double s) {
+double curveCurvature(const CurveBasis& basis, ConstPointsRef q, double s) {
   const CurveDerivatives c = curveDerivatives(basis, q, s);
   const double speed = c.first.norm();
   if (!(speed > 0.0)) return 0.0;

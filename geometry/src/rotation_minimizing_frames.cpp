@@ -64,7 +64,7 @@ std::vector<CurveFrame> rotationMinimizingFrames(ConstPointsRef points, ConstPoi
   return frames;
 }
 
-std::vector<CurveFrame> rotationMinimizingFrames(const SplineBasis& basis, ConstPointsRef q,
+std::vector<CurveFrame> rotationMinimizingFrames(const CurveBasis& basis, ConstPointsRef q,
                                                  const std::vector<double>& abscissas, const Vec3& initial_normal) {
   if (q.rows() != basis.controlPointCount())
     throw std::invalid_argument("rotationMinimizingFrames: the basis has " +

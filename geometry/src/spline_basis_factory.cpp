@@ -14,7 +14,7 @@ const std::vector<std::string>& splineBasisNames() {
   return names;
 }
 
-std::unique_ptr<SplineBasis> makeSplineBasis(const SplineBasisSpec& spec) {
+std::unique_ptr<CurveBasis> makeSplineBasis(const SplineBasisSpec& spec) {
   if (spec.name == "uniform_cubic_bspline") return std::make_unique<UniformCubicBSpline>(spec.control_points);
   if (spec.name == "catmull_rom") return std::make_unique<CatmullRomSpline>(spec.control_points);
   if (spec.name == "nubs") {

@@ -5,19 +5,19 @@
 
 namespace filum::geometry {
 
-Vec3 curvePoint(const SplineBasis& basis, ConstPointsRef q, double s) {
+Vec3 curvePoint(const CurveBasis& basis, ConstPointsRef q, double s) {
   BasisRow row;
   basis.evaluate(s, row);
   return curvePoint(row, q);
 }
 
-CurveDerivatives curveDerivatives(const SplineBasis& basis, ConstPointsRef q, double s) {
+CurveDerivatives curveDerivatives(const CurveBasis& basis, ConstPointsRef q, double s) {
   BasisRow row;
   basis.evaluate(s, row);
   return curveDerivatives(row, q);
 }
 
-Points sampleCurve(const SplineBasis& basis, ConstPointsRef q, int count) {
+Points sampleCurve(const CurveBasis& basis, ConstPointsRef q, int count) {
   if (count < 2) throw std::invalid_argument("sampleCurve: count must be >= 2, got " + std::to_string(count));
   Points out(count, 3);
   BasisRow row;

@@ -2,7 +2,7 @@
 
 namespace filum::geometry {
 
-SplinePointMapping::SplinePointMapping(const geometry::SplineBasis& basis, std::vector<double> abscissas, Strand strand)
+SplinePointMapping::SplinePointMapping(const CurveBasis& basis, std::vector<double> abscissas, Strand strand)
     : abscissas_(std::move(abscissas)), strand_(strand) {
   std::vector<Eigen::Triplet<double>> entries;
   geometry::BasisRow row;

@@ -5,7 +5,7 @@
 
 namespace filum::mechanics {
 
-CurveQuadrature::CurveQuadrature(const geometry::SplineBasis& basis, int nodes_per_piece, ConstPointsRef initial,
+CurveQuadrature::CurveQuadrature(const CurveBasis& basis, int nodes_per_piece, ConstPointsRef initial,
                                  std::optional<double> rest_length) {
   const geometry::QuadratureRule rule = geometry::gaussLegendre(nodes_per_piece);
   const std::vector<double> pieces = basis.breakpoints();

@@ -23,7 +23,7 @@ const char* const kControlPointLimit =
     "dynamic_spline.hpp: memory and step time grow with the count; 600 times the largest reference body, rope.json's 165";
 }  // namespace
 
-DynamicSpline::DynamicSpline(std::unique_ptr<geometry::SplineBasis> basis, Points initial, double mass,
+DynamicSpline::DynamicSpline(std::unique_ptr<CurveBasis> basis, Points initial, double mass,
                              double radius)
     : basis_(std::move(basis)),
       initial_(std::move(initial)),
@@ -193,7 +193,7 @@ double DynamicSpline::gravityPotential(const Vec3& g, ConstPointsRef q) const {
   return v;
 }
 
-double arcLength(const geometry::SplineBasis& basis, ConstPointsRef q, int nodes_per_piece) {
+double arcLength(const CurveBasis& basis, ConstPointsRef q, int nodes_per_piece) {
   const geometry::QuadratureRule rule = geometry::gaussLegendre(nodes_per_piece);
   const std::vector<double> pieces = basis.breakpoints();
   geometry::BasisRow row;
@@ -206,7 +206,7 @@ double arcLength(const geometry::SplineBasis& basis, ConstPointsRef q, int nodes
   return length;
 }
 
-std::unique_ptr<geometry::SplineBasis> makeBasis(const Params& p, const std::string& key, int control_points) {
+std::unique_ptr<CurveBasis> makeBasis(const Params& p, const std::string& key, int control_points) {
   const std::string name = p.string(key, "uniform_cubic_bspline");
   geometry::SplineBasisSpec spec;
   spec.name = name;
@@ -278,7 +278,7 @@ Points velocityList(const Params& p, int count) {
 
 // The factored mass matrix M = m ∫ b_i b_j ds: a mass so small that M's pivots underflow is
 // reported at the parameter that gave it, not as an abort.
-std::unique_ptr<DynamicSpline> build(const Params& p, std::unique_ptr<geometry::SplineBasis> basis, Points q,
+std::unique_ptr<DynamicSpline> build(const Params& p, std::unique_ptr<CurveBasis> basis, Points q,
                                      double mass, double radius) {
   try {
     return std::make_unique<DynamicSpline>(std::move(basis), std::move(q), mass, radius);
@@ -299,7 +299,7 @@ int straightThreadCount(const Params& p, const Params& line) {
   return line.integer("count", minimum, kMaxControlPoints, kControlPointLimit);
 }
 
-Points straightThread(const Params& line, const geometry::SplineBasis& basis, int n) {
+Points straightThread(const Params& line, const CurveBasis& basis, int n) {
   // A straight thread from `from` to `to`, uniformly parametrized (|P'| constant):
   //  - uniform cubic B-spline and Catmull-Rom: collinear, equally spaced control points
   //    q_i = from + (i − 1) h, h = (to − from)/(n − 3): the curve runs exactly from
@@ -344,7 +344,7 @@ double massFromParams(const Params& p, double radius, double length) {
 
 std::unique_ptr<DynamicSpline> DynamicSpline::fromParams(const Params& p) {
   Points q;
-  std::unique_ptr<geometry::SplineBasis> basis;
+  std::unique_ptr<CurveBasis> basis;
   if (p.has("control_points") && p.raw("control_points").is_object()) {
     const Params line = p.object("control_points");
     const int n = straightThreadCount(p, line);

@@ -23,7 +23,7 @@ void store(const Eigen::Quaterniond& r, Eigen::Ref<VecX> q, int segment) {
 }
 
 /// The degree-1 B-spline through the nodes, knots at their rest arc lengths (clamped).
-std::unique_ptr<geometry::SplineBasis> polylineBasis(const std::vector<double>& lengths) {
+std::unique_ptr<CurveBasis> polylineBasis(const std::vector<double>& lengths) {
   std::vector<double> knots{0.0, 0.0};
   double arc = 0.0;
   for (const double l : lengths) knots.push_back(arc += l);

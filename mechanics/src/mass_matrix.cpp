@@ -10,7 +10,7 @@ namespace {
 
 /// Calls f(s, weight, row) for every quadrature node of every polynomial piece.
 template <class F>
-void forEachNode(const geometry::SplineBasis& basis, int nodes_per_piece, F&& f) {
+void forEachNode(const CurveBasis& basis, int nodes_per_piece, F&& f) {
   const geometry::QuadratureRule rule = geometry::gaussLegendre(nodes_per_piece);
   const std::vector<double> pieces = basis.breakpoints();
   geometry::BasisRow row;
@@ -27,7 +27,7 @@ void forEachNode(const geometry::SplineBasis& basis, int nodes_per_piece, F&& f)
 
 }  // namespace
 
-SparseMatrix massMatrix(const geometry::SplineBasis& basis, double mass) {
+SparseMatrix massMatrix(const CurveBasis& basis, double mass) {
   const int n = basis.controlPointCount();
   std::vector<Eigen::Triplet<double>> entries;
   forEachNode(basis, basis.degree() + 1, [&](double w, const geometry::BasisRow& row) {
@@ -44,7 +44,7 @@ SparseMatrix massMatrix(const geometry::SplineBasis& basis, double mass) {
   return M;
 }
 
-VecX basisIntegrals(const geometry::SplineBasis& basis) {
+VecX basisIntegrals(const CurveBasis& basis) {
   VecX w = VecX::Zero(basis.controlPointCount());
   forEachNode(basis, basis.degree() + 1, [&](double weight, const geometry::BasisRow& row) {
     for (int a = 0; a < row.count; ++a) w[row.first + a] += weight * row.value[a];

@@ -83,7 +83,12 @@ std::string numberText(double d) {
   text << d;
   return text.str();
 }
-std::string vec3Text(const Vec3& v) { return "[" + numberText(v.x()) + ", " + numberText(v.y()) + ", " + numberText(v.z()) + "]"; }
+std::string vec3Text(const Vec3& v) {
+  // One stream, not "[" + std::string: GCC 12 warns falsely (-Wrestrict) on a literal + temporary.
+  std::ostringstream text;
+  text << '[' << v.x() << ", " << v.y() << ", " << v.z() << ']';
+  return text.str();
+}
 }  // namespace
 
 // `count` distinct points along x, 1 cm apart (a placeholder polyline).

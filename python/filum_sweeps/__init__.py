@@ -1,4 +1,4 @@
-"""filum_sweeps: parameter studies of filum run through Dask (issue 16).
+"""filum_sweeps: parameter studies of filum run through Dask.
 
 The benchmark studies (accuracy_pareto, stability_map) are lists of independent configurations; each task runs one of them by invoking the
 study's C++ program (apps/bench/) with --configuration K, which prints one result row; the rows

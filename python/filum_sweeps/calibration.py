@@ -1,4 +1,4 @@
-"""Material calibration against a measured curve, one candidate per task (issue 16).
+"""Material calibration against a measured curve, one candidate per task.
 
 The model: a strip of silicone tubing (r = 1 mm, 1150 kg/m³, 5 cm) clamped horizontally at one end
 and sagging under gravity; its rest shape depends on Young's modulus E through the bending

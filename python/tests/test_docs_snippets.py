@@ -1,4 +1,4 @@
-"""Every ```python block of docs/python.md and docs/sweeps.md runs as printed (issue 34: every
+"""Every ```python block of docs/python.md and docs/sweeps.md runs as printed (every
 code example in docs/ is complete and compiled or run by a test).
 
 The blocks of a page run in order in one namespace, as a reader would type them into one session,

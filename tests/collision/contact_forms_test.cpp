@@ -2,7 +2,7 @@
 // "contact_form"): W assembled, and factored (u = A⁻¹Lᵀλ kept, (Wλ)_r = L_r·u). They are the same
 // projected Gauss–Seidel iteration on the same operator — the same sweeps, row by row — and give
 // the same step up to round-off: from one state of threads.json in the middle of its impact
-// (eleven vessel loops, ~90 contacts with friction, 33 equality rows), one step each way.
+// (eleven vessel loops, 49 contacts with friction, 33 equality rows), one step each way.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -107,7 +107,7 @@ void runRefined(const std::string& file, int body, const std::vector<double>& ab
 }
 
 TEST(RefineBody, LoopsInContactKeepTheirCurveEnergyAndContactsWhenPointsAreInserted) {
-  // threads.json: seven silicone loops held at one end, falling onto each other (unilateral
+  // threads.json: eleven silicone loops held at one end, falling onto each other (unilateral
   // contacts with friction) under implicit Euler; the first loop gets three points mid-fall.
   runRefined("threads.json", 0, {0.2, 0.45, 0.8}, 150, 150);
 }

@@ -120,7 +120,7 @@ TEST(CurveCut, UniformBasesHaveNoCutsAndTheirLeftRowsEndTheSegmentBefore) {
   const CatmullRomSpline catmull(10);
   Points q(10, 3);
   for (int i = 0; i < 10; ++i) q.row(i) << 0.1 * i, std::sin(0.9 * i), 0.2 * i * i / 100.0;
-  for (const SplineBasis* basis : {static_cast<const SplineBasis*>(&bspline), static_cast<const SplineBasis*>(&catmull)}) {
+  for (const CurveBasis* basis : {static_cast<const CurveBasis*>(&bspline), static_cast<const CurveBasis*>(&catmull)}) {
     EXPECT_TRUE(basis->cuts().empty()) << basis->name();
     for (int knot = 1; knot < 7; ++knot) {
       BasisRow a, b;

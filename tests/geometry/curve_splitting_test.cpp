@@ -76,7 +76,7 @@ TEST(CurveSplitting, CutsUniformCubicAndCatmullRomThreads) {
   std::mt19937 rng(303);
   const UniformCubicBSpline uniform(12);
   const CatmullRomSpline catmull(12);
-  for (const SplineBasis* basis : std::initializer_list<const SplineBasis*>{&uniform, &catmull}) {
+  for (const CurveBasis* basis : std::initializer_list<const CurveBasis*>{&uniform, &catmull}) {
     const Points q = test::randomControlPoints(12, rng);
     const BSplineCurve c = toBSplineCurve(*basis, q);
     const SplitCurve split = splitCurve(c, 0.37);

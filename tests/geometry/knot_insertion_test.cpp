@@ -108,7 +108,7 @@ TEST(KnotInsertion, WorksOnUniformCubicAndCatmullRomThroughTheirKnotForm) {
   std::mt19937 rng(104);
   const UniformCubicBSpline uniform(9);
   const CatmullRomSpline catmull(9);
-  for (const SplineBasis* basis : std::initializer_list<const SplineBasis*>{&uniform, &catmull}) {
+  for (const CurveBasis* basis : std::initializer_list<const CurveBasis*>{&uniform, &catmull}) {
     const Points q = test::randomControlPoints(9, rng);
     const BSplineCurve c = toBSplineCurve(*basis, q);
     const BSplineCurve refined = insertKnots(c, randomNewKnots(c, 10, rng));

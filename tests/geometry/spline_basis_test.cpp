@@ -1,4 +1,4 @@
-// Properties every SplineBasis must have, checked on every kind of basis (uniform cubic
+// Properties every CurveBasis must have, checked on every kind of basis (uniform cubic
 // B-spline, Catmull-Rom, NUBS of degree 1..5 on uniform, random clamped and random unclamped
 // knots with repeated knots): partition of unity, non-negativity (B-splines), local support,
 // polynomial pieces between breakpoints, derivatives against finite differences, continuity.
@@ -18,7 +18,7 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-TEST(SplineBasis, PartitionOfUnityAndNonNegativityAtRandomAbscissas) {
+TEST(CurveBasis, PartitionOfUnityAndNonNegativityAtRandomAbscissas) {
   // Σ b_i = 1: each b_i is computed with a relative error of a few ε and there are at most six
   // of them, all <= 1.07 in magnitude (Catmull-Rom peaks at 1): |Σ b_i − 1| <~ 6·4ε ≈ 5e-15,
   // inside the required 1e-14. Σ b'_i = Σ b''_i = 0 (derivatives of a constant), to round-off
@@ -51,7 +51,7 @@ TEST(SplineBasis, PartitionOfUnityAndNonNegativityAtRandomAbscissas) {
   }
 }
 
-TEST(SplineBasis, SupportIsExactlyDegreePlusOneConsecutiveFunctions) {
+TEST(CurveBasis, SupportIsExactlyDegreePlusOneConsecutiveFunctions) {
   // At every s exactly degree + 1 consecutive functions are reported, inside 0..n−1, and the
   // reported first index is the one the degree implies: ⌊N s⌋ for the uniform bases (N = n − 3
   // segments), span − d for NUBS. For NUBS, b_i must be > 0 strictly inside its support
@@ -88,7 +88,7 @@ TEST(SplineBasis, SupportIsExactlyDegreePlusOneConsecutiveFunctions) {
   }
 }
 
-TEST(SplineBasis, GaussQuadraturePerPieceIsExactBetweenBreakpoints) {
+TEST(CurveBasis, GaussQuadraturePerPieceIsExactBetweenBreakpoints) {
   // If breakpoints() lists every place where a b_i stops being one polynomial, (d + 1)-point
   // Gauss-Legendre per piece integrates b_i b_j (degree 2d) exactly, and so does a 12-point rule
   // on each half piece: the two agree to round-off (sums of ~n·12 terms of size <= 1/n: 1e-14).
@@ -122,7 +122,7 @@ TEST(SplineBasis, GaussQuadraturePerPieceIsExactBetweenBreakpoints) {
   }
 }
 
-TEST(SplineBasis, DerivativesMatchCentralFiniteDifferences) {
+TEST(CurveBasis, DerivativesMatchCentralFiniteDifferences) {
   // Central difference (f(s+h) − f(s−h))/2h has truncation error <= h²/6 max|f'''| and
   // round-off <= e_f / h, with e_f the evaluation error of f. We divide by the exact distance of
   // the two rounded abscissas, and bound e_f by 16ε (M_f + M_f'): M_f for the arithmetic on
@@ -171,7 +171,7 @@ TEST(SplineBasis, DerivativesMatchCentralFiniteDifferences) {
   }
 }
 
-TEST(SplineBasis, CurveDerivativesAreContinuousUpToTheAdvertisedOrder) {
+TEST(CurveBasis, CurveDerivativesAreContinuousUpToTheAdvertisedOrder) {
   // For a C^k basis (k = continuity()), P^{(m)}, m <= min(k, 2), is continuous at every interior
   // breakpoint: its jump over [s_b − δ, s_b + δ] is at most 2δ max|P^{(m+1)}|, so it shrinks
   // linearly with δ. We check jump(δ) <= jump(δ₀) δ/δ₀ · 4 for δ = δ₀/10^j (linear decrease with a
@@ -205,7 +205,7 @@ TEST(SplineBasis, CurveDerivativesAreContinuousUpToTheAdvertisedOrder) {
   }
 }
 
-TEST(SplineBasis, AbscissasOutsideTheUnitIntervalAreClamped) {
+TEST(CurveBasis, AbscissasOutsideTheUnitIntervalAreClamped) {
   for (const auto& [label, basis, non_negative] : test::allTestBases()) {
     SCOPED_TRACE(label);
     BasisRow inside, outside;
@@ -220,7 +220,7 @@ TEST(SplineBasis, AbscissasOutsideTheUnitIntervalAreClamped) {
   }
 }
 
-TEST(SplineBasis, CloneBehavesLikeTheOriginal) {
+TEST(CurveBasis, CloneBehavesLikeTheOriginal) {
   for (const auto& [label, basis, non_negative] : test::allTestBases()) {
     SCOPED_TRACE(label);
     const auto copy = basis->clone();

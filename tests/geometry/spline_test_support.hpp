@@ -68,7 +68,7 @@ inline BSplineCurve randomCurve(int d, int n, bool clamped, std::mt19937& rng, i
 
 struct NamedBasis {
   std::string label;
-  std::shared_ptr<SplineBasis> basis;
+  std::shared_ptr<CurveBasis> basis;
   bool non_negative;  // B-splines yes, Catmull-Rom no
 };
 

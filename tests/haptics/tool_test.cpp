@@ -62,6 +62,11 @@ TEST(InteractionTool, PushAndGrabForcesPassTheGenericForceFieldTest) {
   p.probe->position = Vec3(0.05, 0.003, 0.001);
   p.probe->touching = true;
   test::ForceFieldCheck check;
+  // Central differences (force_field_check.hpp): no sample sits within h of the sphere's rim (the
+  // push's kink), so the truncation (h/ℓ)² with ℓ ≈ 1 mm the scale of the overlap is 1e-10; the
+  // largest round-off is the grab's damping column, ε |F| / (h |D|): F is dominated by the 1 cm
+  // spring stretch, F/D = 0.01 m · k/c = 0.01 m · ω/2 with ω = 0.5/dt, so 2.2e-16 · 0.01 · 2500 /
+  // 1e-8 ≈ 5.5e-7. Twenty times that: 1e-5; a wrong term shows as O(1).
   check.h = 1e-8;
   check.tolerance = 1e-5;
   check.damping = false;  // the push has no damping: D = 0 exactly (checked below)
@@ -70,6 +75,8 @@ TEST(InteractionTool, PushAndGrabForcesPassTheGenericForceFieldTest) {
   EXPECT_EQ(test::fieldJacobian(*p.field, s, 0.0, 1.0).norm(), 0.0);
   // Grab: spring–damper at the nearest point.
   ASSERT_TRUE(startGrasp(*p.probe, *p.scene, 0.01));
+  // The control points are moved by up to 1 mm (1e-3 sin 1.7i), so the curve point nearest the
+  // probe at x = 0.05 moves by up to 1 mm along the 0.1 m thread: 0.01 in abscissa; twice that.
   EXPECT_NEAR(p.probe->grasp.abscissa(), 0.5, 0.02);
   p.probe->position += Vec3(0.0, 0.0, 0.01);
   for (Eigen::Index i = 0; i < s.v.size(); ++i) s.v[i] = 0.01 * std::cos(0.3 * i);
@@ -104,6 +111,11 @@ TEST(InteractionTool, AGrabbedPointFollowsTheProbe) {
     p.probe->position = start + std::min(1.0, k / 1000.0) * (goal - start);
     ASSERT_TRUE(p.scene->step().ok) << "step " << k;
   }
+  // The coupling lags by F/k. At the end of the hold the rest of the thread (2.9 mg) pulls on the
+  // held point with at most its viscous drag c m v <= 2 s⁻¹ · 2.9e-6 kg · 0.22 m/s ≈ 1.3e-6 N,
+  // against the capped grasp stiffness 0.25 m_eff/dt² (m_eff ~ 1e-7 kg: ~2.5 N/m): ~1 µm. 1 mm
+  // (a twentieth of the 2.2 cm path) leaves room for the springs' pull on a bent thread and still
+  // tells a held point from one left at the start.
   EXPECT_LT((pointAt(*p.scene, p.probe->grasp.abscissa()) - goal).norm(), 1e-3);
   EXPECT_LT(pointAt(*p.scene, 0.0).z(), 0.01);  // the far end lags behind: a pull, not a translation
 }
@@ -119,6 +131,10 @@ TEST(InteractionTool, APushedThreadLeavesTheSphere) {
     const double R = p.probe->radius + (*p.scene->bodies().front()->curve()).radius();
     double deepest = 0.0;
     for (int k = 0; k <= 100; ++k) deepest = std::max(deepest, R - (pointAt(*p.scene, k / 100.0) - p.probe->position).norm());
+    // At rest a sample's depth is F_k / k_p: the springs' resistance to a deflection of ~R spread
+    // over the samples inside, against k_p at the explicit cap 0.09 m_eff/dt² — a few tenths of a
+    // millimetre; 0.15 R (0.6 mm) bounds it, while a thread left inside or pushed through shows
+    // depths of order R.
     EXPECT_LT(deepest, 0.15 * R) << integrator << ": penetration left by the penalty";
     EXPECT_LT(pointAt(*p.scene, 0.5).y(), -0.5 * R) << integrator;
   }
@@ -130,7 +146,7 @@ TEST(InteractionTool, APushedThreadLeavesTheSphere) {
 namespace filum::haptics {
 namespace {
 
-/// Σ over the scene's tool fields of the force on the tool, at the tool state `tool`.
+/// The force the thread exerts on the tool (the probe as p.probe holds it) at the scene state s.
 Vec3 reactionAt(const ProbeScene& p, const SceneState& s) {
   ToolReaction r;
   p.field->addReaction(s, r);

@@ -113,7 +113,7 @@ TEST(ScalarBand, ProductsEqualTheSparseMatrixProducts) {
   // |A| |x| (≤ 2r + 1 terms, each rounded once: (2r + 1) ε relative is asserted). Cubic bands
   // of 40 points take the fixed-size interior path (r = 3), 6 cubic points and a quadratic NUBS
   // the row-by-row one.
-  std::vector<std::unique_ptr<geometry::SplineBasis>> bases;
+  std::vector<std::unique_ptr<CurveBasis>> bases;
   bases.push_back(std::make_unique<geometry::UniformCubicBSpline>(40));
   bases.push_back(std::make_unique<geometry::UniformCubicBSpline>(6));
   bases.push_back(std::make_unique<geometry::NonUniformBSpline>(2, std::vector<double>{0, 0, 0, 1, 2, 2.5, 4, 5, 5, 5}));

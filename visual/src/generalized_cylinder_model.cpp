@@ -41,7 +41,7 @@ void GeneralizedCylinderModel::init(const Scene&) {
   if (!spline)
     throw SceneError(origin(), "a GeneralizedCylinder skins a curve body (e.g. a DynamicSpline), but its body " + body().describe() +
                                    " is not one");
-  const geometry::SplineBasis& basis = spline->basis();
+  const CurveBasis& basis = spline->basis();
   const std::vector<Strand> pieces_of_thread = strands(basis);
   const int pieces = static_cast<int>(basis.breakpoints().size()) - 1;
   const int rings = options_.samples.value_or(std::max(16, 6 * pieces));
@@ -76,7 +76,7 @@ void GeneralizedCylinderModel::init(const Scene&) {
   }
 }
 
-void GeneralizedCylinderModel::addStrand(const geometry::SplineBasis& basis, const Strand& strand,
+void GeneralizedCylinderModel::addStrand(const CurveBasis& basis, const Strand& strand,
                                          const std::vector<double>& s, const std::vector<double>& fractions,
                                          double total_length) {
   const int rings = static_cast<int>(s.size());

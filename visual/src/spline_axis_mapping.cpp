@@ -2,7 +2,7 @@
 
 namespace filum::visual {
 
-SplineAxisMapping::SplineAxisMapping(const geometry::SplineBasis& basis, std::vector<double> abscissas, Strand strand)
+SplineAxisMapping::SplineAxisMapping(const CurveBasis& basis, std::vector<double> abscissas, Strand strand)
     : geometry::SplinePointMapping(basis, std::move(abscissas), strand) {
   std::vector<Eigen::Triplet<double>> derivatives, seconds;
   geometry::BasisRow row;

@@ -58,7 +58,7 @@ class SphereSamplingMapping final : public Mapping {
  public:
   /// basis: the spline's basis (cloned); spacing: target curvilinear distance h (m) > 0.
   /// Throws std::invalid_argument otherwise.
-  SphereSamplingMapping(const geometry::SplineBasis& basis, double spacing);
+  SphereSamplingMapping(const CurveBasis& basis, double spacing);
 
   std::string typeName() const override { return "SphereSamplingMapping"; }
   int inputCount() const override { return basis_->controlPointCount(); }
@@ -107,7 +107,7 @@ class SphereSamplingMapping final : public Mapping {
   double targetSpacing() const { return spacing_; }
 
  private:
-  std::unique_ptr<geometry::SplineBasis> basis_;
+  std::unique_ptr<CurveBasis> basis_;
   double spacing_;
   double length_ = 0.0;
   double actual_spacing_ = 0.0;

@@ -23,12 +23,12 @@ namespace filum::geometry {
 
 /// Arc length of P on s ∈ [0, 1] (units of q) to `relative_tolerance` ∈ [1e-15, 1)
 /// (std::invalid_argument otherwise, or if q does not have basis.controlPointCount() rows).
-double curveLength(const SplineBasis& basis, ConstPointsRef q, double relative_tolerance = 1e-12);
+double curveLength(const CurveBasis& basis, ConstPointsRef q, double relative_tolerance = 1e-12);
 
 /// The arc-length parameterisation of one curve (copies the basis and the control points).
 class ArcLengthParameterization {
  public:
-  ArcLengthParameterization(const SplineBasis& basis, ConstPointsRef q, double relative_tolerance = 1e-12);
+  ArcLengthParameterization(const CurveBasis& basis, ConstPointsRef q, double relative_tolerance = 1e-12);
 
   /// L(1) (units of q).
   double totalLength() const { return cumulative_.back(); }
@@ -53,7 +53,7 @@ class ArcLengthParameterization {
   double integrateSpeed(double a, double b) const;   // G_8 on [a, b]
   int intervalOf(double s) const;
 
-  std::unique_ptr<SplineBasis> basis_;
+  std::unique_ptr<CurveBasis> basis_;
   Points q_;
   double tolerance_;                // absolute, τ
   std::vector<double> boundaries_;  // accepted intervals [boundaries_[k], boundaries_[k+1]]

@@ -1,6 +1,6 @@
 // A B-spline curve in knot form, P(u) = Σ_i B_{i,d}(u) q_i (de Boor; Piegl & Tiller ch. 2-3):
 // degree, knot vector and control points together, the representation that knot insertion
-// (Boehm, Oslo), knot removal and splitting work on. Any basis of the SplineBasis interface can
+// (Boehm, Oslo), knot removal and splitting work on. Any basis of the CurveBasis interface can
 // be converted to it exactly:
 //  - uniform cubic B-spline: the same control points on the uniform knots t_i = i − 3;
 //  - Catmull-Rom: each segment is a cubic Bézier curve with inner points
@@ -36,6 +36,6 @@ void validateBSplineCurve(const BSplineCurve& curve, const char* what);
 /// The same curve (same P(s) for every s ∈ [0, 1]) in knot form. Supports UniformCubicBSpline,
 /// CatmullRomSpline and NonUniformBSpline; q has basis.controlPointCount() rows. Throws
 /// std::invalid_argument for another basis or a wrong number of control points.
-BSplineCurve toBSplineCurve(const SplineBasis& basis, ConstPointsRef q);
+BSplineCurve toBSplineCurve(const CurveBasis& basis, ConstPointsRef q);
 
 }  // namespace filum::geometry

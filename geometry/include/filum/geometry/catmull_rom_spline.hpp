@@ -23,7 +23,7 @@
 
 namespace filum::geometry {
 
-class CatmullRomSpline final : public SplineBasis {
+class CatmullRomSpline final : public CurveBasis {
  public:
   static constexpr int kMinimumControlPoints = 4;
 
@@ -38,7 +38,7 @@ class CatmullRomSpline final : public SplineBasis {
   void evaluateFromLeft(double s, BasisRow& row) const override;
   std::vector<double> breakpoints() const override;
   std::vector<double> cuts() const override;
-  std::unique_ptr<SplineBasis> clone() const override { return std::make_unique<CatmullRomSpline>(n_); }
+  std::unique_ptr<CurveBasis> clone() const override { return std::make_unique<CatmullRomSpline>(n_); }
 
   int segmentCount() const { return n_ - 3; }
   /// Abscissa where the curve passes through control point i (1 <= i <= n − 2): s = (i − 1)/N.

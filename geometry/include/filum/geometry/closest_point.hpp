@@ -27,6 +27,6 @@ struct ClosestPoint {
 
 /// Closest point of the curve (basis, q) to x. samples_per_piece >= 1; q has
 /// basis.controlPointCount() rows (std::invalid_argument otherwise).
-ClosestPoint closestPoint(const SplineBasis& basis, ConstPointsRef q, const Vec3& x, int samples_per_piece = 8);
+ClosestPoint closestPoint(const CurveBasis& basis, ConstPointsRef q, const Vec3& x, int samples_per_piece = 8);
 
 }  // namespace filum::geometry

@@ -36,7 +36,7 @@ class ConvolutionSurface {
   void addPolyline(ConstPointsRef points);
   /// The curve (basis, q) as a polyline of `segments` >= 1 chords at equal arc-length spacing;
   /// one strand of a cut curve (CurveBasis::strands), the whole curve by default.
-  void addCurve(const SplineBasis& basis, ConstPointsRef q, int segments, const Strand& strand = {});
+  void addCurve(const CurveBasis& basis, ConstPointsRef q, int segments, const Strand& strand = {});
   void clear() { segments_.clear(); }
 
   /// F(x) (units of length).

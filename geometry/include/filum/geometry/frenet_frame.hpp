@@ -15,10 +15,10 @@ namespace filum::geometry {
 
 /// The Frenet frame at s, or nothing where it is undefined: |P'| = 0, or
 /// |P' × P''| <= relative_threshold · |P'| |P''| (the angle between P' and P'' below the threshold).
-std::optional<CurveFrame> frenetFrame(const SplineBasis& basis, ConstPointsRef q, double s,
+std::optional<CurveFrame> frenetFrame(const CurveBasis& basis, ConstPointsRef q, double s,
                                       double relative_threshold = 1e-10);
 
 /// Curvature κ(s) = |P' × P''| / |P'|³ (1/units of q); 0 where P' = 0.
-double curveCurvature(const SplineBasis& basis, ConstPointsRef q, double s);
+double curveCurvature(const CurveBasis& basis, ConstPointsRef q, double s);
 
 }  // namespace filum::geometry

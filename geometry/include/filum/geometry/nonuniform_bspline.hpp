@@ -22,7 +22,7 @@
 
 namespace filum::geometry {
 
-class NonUniformBSpline final : public SplineBasis {
+class NonUniformBSpline final : public CurveBasis {
  public:
   /// degree in [1, 5]; knots as validateKnotVector (knot_vector.hpp) requires, with
   /// knots.size() − degree − 1 control points (at least degree + 1). Knots are in any unit
@@ -41,7 +41,7 @@ class NonUniformBSpline final : public SplineBasis {
   std::vector<double> breakpoints() const override { return breakpoints_; }
   /// The interior knots of multiplicity d + 1, mapped to [0, 1].
   std::vector<double> cuts() const override { return cuts_; }
-  std::unique_ptr<SplineBasis> clone() const override { return std::make_unique<NonUniformBSpline>(*this); }
+  std::unique_ptr<CurveBasis> clone() const override { return std::make_unique<NonUniformBSpline>(*this); }
 
   const std::vector<double>& knots() const { return knots_; }
   double domainStart() const { return knots_[d_]; }  // t_d

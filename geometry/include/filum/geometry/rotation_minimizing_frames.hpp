@@ -30,7 +30,7 @@ std::vector<CurveFrame> rotationMinimizingFrames(ConstPointsRef points, ConstPoi
 
 /// Frames of the curve (basis, q) at the given abscissas (non-decreasing, in [0, 1]); the
 /// tangent is P'(s)/|P'(s)| (the previous tangent where P'(s) = 0).
-std::vector<CurveFrame> rotationMinimizingFrames(const SplineBasis& basis, ConstPointsRef q,
+std::vector<CurveFrame> rotationMinimizingFrames(const CurveBasis& basis, ConstPointsRef q,
                                                  const std::vector<double>& abscissas, const Vec3& initial_normal);
 
 /// A unit vector perpendicular to the unit vector t (deterministic choice).

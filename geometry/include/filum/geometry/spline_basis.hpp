@@ -1,5 +1,6 @@
-// SplineBasis: the basis functions b_i(s) of a spline curve P(s) = Σ_i b_i(s) q_i
-// (paper eq. 1), s ∈ [0, 1] the parametric abscissa along the whole curve.
+// The spline bases of the geometry library implement the kernel's CurveBasis (core/curve_basis.hpp):
+// the basis functions b_i(s) of a spline curve P(s) = Σ_i b_i(s) q_i (paper eq. 1), s ∈ [0, 1]
+// the parametric abscissa along the whole curve.
 //
 // One interface for every basis (UniformCubicBSpline, CatmullRomSpline, NonUniformBSpline of
 // degree 1..5; makeSplineBasis in spline_basis_factory.hpp builds any of them by name), so that
@@ -13,8 +14,7 @@
 
 namespace filum::geometry {
 
-/// The kernel's basis interface and row (core/curve_basis.hpp) under their geometry names.
+/// The kernel's basis row; the interface is filum::CurveBasis, one name in every library.
 using BasisRow = filum::BasisRow;
-using SplineBasis = filum::CurveBasis;
 
 }  // namespace filum::geometry

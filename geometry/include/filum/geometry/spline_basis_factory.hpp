@@ -1,4 +1,4 @@
-// Builds any SplineBasis from a small description, for scene loaders:
+// Builds any CurveBasis from a small description, for scene loaders:
 //   "uniform_cubic_bspline"  UniformCubicBSpline(n)                 (C2, paper §2)
 //   "catmull_rom"            CatmullRomSpline(n)                    (C1, interpolating)
 //   "nubs"                   NonUniformBSpline(degree, knots)       (C^{d−m}, any knots)
@@ -24,7 +24,7 @@ struct SplineBasisSpec {
 
 /// The basis described by spec; throws std::invalid_argument with a message naming the problem
 /// (unknown name — listing the known ones —, too few control points, bad degree or knots).
-std::unique_ptr<SplineBasis> makeSplineBasis(const SplineBasisSpec& spec);
+std::unique_ptr<CurveBasis> makeSplineBasis(const SplineBasisSpec& spec);
 
 /// The names makeSplineBasis accepts.
 const std::vector<std::string>& splineBasisNames();

@@ -1,6 +1,6 @@
 // Evaluation of a spline curve P(s) = Σ b_i(s) q_i and its derivatives
 // P'(s) = Σ b'_i(s) q_i, P''(s) = Σ b''_i(s) q_i (paper eq. 1) from a basis row and the control
-// points (n × 3); works for every SplineBasis (uniform cubic B-spline, Catmull-Rom, NUBS).
+// points (n × 3); works for every CurveBasis (uniform cubic B-spline, Catmull-Rom, NUBS).
 #pragma once
 
 #include <Eigen/Core>
@@ -30,7 +30,7 @@ inline Vec3 curveSecondDerivative(const BasisRow& row, ConstPointsRef q) {
 }
 
 /// P(s) for one abscissa (evaluates the basis).
-Vec3 curvePoint(const SplineBasis& basis, ConstPointsRef q, double s);
+Vec3 curvePoint(const CurveBasis& basis, ConstPointsRef q, double s);
 
 /// P(s), P'(s) = dP/ds and P''(s) = d²P/ds² at one abscissa (units of q, q per unit s, ...).
 struct CurveDerivatives {
@@ -49,9 +49,9 @@ inline CurveDerivatives curveDerivatives(const BasisRow& row, ConstPointsRef q) 
   return out;
 }
 /// P, P', P'' at s ∈ [0, 1] (evaluates the basis; q has basis.controlPointCount() rows).
-CurveDerivatives curveDerivatives(const SplineBasis& basis, ConstPointsRef q, double s);
+CurveDerivatives curveDerivatives(const CurveBasis& basis, ConstPointsRef q, double s);
 
 /// Points at `count` abscissas equally spaced in s (count >= 2), one per row.
-Points sampleCurve(const SplineBasis& basis, ConstPointsRef q, int count);
+Points sampleCurve(const CurveBasis& basis, ConstPointsRef q, int count);
 
 }  // namespace filum::geometry

@@ -16,7 +16,7 @@ class SplinePointMapping : public Mapping {
   /// The points at `abscissas` on `strand` (all inside it; the whole curve by default): at its
   /// end the strand's own end point, which differs from the next strand's start at a cut
   /// (CurveBasis::strands).
-  SplinePointMapping(const geometry::SplineBasis& basis, std::vector<double> abscissas, Strand strand = {});
+  SplinePointMapping(const CurveBasis& basis, std::vector<double> abscissas, Strand strand = {});
 
   std::string typeName() const override { return "SplinePointMapping"; }
   int inputCount() const override { return static_cast<int>(weights_.cols()); }

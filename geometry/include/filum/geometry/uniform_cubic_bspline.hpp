@@ -10,7 +10,7 @@
 
 namespace filum::geometry {
 
-class UniformCubicBSpline final : public SplineBasis {
+class UniformCubicBSpline final : public CurveBasis {
  public:
   static constexpr int kMinimumControlPoints = 4;
 
@@ -25,7 +25,7 @@ class UniformCubicBSpline final : public SplineBasis {
   void evaluateFromLeft(double s, BasisRow& row) const override;
   std::vector<double> breakpoints() const override;
   std::vector<double> cuts() const override;
-  std::unique_ptr<SplineBasis> clone() const override { return std::make_unique<UniformCubicBSpline>(n_); }
+  std::unique_ptr<CurveBasis> clone() const override { return std::make_unique<UniformCubicBSpline>(n_); }
 
   int segmentCount() const { return n_ - 3; }
 

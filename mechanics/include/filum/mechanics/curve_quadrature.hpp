@@ -36,7 +36,7 @@ class CurveQuadrature {
   CurveQuadrature() = default;
   /// nodes_per_piece >= 1 Gauss-Legendre nodes on each polynomial piece; rest speeds from
   /// `initial` (n × 3) or, if rest_length is given (m, > 0), uniform |P0'| = rest_length.
-  CurveQuadrature(const geometry::SplineBasis& basis, int nodes_per_piece, ConstPointsRef initial,
+  CurveQuadrature(const CurveBasis& basis, int nodes_per_piece, ConstPointsRef initial,
                   std::optional<double> rest_length);
 
   const std::vector<QuadratureNode>& nodes() const { return nodes_; }

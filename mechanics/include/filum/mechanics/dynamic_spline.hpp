@@ -32,7 +32,7 @@ class DynamicSpline final : public CurveBody {
  public:
   /// initial: n × 3 control points (m); mass: total mass (kg) > 0; radius: cross-section
   /// radius (m) > 0, used by collision and skinning.
-  DynamicSpline(std::unique_ptr<geometry::SplineBasis> basis, Points initial, double mass, double radius);
+  DynamicSpline(std::unique_ptr<CurveBasis> basis, Points initial, double mass, double radius);
 
   /// From scene parameters:
   ///   "basis": "uniform_cubic_bspline" (default, C2), "catmull_rom" (C1, interpolating) or "nubs"
@@ -65,7 +65,7 @@ class DynamicSpline final : public CurveBody {
   double gravityPotential(const Vec3& g, ConstPointsRef q) const override;
 
   // CurveBody
-  const geometry::SplineBasis& basis() const override { return *basis_; }
+  const CurveBasis& basis() const override { return *basis_; }
   double mass() const override { return mass_; }
   double radius() const override { return radius_; }
   /// Knot insertion (Oslo, geometry/knot_insertion.hpp) on the curve's knot form: a uniform
@@ -90,7 +90,7 @@ class DynamicSpline final : public CurveBody {
   /// Takes the basis on `knots` and the rest shape R · initial, rebuilds the mass matrix.
   void adopt(int degree, std::vector<double> knots, const SparseMatrix& R);
 
-  std::unique_ptr<geometry::SplineBasis> basis_;
+  std::unique_ptr<CurveBasis> basis_;
   Points initial_;            // control points at t = 0 (n × 3, m)
   Points initial_velocities_;  // their velocities at t = 0 (n × 3, m/s; empty: at rest)
   double mass_;               // total mass m (kg)
@@ -103,7 +103,7 @@ class DynamicSpline final : public CurveBody {
 };
 
 /// Arc length ∫_0^1 |P'(s)| ds by Gauss-Legendre on each polynomial piece.
-double arcLength(const geometry::SplineBasis& basis, ConstPointsRef q, int nodes_per_piece = 8);
+double arcLength(const CurveBasis& basis, ConstPointsRef q, int nodes_per_piece = 8);
 
 /// A body's total mass (kg) from "mass", or from "density" (kg/m³) as ρ π r² L for its radius
 /// and length (m); exactly one of them; SceneError at the faulty key.
@@ -111,6 +111,6 @@ double massFromParams(const Params& p, double radius, double length);
 
 /// A basis by name for n control points; throws SceneError at p.where(key) if unknown or n
 /// is too small for it.
-std::unique_ptr<geometry::SplineBasis> makeBasis(const Params& p, const std::string& key, int control_points);
+std::unique_ptr<CurveBasis> makeBasis(const Params& p, const std::string& key, int control_points);
 
 }  // namespace filum::mechanics

@@ -123,7 +123,7 @@ class FramedChain final : public CurveBody {
  private:
   Points nodes_;
   double radius_, mass_;
-  std::unique_ptr<geometry::SplineBasis> basis_;
+  std::unique_ptr<CurveBasis> basis_;
   std::vector<double> rest_lengths_, masses_, node_abscissas_;
   std::vector<Section> sections_;  // per segment
   std::vector<Vec3> inertia_;                  // per segment

@@ -11,9 +11,9 @@
 namespace filum::mechanics {
 
 /// M (n × n, symmetric, banded with half-bandwidth = degree).
-SparseMatrix massMatrix(const geometry::SplineBasis& basis, double mass);
+SparseMatrix massMatrix(const CurveBasis& basis, double mass);
 
 /// w_i = ∫_0^1 b_i(s) ds, so the generalized gravity force is Q_i = m w_i g.
-VecX basisIntegrals(const geometry::SplineBasis& basis);
+VecX basisIntegrals(const CurveBasis& basis);
 
 }  // namespace filum::mechanics

@@ -93,9 +93,9 @@ class Scene {
   // The pieces of computeAcceleration, for integrators that solve their own system (implicit
   // steps solve (M − θh D − κh² K) a = b and constrain a through that matrix's inverse).
 
-  /// Stage 3a: B = generalized forces at s, gravity and every force field (3N, N).
+  /// Stage 3, forces: B = generalized forces at s, gravity and every force field (3N, N).
   void computeForce(const SceneState& s, VecX& B);
-  /// Stage 3c: on entry a = A⁻¹ b (unconstrained); on exit the a that solves A a = b + Lᵀλ,
+  /// Stage 3, constraints: on entry a = A⁻¹ b (unconstrained); on exit the a that solves A a = b + Lᵀλ,
   /// L a = E for the active constraints' rows built at state s. `inverse` applies A⁻¹: the mass
   /// matrix for explicit steps, the step matrix for implicit ones. No-op without constraints.
   /// The step's unilateral contacts (CollisionPipeline::addContactRows) are rows of the same
@@ -258,11 +258,11 @@ class Scene {
   /// Stages 1–2 at the (sub-)step's start: the collision models map the positions down and
   /// detect the contact set; force fields see the start state (ForceField::beginStep).
   void detectCollisions(double h);
-  /// Stages 3–4: the integrator. Each of its evaluations calls computeForce (gravity, force
+  /// Stage 3: the integrator. Each of its evaluations calls computeForce (gravity, force
   /// fields, contact penalties, mapped forces up through Jᵀ) and applyConstraints (constraints
   /// and contacts by the one constraint solver), then integrates.
   void integrate(double h);
-  /// Stage 5: a non-finite or too fast state is rolled back and reported; else the step counts.
+  /// Stage 4: a non-finite or too fast state is rolled back and reported; else the step counts.
   StepReport endStep(StepReport report);
   static constexpr int kMaxContactHalvings = 6;
   static constexpr int kMaxSolveHalvings = 3;  // an unconverged contact solve: down to dt / 8

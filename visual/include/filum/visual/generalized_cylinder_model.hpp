@@ -71,7 +71,7 @@ class GeneralizedCylinderModel final : public VisualModel {
   };
   /// Builds the tube of `strand` with rings at the abscissas s, at the fractions u_k of the rest
   /// length L (the radius profile's argument).
-  void addStrand(const geometry::SplineBasis& basis, const Strand& strand, const std::vector<double>& s,
+  void addStrand(const CurveBasis& basis, const Strand& strand, const std::vector<double>& s,
                  const std::vector<double>& fractions, double total_length);
   static void updateStrand(StrandSkin& skin, ConstPointsRef q);
 

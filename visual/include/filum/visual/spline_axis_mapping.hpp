@@ -19,7 +19,7 @@ class SplineAxisMapping final : public geometry::SplinePointMapping {
  public:
   /// abscissas in [0, 1] (any order; the skin passes them increasing), on `strand` (the whole
   /// curve by default; one strand of a cut curve: SplinePointMapping).
-  SplineAxisMapping(const geometry::SplineBasis& basis, std::vector<double> abscissas, Strand strand = {});
+  SplineAxisMapping(const CurveBasis& basis, std::vector<double> abscissas, Strand strand = {});
 
   std::string typeName() const override { return "SplineAxisMapping"; }
 
