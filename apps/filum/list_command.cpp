@@ -10,6 +10,16 @@
 #include "filum/core/scene_error.hpp"
 
 namespace filum::app {
+namespace {
+
+/// Columns a UTF-8 string takes (units have "³", "·", "°"): its bytes that do not continue a character.
+std::size_t displayWidth(const std::string& text) {
+  std::size_t columns = 0;
+  for (const char ch : text) columns += (static_cast<unsigned char>(ch) & 0xC0) != 0x80;
+  return columns;
+}
+
+}  // namespace
 
 int listTypes(const Factory& factory, std::ostream& out) {
   for (const auto& type : factory.typeNames()) out << type << "\t" << factory.summary(type) << '\n';
@@ -45,26 +55,34 @@ int listParameters(const Factory& factory, const std::string& type, std::ostream
     recorder.treatAsAbsent(refused);
   }
   out << type << ": " << factory.summary(type) << "\n\n";
-  std::size_t width = 9;
-  for (const ParameterRead& r : recorder.reads()) width = std::max(width, r.key.size());
-  out << "  " << std::string("parameter") << std::string(width - 9 + 2, ' ') << "default   what it must be\n";
+  // Columns at least two spaces apart: parameter, default, unit, what it must be.
+  std::size_t width = 9, default_width = 8, unit_width = 4;
   for (const ParameterRead& r : recorder.reads()) {
-    out << "  " << r.key << std::string(width - r.key.size() + 2, ' ');
-    const std::string fallback = r.required ? "required" : r.fallback;
-    out << fallback << std::string(fallback.size() < 10 ? 10 - fallback.size() : 1, ' ');
-    out << (r.expected.empty() ? "read when given (see the README's tables)" : r.expected) << '\n';
+    width = std::max(width, r.key.size());
+    default_width = std::max(default_width, displayWidth(r.required ? "required" : r.fallback));
+    unit_width = std::max(unit_width, displayWidth(factory.unit(type, r.key)));
   }
+  const auto row = [&](const std::string& key, const std::string& fallback, const std::string& unit,
+                       const std::string& what) {
+    out << "  " << key << std::string(width - key.size() + 2, ' ');
+    out << fallback << std::string(default_width - displayWidth(fallback) + 2, ' ');
+    out << unit << std::string(unit_width - displayWidth(unit) + 2, ' ') << what << '\n';
+  };
+  row("parameter", "default", "unit", "what it must be");
+  for (const ParameterRead& r : recorder.reads())
+    row(r.key, r.required ? "required" : r.fallback, factory.unit(type, r.key),
+        r.expected.empty() ? "read when given (see the README's tables)" : r.expected);
   if (recorder.reads().empty()) out << "  (no parameters)\n";
   // Read by the scene loader for every component (scene_loader.cpp), not by the component.
-  out << "  name" << std::string(width - 4 + 2, ' ') << "the type  a string: its name in messages, outputs and references\n";
-  out << "  object" << std::string(width - 6 + 2, ' ')
-      << "\"\"        a node path: the body it acts on, when not its own node's\n";
+  row("name", "the type", "", "a string: its name in messages, outputs and references");
+  row("object", "\"\"", "", "a node path: the body it acts on, when not its own node's");
   if (!stopped.empty())
     out << "\nThe list may stop short where the component needs a real value to go on (its other\n"
            "parameters depend on it); with the placeholders it said: "
         << stopped << '\n';
   out << "\n\"-\": no default (given or not, as the component's checks say).\n";
-  out << "\nUnits are SI (m, kg, s, N, Pa) unless the README's tables say otherwise.\n";
+  out << "Units: SI, as everywhere in a scene file; 1: a pure number (a ratio, a coefficient, an\n"
+         "abscissa in [0, 1]); blank: not a quantity (a count, a name, a choice).\n";
   return 0;
 }
 

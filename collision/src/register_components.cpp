@@ -15,6 +15,9 @@
 namespace filum::collision {
 
 void register_components(Factory& factory) {
+  // Units of the quantities whose key means another unit elsewhere (parameter_units.hpp).
+  factory.addUnits("ContactPipeline", {{"stiffness", "N/m"}, {"damping", "N·s/m"}});
+  factory.addUnits("CapsuleObstacle", {{"a", "m"}, {"b", "m"}});
   factory.add("SphereCollisionModel",
               "spheres at equal curvilinear spacing along the node's spline, resampled as it stretches (paper §3)",
               [](const Params& p) { return SphereCollisionModel::fromParams(p); });
@@ -28,7 +31,7 @@ void register_components(Factory& factory) {
   factory.add("SphereObstacle", "a fixed ball", [](const Params& p) { return SphereObstacle::fromParams(p); });
   factory.add("CapsuleObstacle", "the points within a radius of a segment (rod, shaft, vessel piece)",
               [](const Params& p) { return CapsuleObstacle::fromParams(p); });
-  factory.add("ImplicitSurfaceObstacle", "a convolution surface f(x) = 0 around a skeleton polyline (talk 002)",
+  factory.add("ImplicitSurfaceObstacle", "a convolution surface f(x) = 0 around a skeleton polyline (Lenoir's vessels)",
               [](const Params& p) { return ImplicitSurfaceObstacle::fromParams(p); });
   factory.add("VesselLumenObstacle",
               "the wall of an artery tree from centrelines with radii, touched from inside (guidewires, catheters, coils)",

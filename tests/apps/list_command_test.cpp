@@ -1,10 +1,12 @@
 // `filum list TYPE`: a type's parameters read off its own fromParams (ParameterRecorder) — the
 // plane's point and normal with their defaults, a required parameter marked so, an optional one
 // typed by the check that reads it — for every type this build knows without a crash; a mistyped
-// type refused with the closest name.
+// type refused with the closest name; every quantity with its unit.
 #include <gtest/gtest.h>
 
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "filum/all_components.hpp"
 #include "filum/list_command.hpp"
@@ -18,20 +20,79 @@ std::string listing(const std::string& type, int expected_status = 0) {
   return out.str() + err.str();
 }
 
-TEST(ListCommand, ThePlaneNamesPointAndNormalWithTheirDefaults) {
+/// The listing's line of one parameter ("" if none), its columns split on runs of spaces.
+std::vector<std::string> columns(const std::string& text, const std::string& key) {
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("  " + key + " ", 0) != 0) continue;
+    std::vector<std::string> out;
+    std::size_t at = 2;
+    while (at < line.size()) {
+      const std::size_t gap = line.find("  ", at);
+      out.push_back(line.substr(at, gap == std::string::npos ? std::string::npos : gap - at));
+      if (gap == std::string::npos) break;
+      at = line.find_first_not_of(' ', gap);
+    }
+    return out;
+  }
+  return {};
+}
+
+TEST(ListCommand, ThePlaneNamesPointAndNormalWithTheirDefaultsAndUnits) {
   const std::string text = listing("PlaneObstacle");
-  EXPECT_NE(text.find("point      [0, 0, 0]"), std::string::npos) << text;
-  EXPECT_NE(text.find("normal     [0, 0, 1]"), std::string::npos) << text;
-  // "friction" is read only when given (readCommon): optional, typed by its check.
-  EXPECT_NE(text.find("friction   -         a number >= 0"), std::string::npos) << text;
+  EXPECT_EQ(columns(text, "point"), (std::vector<std::string>{"point", "[0, 0, 0]", "m", "[x, y, z]"})) << text;
+  EXPECT_EQ(columns(text, "normal"), (std::vector<std::string>{"normal", "[0, 0, 1]", "1", "[x, y, z]"})) << text;
+  // "friction" is read only when given (readCommon): optional, typed by its check; Coulomb's μ.
+  EXPECT_EQ(columns(text, "friction"), (std::vector<std::string>{"friction", "-", "1", "a number >= 0"})) << text;
+}
+
+TEST(ListCommand, AKeyWithAnotherMeaningInOneTypeHasThatTypesUnit) {
+  // Coulomb's μ on an obstacle; a sliding point's viscous friction; a tissue's stiffness per metre.
+  EXPECT_EQ(columns(listing("SphereObstacle"), "friction").at(2), "1");
+  EXPECT_EQ(columns(listing("SlidingPointConstraint"), "friction").at(2), "N·s/m");
+  EXPECT_EQ(columns(listing("TissueAttachment"), "stiffness").at(2), "N/m²");
+  EXPECT_EQ(columns(listing("ContactPipeline"), "stiffness").at(2), "N/m");
+}
+
+TEST(ListCommand, EveryQuantityOfEveryTypeHasAUnitAndNoCountHasOne) {
+  // A number, a point or an abscissa is a quantity and must say its unit ("1" for a pure
+  // number); an integer is a count, a string or a boolean a choice: no unit. A component that
+  // adds a parameter without its unit fails here, so the list stays complete.
+  const Factory factory = makeFactory();
+  for (const std::string& type : factory.typeNames()) {
+    std::ostringstream out, err;
+    ASSERT_EQ(listParameters(factory, type, out, err), 0) << type;
+    std::istringstream lines(out.str());
+    std::string line;
+    std::getline(lines, line);  // "Type: summary"
+    std::getline(lines, line);  // blank
+    std::getline(lines, line);  // header
+    while (std::getline(lines, line) && line.rfind("  ", 0) == 0) {
+      const std::string key = line.substr(2, line.find(' ', 2) - 2);
+      if (key == "name" || key == "object" || key == "(no") continue;
+      const std::string unit = factory.unit(type, key);
+      const bool quantity = line.find("a number") != std::string::npos || line.find("[x, y, z]") != std::string::npos ||
+                            line.find("a curve abscissa") != std::string::npos;
+      const bool count_or_choice = line.find("an integer") != std::string::npos || line.find("  a string") != std::string::npos ||
+                                   line.find("true or false") != std::string::npos;
+      if (quantity) {
+        EXPECT_FALSE(unit.empty()) << type << "." << key << " is a quantity without a unit: " << line;
+      }
+      if (count_or_choice) {
+        EXPECT_TRUE(unit.empty()) << type << "." << key << " is a count or a choice with unit " << unit;
+      }
+    }
+  }
 }
 
 TEST(ListCommand, ARequiredParameterIsMarkedAndTheChecksAreTheComponentsOwn) {
   const std::string text = listing("GreenLagrangeStretching");
-  EXPECT_NE(text.find("youngs_modulus"), std::string::npos) << text;
-  EXPECT_NE(text.find("required  a number > 0"), std::string::npos) << text;
+  EXPECT_EQ(columns(text, "youngs_modulus"), (std::vector<std::string>{"youngs_modulus", "required", "Pa", "a number > 0"}))
+      << text;
   const std::string solver = listing("LagrangeMultiplierSolver");
-  EXPECT_NE(solver.find("contact_tolerance    1e-06     a number > 0"), std::string::npos) << solver;
+  EXPECT_EQ(columns(solver, "contact_tolerance"),
+            (std::vector<std::string>{"contact_tolerance", "1e-06", "1", "a number > 0"}))
+      << solver;
 }
 
 TEST(ListCommand, EveryKnownTypeIsListedWithoutACrash) {
