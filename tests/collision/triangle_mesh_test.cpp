@@ -14,6 +14,7 @@
 #include "filum/collision/register_components.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
+#include "support/closest_on_triangle.hpp"
 
 #ifdef FILUM_WITH_CGAL
 #include "filum/collision/contact_pipeline.hpp"
@@ -27,39 +28,6 @@ namespace {
 const std::string kOrgan = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/data/organ.off";
 
 #ifdef FILUM_WITH_CGAL
-
-/// Closest point of triangle abc to p (Ericson, Real-Time Collision Detection, §5.1.5): the
-/// Voronoi regions of the vertices, edges and face, in exact closed form.
-Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-  const double denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
-
-/// Distance of p to the mesh: the nearest of every triangle's exact closest point.
-double exactDistance(const TriangleMeshSurface& mesh, const Vec3& p) {
-  double best = std::numeric_limits<double>::infinity();
-  for (const auto& t : mesh.triangles())
-    best = std::min(best, (p - closestOnTriangle(p, mesh.vertices().row(t[0]).transpose(),
-                                                 mesh.vertices().row(t[1]).transpose(),
-                                                 mesh.vertices().row(t[2]).transpose()))
-                              .norm());
-  return best;
-}
 
 /// Winding number of the closed mesh around p: Σ solid angles / 4π (Van Oosterom & Strackee).
 double windingNumber(const TriangleMeshSurface& mesh, const Vec3& p) {
@@ -89,7 +57,7 @@ TEST(TriangleMeshSurface, ClosestPointAndInsideMatchExactReferences) {
     // Exact reference: the closest point over all 1280 triangles.
     double best = std::numeric_limits<double>::infinity();
     for (const auto& t : mesh->triangles()) {
-      const Vec3 c = closestOnTriangle(x, mesh->vertices().row(t[0]).transpose(), mesh->vertices().row(t[1]).transpose(),
+      const Vec3 c = test::closestOnTriangle(x, mesh->vertices().row(t[0]).transpose(), mesh->vertices().row(t[1]).transpose(),
                                        mesh->vertices().row(t[2]).transpose());
       best = std::min(best, (x - c).norm());
     }
@@ -118,7 +86,7 @@ TEST(TriangleMeshObstacle, SphereToMeshGapIsTheExactSignedDistanceMinusTheRadius
     const Vec3 x = surface->vertices().row(v).transpose() + 3e-3 * Vec3(u(rng), u(rng), u(rng));
     SurfaceSample sample;
     ASSERT_TRUE(obstacle.sample(x, 1.0, sample));
-    const double best = exactDistance(*surface, x);
+    const double best = test::exactDistance(surface->vertices(), surface->triangles(), x);
     const double sign = windingNumber(*surface, x) > 0.5 ? -1.0 : 1.0;
     EXPECT_NEAR(sample.distance - r, sign * best - r, 1e-14);
     EXPECT_NEAR((sample.point - x).norm(), best, 1e-14);
@@ -146,7 +114,7 @@ TEST(TriangleMeshObstacle, ACavityIsTheSameSurfaceSeenFromInside) {
     const Vec3 x = trial % 2 == 0 ? Vec3(surface->vertices().row(v).transpose() + 3e-3 * Vec3(u(rng), u(rng), u(rng)))
                                   : Vec3(box.center() + 0.5 * (box.sizes() + Vec3::Constant(0.04)).cwiseProduct(
                                                              Vec3(u(rng), u(rng), u(rng))));
-    const double best = exactDistance(*surface, x);
+    const double best = test::exactDistance(surface->vertices(), surface->triangles(), x);
     const bool inside = windingNumber(*surface, x) > 0.5;
     SurfaceSample sample;
     const bool hit = cavity.sample(x, max_distance, sample);

@@ -34,7 +34,7 @@ struct ObstacleShape {
   static ObstacleShape capsule(const Vec3& a, const Vec3& b, double radius) {
     return {Kind::kCapsule, a, b, Vec3::UnitZ(), radius, nullptr, false};
   }
-  static ObstacleShape closedMesh(const TriangleMeshSurface& surface, bool cavity) {
+  static ObstacleShape triangleMesh(const TriangleMeshSurface& surface, bool cavity) {
     return {Kind::kMesh, Vec3::Zero(), Vec3::Zero(), Vec3::UnitZ(), 0.0, &surface, cavity};
   }
 };
