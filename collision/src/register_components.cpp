@@ -18,6 +18,8 @@ void register_components(Factory& factory) {
   // Units of the quantities whose key means another unit elsewhere (parameter_units.hpp).
   factory.addUnits("ContactPipeline", {{"stiffness", "N/m"}, {"damping", "N·s/m"}});
   factory.addUnits("CapsuleObstacle", {{"a", "m"}, {"b", "m"}});
+  // A vessel tree's points, radii and blend are in its "units" (m, cm or mm) times "scale".
+  factory.addUnits("VesselLumenObstacle", {{"branches", "as units"}, {"blend", "as units"}});
   factory.add("SphereCollisionModel",
               "spheres at equal curvilinear spacing along the node's spline, resampled as it stretches (paper §3)",
               [](const Params& p) { return SphereCollisionModel::fromParams(p); });
@@ -39,7 +41,7 @@ void register_components(Factory& factory) {
   factory.add("ProbeSphere", "a sphere on a scripted trajectory that pushes threads (paper Fig. 1a probe)",
               [](const Params& p) { return ProbeSphere::fromParams(p); });
 #ifdef FILUM_WITH_CGAL
-  factory.add("TriangleMeshObstacle", "a closed triangle mesh (OFF/OBJ/STL/PLY): organ, vessel (CGAL AABB tree)",
+  factory.add("TriangleMeshObstacle", "a triangle mesh (OFF/OBJ/STL/PLY): a closed organ, a cavity, a segmented vessel open at its ends (CGAL AABB tree)",
               [](const Params& p) { return TriangleMeshObstacle::fromParams(p); });
 #else
   factory.addUnavailable("TriangleMeshObstacle", "FILUM_WITH_CGAL");

@@ -130,6 +130,38 @@ TEST(OpenLumenMesh, ThePseudoNormalsSideIsTheWindingNumbersOnAClosedMesh) {
   EXPECT_GT(on_edge_or_vertex, 50);  // the edge and vertex normals were exercised, not only faces'
 }
 
+TEST(OpenLumenMesh, ThePseudoNormalOfAnEdgeOrACornerIsTheAngleWeightedSumOfItsFaces) {
+  // A cube of half side h, two triangles a face, wound outwards. A point off an edge projects onto
+  // the edge: its pseudo-normal is (n1 + n2)/|n1 + n2| of the two faces; off a corner, the three
+  // faces meet at right angles, each weighted π/2 (its one or two triangles' angles there):
+  // (1, 1, 1)/√3; off a face, the face's normal. A wrong edge or corner taken from the closest
+  // face's barycentric coordinates gives another of these normals.
+  const double h = 0.01;
+  Points v(8, 3);
+  for (int i = 0; i < 8; ++i) v.row(i) << (i & 1 ? h : -h), (i & 2 ? h : -h), (i & 4 ? h : -h);
+  const std::vector<std::array<int, 3>> quads = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                                                 {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  const TriangleMeshSurface cube(v, quads);
+  double scale = 0.0;
+  ASSERT_GT(cube.enclosedVolume(scale), 0.0) << "the cube is wound outwards";
+  struct Case {
+    Vec3 x, normal;
+  };
+  const std::vector<Case> cases = {
+      {Vec3(1.2, 1.2, 0.3) * h, Vec3(1, 1, 0).normalized()},     // off the edge x = y = h
+      {Vec3(-1.1, 0.2, -1.3) * h, Vec3(-1, 0, -1).normalized()},  // off the edge x = z = −h
+      {Vec3(1.3, -1.2, 1.1) * h, Vec3(1, -1, 1).normalized()},    // off a corner
+      {Vec3(-1.2, -1.4, -1.1) * h, Vec3(-1, -1, -1).normalized()},
+      {Vec3(1.5, 0.2, 0.3) * h, Vec3(1, 0, 0)},                   // off a face
+      {Vec3(0.1, 0.3, 0.8) * h, Vec3(0, 0, 1)},                   // inside, nearest the top face
+  };
+  for (const Case& c : cases) {
+    const TriangleMeshSurface::ClosestFeature f = cube.closestFeature(c.x);
+    EXPECT_NEAR((f.normal - c.normal).norm(), 0.0, 1e-12) << c.x.transpose() / h << ": " << f.normal.transpose();
+    EXPECT_EQ((c.x - f.point).dot(f.normal) < 0.0, cube.inside(c.x)) << c.x.transpose() / h;
+  }
+}
+
 TEST(OpenLumenMesh, AnOpenTubeIsALumenWhicheverWayItsFacesAreWound) {
   const Vec3 axis = Vec3(1, 0, 0), down = Vec3(0, 0, -1), side = axis.cross(down);
   const double inscribed = kTube * std::cos(M_PI / kSides);

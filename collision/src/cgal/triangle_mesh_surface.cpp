@@ -177,6 +177,16 @@ TriangleMeshSurface::ClosestFeature TriangleMeshSurface::closestFeature(const Ve
   const Vec3 a = toVec3(mesh.point(corners[0])), b = toVec3(mesh.point(corners[1])), d = toVec3(mesh.point(corners[2]));
   const Vec3 n = (b - a).cross(d - a);
   const double area2 = n.squaredNorm();
+  // A face of no area (three corners on a line, common in segmented meshes) has no normal and no
+  // barycentric coordinates: c lies on its longest edge, whose pseudo-normal is its neighbour's.
+  const double longest2 = std::max({(b - a).squaredNorm(), (d - b).squaredNorm(), (a - d).squaredNorm()});
+  if (!(area2 > 1e-24 * longest2 * longest2)) {
+    const int k = (d - b).squaredNorm() == longest2 ? 0 : (a - d).squaredNorm() == longest2 ? 1 : 2;
+    const auto e = mesh.edge(edges[k]);
+    out.normal = m.edge_normal[e.idx()];
+    out.on_border = m.edge_border[e.idx()] != 0;
+    return out;
+  }
   std::array<double, 3> lambda{(d - b).cross(out.point - b).dot(n) / area2, (a - d).cross(out.point - d).dot(n) / area2,
                                (b - a).cross(out.point - a).dot(n) / area2};
   constexpr double kOnFeature = 1e-9;

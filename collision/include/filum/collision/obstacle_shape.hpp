@@ -15,7 +15,7 @@ struct ObstacleShape {
     kPlane,    // the plane through `a` with outward unit normal `normal` (unbounded)
     kSphere,   // centre `a`, `radius`
     kCapsule,  // the points within `radius` of the segment [a, b]
-    kMesh,     // the closed triangle mesh `mesh` (world coordinates); `cavity`: bodies stay inside
+    kMesh,     // the triangle mesh `mesh` (world coordinates; open only as a cavity); `cavity`: bodies stay inside
   };
   Kind kind = Kind::kNone;
   Vec3 a = Vec3::Zero();

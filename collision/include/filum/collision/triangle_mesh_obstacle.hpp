@@ -1,4 +1,5 @@
-// TriangleMeshObstacle: a closed triangle mesh (an organ, a vessel) read from an OFF/OBJ/STL/PLY
+// TriangleMeshObstacle: a triangle mesh (a closed organ; as a cavity also a vessel open at its
+// ends) read from an OFF/OBJ/STL/PLY
 // file (TriangleMeshSurface: filum's reader, CGAL's queries). Signed distance to the surface d(x) = ±|x − c(x)| with c the
 // closest point (AABB tree) and the sign from the inside test; outward normal
 // (x − c)/|x − c| outside, (c − x)/|c − x| inside, the nearest face's normal on the surface.

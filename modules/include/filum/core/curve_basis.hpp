@@ -4,7 +4,7 @@
 //
 // In the kernel so that a body can expose its curve (CurveBody) to every library without naming
 // a concrete basis; the bases themselves (uniform cubic B-spline, Catmull-Rom, NUBS) are in
-// geometry/ (geometry/spline_basis.hpp names this interface CurveBasis). Bases are local: at any
+// geometry/, each implementing this interface. Bases are local: at any
 // s only degree + 1 consecutive functions may be non-zero. All bases sum to one
 // (Σ_i b_i(s) = 1, so rigid translations are exact).
 #pragma once
