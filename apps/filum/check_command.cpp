@@ -5,12 +5,14 @@
 #include "filum/all_components.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
+#include "filum/haptics/fluoroscopy_pedal.hpp"
 #include "filum/haptics/haptic_session.hpp"
 #include "filum/haptics/instrument_set.hpp"
 #include "filum/output_settings.hpp"
 #include "filum/physics_check.hpp"
 #include "filum/run_command.hpp"
 #include "filum/visual/camera.hpp"
+#include "filum/visual/fluoroscopy_view.hpp"
 #include "filum/visual/visual_scene.hpp"
 
 namespace filum::app {
@@ -21,6 +23,8 @@ int checkScene(const std::string& path, std::ostream& out) {
     auto scene = loadScene(document, path, makeFactory());
     readOutputSettings(document, path);  // read by `filum run`
     visual::readCamera(document, path);  // read by --render and `filum view`
+    visual::FluoroscopyView::fromScene(document, path);    // the C-arm's view, read by --render
+    haptics::FluoroscopyPedal::fromScene(document, path);  // and its pedal (also the metrics')
     // The "haptics" block, read by `filum run` (a Phantom is opened, then closed, to check it).
     haptics::HapticSession::fromScene(document, path, *scene, 0.0);  // (no run: the shortest servo log)
     haptics::InstrumentSet::fromScene(document, path, *scene);  // the "instruments", read by `filum run`

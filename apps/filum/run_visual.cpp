@@ -41,6 +41,21 @@ RunVisual::RunVisual(Scene& scene, const nlohmann::json& document, const std::st
     recorder.png_frames = options_.png_frames;
     recorder.title = scene_name_;
     recorder_ = std::make_unique<visual::FrameRecorder>(recorder);
+    fluoroscopy_ = visual::FluoroscopyView::fromScene(document, scene.settings().source);
+    if (fluoroscopy_) {
+      pedal_ = haptics::FluoroscopyPedal::fromScene(document, scene.settings().source);
+      Vec3 lower(-0.05, -0.05, -0.05), upper(0.05, 0.05, 0.05);
+      visuals_.bounds(lower, upper);
+      fluoroscopy_renderer_ = std::make_unique<visual::OffscreenRenderer>(
+          fluoroscopy_->camera(fluoroscopy_->isocenter.value_or(0.5 * (lower + upper))));
+      const double interval = std::max(camera_.frame_interval, fluoroscopy_->frame_interval);
+      recorder.directory = directory_ + "/fluoroscopy";
+      recorder.fps = std::min(kMaxVideoFps, 1.0 / interval);
+      recorder.expected_frames = static_cast<int>(std::floor(duration / interval + 1e-9)) + 1;
+      recorder.title = scene_name_ + " (fluoroscopy)";
+      fluoroscopy_recorder_ = std::make_unique<visual::FrameRecorder>(recorder);
+      held_ = visual::Image(fluoroscopy_->size, fluoroscopy_->size);
+    }
   }
 }
 
@@ -86,6 +101,29 @@ void RunVisual::render(const Scene& scene, double wall_per_simulated_ms) {
                                    visual::headsUpText(scene.state().time, wall_per_simulated_ms,
                                                        scene.energy(scene.state()).total()));
   recorder_->add(frame, scene.state().time);
+  if (fluoroscopy_) renderFluoroscopy(scene);
+}
+
+void RunVisual::renderFluoroscopy(const Scene& scene) {
+  // Pulses on the grid k · frame_interval, each taken at the camera's frame nearest to it (within
+  // half the camera's interval): frames come when the run renders, not at arbitrary times.
+  const double t = scene.state().time;
+  if (t < next_fluoroscopy_ - 0.5 * camera_.frame_interval) return;
+  while (next_fluoroscopy_ <= t + 0.5 * camera_.frame_interval) next_fluoroscopy_ += fluoroscopy_->frame_interval;
+  const bool on = pedal_->on(t);
+  if (on) {
+    held_ = fluoroscopy_->finish(fluoroscopy_renderer_->render(frame_models_, visual::OffscreenRenderer::Style::kXray),
+                                 fluoroscopy_frames_);
+  }
+  visual::Image frame = held_;
+  char text[160];
+  std::snprintf(text, sizeof text, "%s %.0f  %s %.0f  |  t %.2f s  fluoro %.1f s%s",
+                fluoroscopy_->lao_degrees >= 0.0 ? "LAO" : "RAO", std::abs(fluoroscopy_->lao_degrees),
+                fluoroscopy_->cranial_degrees >= 0.0 ? "CRA" : "CAU", std::abs(fluoroscopy_->cranial_degrees), t,
+                pedal_->time(t), on ? "" : "  (last image hold)");
+  visual::drawHeadsUp(frame, text);
+  fluoroscopy_recorder_->add(frame, t);
+  ++fluoroscopy_frames_;
 }
 
 void RunVisual::finish(const Scene& scene) {
@@ -103,6 +141,7 @@ void RunVisual::finish(const Scene& scene) {
     visual::writeObj(directory_ + "/meshes/final.obj", named);
   }
   if (recorder_) recorder_->finish();
+  if (fluoroscopy_recorder_) fluoroscopy_recorder_->finish();
 }
 
 std::string RunVisual::summary() const {
@@ -111,6 +150,8 @@ std::string RunVisual::summary() const {
   if (options_.render)
     s += ", video.avi (" + std::to_string(recorder_->frames()) + " frames)" + (options_.png_frames ? ", frames/*.png" : "") +
          ", contact_sheet.png";
+  if (fluoroscopy_recorder_)
+    s += ", fluoroscopy/video.avi (" + std::to_string(fluoroscopy_recorder_->frames()) + " frames), fluoroscopy/contact_sheet.png";
   return s;
 }
 

@@ -5,7 +5,10 @@
 //   --render   frames/frame_NNNNNN.png, video.avi (Motion-JPEG, real-time playback) and
 //              contact_sheet.png, pictures from the scene's "camera" (or a camera framing the
 //              scene at t = 0), with a heads-up line: simulated time, wall time per simulated
-//              millisecond and energy.
+//              millisecond and energy; with a "fluoroscopy" block in the scene, also
+//              fluoroscopy/video.avi and fluoroscopy/contact_sheet.png: the C-arm's view
+//              (visual/fluoroscopy_view.hpp) at its pulse rate (at most as often as the camera's
+//              frames), holding the last image while the pedal is up, with the fluoroscopy time.
 #pragma once
 
 #include <memory>
@@ -14,7 +17,9 @@
 #include <nlohmann/json.hpp>
 
 #include "filum/core/scene.hpp"
+#include "filum/haptics/fluoroscopy_pedal.hpp"
 #include "filum/visual/camera.hpp"
+#include "filum/visual/fluoroscopy_view.hpp"
 #include "filum/visual/frame_recorder.hpp"
 #include "filum/visual/offscreen_renderer.hpp"
 #include "filum/visual/pvd_series.hpp"
@@ -58,6 +63,8 @@ class RunVisual {
   /// The file name of mesh `mesh` of visual model `model`: its name, then _2, _3... for the
   /// meshes after the first (the strands of a cut thread).
   std::string meshName(std::size_t model, int mesh) const;
+  /// The fluoroscopy frame of the current state (or the held one while the pedal is up).
+  void renderFluoroscopy(const Scene& scene);
   RunVisualOptions options_;
   std::string directory_;
   std::string scene_name_;
@@ -68,6 +75,13 @@ class RunVisual {
   std::unique_ptr<visual::FrameRecorder> recorder_;
   std::vector<visual::VisualModel*> overlays_;
   std::vector<visual::VisualModel*> frame_models_;  // the scene's models and the overlays, per frame
+  std::optional<visual::FluoroscopyView> fluoroscopy_;
+  std::unique_ptr<haptics::FluoroscopyPedal> pedal_;
+  std::unique_ptr<visual::OffscreenRenderer> fluoroscopy_renderer_;  // its own window and camera
+  std::unique_ptr<visual::FrameRecorder> fluoroscopy_recorder_;
+  visual::Image held_;  // the last image taken (black before the first)
+  double next_fluoroscopy_ = 0.0;
+  int fluoroscopy_frames_ = 0;
   int mesh_frames_ = 0;
   bool finished_ = false;
 };

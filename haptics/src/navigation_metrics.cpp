@@ -40,6 +40,7 @@ std::unique_ptr<NavigationMetrics> NavigationMetrics::fromScene(const nlohmann::
   const Params top(document, source, "");
   const Params p = top.object("navigation").withOwner("navigation");
   std::unique_ptr<NavigationMetrics> metrics(new NavigationMetrics());
+  metrics->pedal_ = FluoroscopyPedal::fromScene(document, source);
   std::vector<std::string> names;
   if (p.has("instrument")) names.push_back(p.string("instrument"));
   if (p.has("instruments")) {
@@ -173,6 +174,7 @@ nlohmann::json NavigationMetrics::summary() const {
   const geometry::VesselTree& tree = lumen_->tree();
   if (target_branch_ >= 0) out["target_branch"] = tree.branch(target_branch_).name;
   if (target_) out["target"] = {target_->x(), target_->y(), target_->z()};
+  if (pedal_) out["fluoroscopy_time"] = pedal_->time(time_);
   for (const Instrument& m : instruments_) {
     nlohmann::json i = {{"inserted_length", m.inserted},
                         {"max_inserted_length", m.max_inserted},
@@ -219,6 +221,7 @@ std::string NavigationMetrics::text() const {
     s << "; wall force max " << m.max_wall_force << " N, " << m.time_above_limit << " s above " << force_limit_
       << " N; tip path " << 1e3 * m.tip_path << " mm\n";
   }
+  if (pedal_) s << "  fluoroscopy time " << pedal_->time(time_) << " s of " << time_ << " s\n";
   return s.str();
 }
 

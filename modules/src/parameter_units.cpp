@@ -14,8 +14,6 @@ std::string commonParameterUnit(const std::string& key) {
       {"approximation", "m"},
       {"axis", "1"},  // a direction: normalized by the component
       {"bend_stiffness", "N/m"},
-      {"blend", "m"},  // (× "units" × "scale" in a vessel file)
-      {"branches", "m"},
       {"break_force", "N"},
       {"cell_size", "m"},
       {"center", "m"},
@@ -68,6 +66,7 @@ std::string commonParameterUnit(const std::string& key) {
       {"torque", "N·m"},
       {"translation", "m"},
       {"velocities", "m/s"},
+      {"xray_opacity", "1"},  // the fraction of X-rays one layer stops
       {"youngs_modulus", "Pa"},
   };
   const auto it = units.find(key);

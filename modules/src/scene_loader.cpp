@@ -175,6 +175,7 @@ std::unique_ptr<Scene> loadScene(const json& document, const std::string& source
   top.has("metrics");  // the instruments' trainee metrics (haptics/instrument_set.hpp)
   top.has("needles");  // the needles the instruments hold (haptics/needle.hpp)
   top.has("navigation");  // catheter and guidewire metrics (haptics/navigation_metrics.hpp)
+  top.has("fluoroscopy");  // the C-arm view and its pedal (visual/fluoroscopy_view.hpp, haptics/fluoroscopy_pedal.hpp)
 
   addRoleComponent<Integrator>(top, "integrator", "Integrator", *scene, factory);
   addRoleComponent<ConstraintSolver>(top, "constraint_solver", "ConstraintSolver", *scene, factory);

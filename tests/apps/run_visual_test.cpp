@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "filum/run_command.hpp"
@@ -74,6 +75,36 @@ TEST(RunVisual, RenderWritesFramesVideoAndContactSheet) {
   EXPECT_GT(fs::file_size(out / "video.avi"), 4000u);
   EXPECT_GT(fs::file_size(out / "contact_sheet.png"), 1000u);
   EXPECT_NE(log.str().find("video.avi"), std::string::npos) << log.str();
+}
+
+TEST(RunVisual, AFluoroscopyBlockAddsTheCArmsViewAndTheFluoroscopyTime) {
+  if (!visual::renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)";
+  std::string reason;
+  const auto display = test::displayOrSkipReason(reason);
+  if (!display) GTEST_SKIP() << reason;
+  const fs::path out = fs::path(FILUM_BINARY_DIR) / "test_output" / "run_fluoroscopy";
+  fs::remove_all(out);
+  RunOptions options;
+  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/catheter.json";  // the pedal: [0, 1], [1.5, 6] s
+  options.out = out.string();
+  options.duration = 0.2;
+  options.progress = false;
+  options.render = true;
+  options.png_frames = true;
+  std::ostringstream log, progress;
+  ASSERT_EQ(runScene(options, log, progress), kRunOk) << log.str();
+  // Pulses every 1/15 s (at most as often as the camera's 1/30 s frames): t = 0, 1/15, 2/15, 3/15.
+  for (int k = 0; k < 4; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%06d.png", k);
+    EXPECT_TRUE(fs::exists(out / "fluoroscopy" / "frames" / name)) << name;
+  }
+  EXPECT_FALSE(fs::exists(out / "fluoroscopy" / "frames" / "frame_000004.png"));
+  EXPECT_GT(fs::file_size(out / "fluoroscopy" / "contact_sheet.png"), 1000u);
+  const nlohmann::json metrics = nlohmann::json::parse(std::ifstream(out / "metrics.json"));
+  // The pedal pressed over the whole 0.2 s: the steps' time sum, to round-off.
+  EXPECT_NEAR(metrics.at("fluoroscopy_time").get<double>(), 0.2, 1e-12);
+  EXPECT_NE(log.str().find("fluoroscopy time"), std::string::npos) << log.str();
 }
 
 }  // namespace

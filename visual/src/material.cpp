@@ -23,6 +23,11 @@ Material Material::fromParams(const Params& p, const Material& fallback) {
   m.color = colorParam(p, "color", fallback.color);
   m.opacity = p.positive("opacity", fallback.opacity);
   if (m.opacity > 1.0) p.fail("opacity", "an opacity in (0, 1]", std::to_string(m.opacity));
+  m.xray_opacity = fallback.xray_opacity;
+  if (p.has("xray_opacity")) {
+    m.xray_opacity = p.nonNegative("xray_opacity", 0.0);
+    if (m.xray_opacity > 1.0) p.fail("xray_opacity", "an X-ray opacity in [0, 1]", std::to_string(m.xray_opacity));
+  }
   return m;
 }
 

@@ -1,5 +1,6 @@
 #include "filum/visual/offscreen_renderer.hpp"
 
+#include <atomic>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -37,7 +38,15 @@ struct OffscreenRenderer::Impl {
   CameraSettings camera;
   int shown = 0;  // widgets "model_0" .. "model_{shown−1}" currently in the window
 
-  Impl() : display(DisplayServer::ensure()), window("filum") { window.setOffScreenRendering(); }
+  // Each renderer its own window: viz shares the windows of one name, and a run renders two views
+  // (the camera's and the fluoroscope's) that must not share a camera.
+  Impl() : display(DisplayServer::ensure()), window(uniqueName()) { window.setOffScreenRendering(); }
+
+  static std::string uniqueName() {
+    static std::atomic<int> count{0};
+    const int k = count++;
+    return k == 0 ? std::string("filum") : "filum " + std::to_string(k + 1);
+  }
 
   void apply(const CameraSettings& c) {
     camera = c;
@@ -79,9 +88,11 @@ void OffscreenRenderer::setCamera(const CameraSettings& camera) { impl_->apply(c
 
 const CameraSettings& OffscreenRenderer::camera() const { return impl_->camera; }
 
-Image OffscreenRenderer::render(const std::vector<VisualModel*>& models) {
+Image OffscreenRenderer::render(const std::vector<VisualModel*>& models, Style style) {
+  const bool xray = style == Style::kXray;
   int count = 0;
-  for (const VisualModel* model : models)
+  for (const VisualModel* model : models) {
+    if (xray && !(model->xrayOpacity() > 0.0)) continue;
     for (int i = 0; i < model->meshCount(); ++i) {
       const TriangleMesh& mesh = model->mesh(i);
       if (mesh.triangleCount() == 0) continue;
@@ -97,11 +108,14 @@ Image OffscreenRenderer::render(const std::vector<VisualModel*>& models) {
       }
       const std::string id = "model_" + std::to_string(count++);
       cv::viz::WMesh widget(cloud, polygons, cv::noArray(), normals);
-      widget.setColor(vizColor(model->material().color));
+      widget.setColor(xray ? cv::viz::Color::black() : vizColor(model->material().color));
       impl_->window.showWidget(id, widget);
       impl_->window.setRenderingProperty(id, cv::viz::SHADING, cv::viz::SHADING_PHONG);
-      impl_->window.setRenderingProperty(id, cv::viz::OPACITY, model->material().opacity);
+      // An X-ray layer transmits 1 − a of what lies behind it, whatever the light: unlit black.
+      impl_->window.setRenderingProperty(id, cv::viz::LIGHTING, xray ? 0.0 : 1.0);
+      impl_->window.setRenderingProperty(id, cv::viz::OPACITY, xray ? model->xrayOpacity() : model->material().opacity);
     }
+  }
   for (int k = count; k < impl_->shown; ++k) impl_->window.removeWidget("model_" + std::to_string(k));
   impl_->shown = count;
   const cv::Mat shot = impl_->window.getScreenshot();  // renders, BGR 8-bit
@@ -124,7 +138,7 @@ OffscreenRenderer::OffscreenRenderer(const CameraSettings&) { throw std::runtime
 OffscreenRenderer::~OffscreenRenderer() = default;
 void OffscreenRenderer::setCamera(const CameraSettings&) {}
 const CameraSettings& OffscreenRenderer::camera() const { return impl_->camera; }
-Image OffscreenRenderer::render(const std::vector<VisualModel*>&) { throw std::runtime_error(renderingUnavailableMessage()); }
+Image OffscreenRenderer::render(const std::vector<VisualModel*>&, Style) { throw std::runtime_error(renderingUnavailableMessage()); }
 
 #endif
 

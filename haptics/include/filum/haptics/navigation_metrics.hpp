@@ -9,7 +9,9 @@
 //   wall force       Σ |F_c| over the instrument's contacts with the lumen (N), its maximum over
 //                    the run and the time it spent above the force limit (s): a wire pushed
 //                    hard against the wall risks a dissection;
-//   tip path length  Σ |x_tip(t_k+1) − x_tip(t_k)| (m).
+//   tip path length  Σ |x_tip(t_k+1) − x_tip(t_k)| (m);
+//   fluoroscopy time how long the X-ray pedal was pressed (s; fluoroscopy_pedal.hpp), when the
+//                    scene has a "fluoroscopy" block: the dose a trainer scores.
 // Scene:
 //   "navigation": {"instruments": ["guidewire"] (or "instrument": "guidewire": node paths of
 //                  curve bodies, the hub at s = 0 and the tip at s = 1),
@@ -28,6 +30,7 @@
 #include <nlohmann/json.hpp>
 
 #include "filum/core/scene.hpp"
+#include "filum/haptics/fluoroscopy_pedal.hpp"
 
 namespace filum::collision {
 class VesselLumenObstacle;
@@ -87,6 +90,7 @@ class NavigationMetrics {
   std::vector<Instrument> instruments_;
   const collision::VesselLumenObstacle* lumen_ = nullptr;
   int lumen_index_ = -1;  // among the contact pipeline's obstacles
+  std::unique_ptr<FluoroscopyPedal> pedal_;  // nullptr: no "fluoroscopy" block
   std::optional<Vec3> target_;
   int target_branch_ = -1;
   double force_limit_ = 0.5;

@@ -34,6 +34,8 @@ class ConvolutionSurfaceModel final : public VisualModel {
   static std::unique_ptr<ConvolutionSurfaceModel> fromParams(const Params& p);
 
   std::string typeName() const override { return "ConvolutionSurfaceModel"; }
+  /// X-ray: a body's skin, as GeneralizedCylinderModel.
+  double defaultXrayOpacity() const override { return 0.85; }
   bool drawsBody() const override { return true; }
   void update(const SceneState& s) override;
   /// One surface per strand of the body (one for an uncut curve: CurveBasis::strands).

@@ -44,6 +44,8 @@ class GeneralizedCylinderModel final : public VisualModel {
   static std::unique_ptr<GeneralizedCylinderModel> fromParams(const Params& p);
 
   std::string typeName() const override { return "GeneralizedCylinder"; }
+  /// X-ray: a body's skin: a wire, a catheter, a coil, a thread (radiopaque jackets and platinum coils: near opaque).
+  double defaultXrayOpacity() const override { return 0.85; }
   bool drawsBody() const override { return true; }
   void update(const SceneState& s) override;
   /// One tube per strand of the body (one for an uncut curve).

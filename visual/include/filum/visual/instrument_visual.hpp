@@ -18,6 +18,8 @@ class InstrumentVisual final : public VisualModel {
   /// One part of the instrument (a model has one material: the shaft and the jaws are two models).
   InstrumentVisual(const haptics::Instrument& instrument, Part part);
   std::string typeName() const override { return "InstrumentVisual"; }
+  /// X-ray: steel.
+  double defaultXrayOpacity() const override { return 0.95; }
   bool needsBody() const override { return false; }
   /// The instrument where its driver has it at s.time.
   void update(const SceneState& s) override;

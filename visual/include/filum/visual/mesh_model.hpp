@@ -20,6 +20,8 @@ class MeshModel final : public VisualModel {
   static std::unique_ptr<MeshModel> fromParams(const Params& p);
 
   std::string typeName() const override { return "MeshModel"; }
+  /// X-ray: an organ: soft tissue, barely seen.
+  double defaultXrayOpacity() const override { return 0.08; }
   bool needsBody() const override { return false; }
   void update(const SceneState&) override {}
   const TriangleMesh& mesh(int = 0) const override { return mesh_; }

@@ -12,6 +12,8 @@ class NeedleVisual final : public VisualModel {
  public:
   explicit NeedleVisual(const haptics::Needle& needle);
   std::string typeName() const override { return "NeedleVisual"; }
+  /// X-ray: steel.
+  double defaultXrayOpacity() const override { return 0.95; }
   bool needsBody() const override { return false; }
   void update(const SceneState& s) override;
   const TriangleMesh& mesh(int = 0) const override { return cylinder_.mesh(); }

@@ -32,6 +32,15 @@ class ObstacleModel final : public VisualModel {
   void update(const SceneState& s) override;
   const TriangleMesh& mesh(int = 0) const override { return mesh_; }
   bool framed() const override { return drawn_.kind != collision::ObstacleShape::Kind::kPlane; }
+  /// X-ray: a table is not seen, steel probes (spheres, capsules) near opaque, a cavity mesh (a
+  /// segmented vessel filled with contrast) faint, a solid organ mesh fainter.
+  double defaultXrayOpacity() const override {
+    switch (drawn_.kind) {
+      case collision::ObstacleShape::Kind::kPlane: return 0.0;
+      case collision::ObstacleShape::Kind::kMesh: return drawn_.cavity ? 0.2 : 0.08;
+      default: return 0.95;
+    }
+  }
 
   /// The obstacle drawn (after init).
   const collision::Obstacle* obstacle() const { return obstacle_; }

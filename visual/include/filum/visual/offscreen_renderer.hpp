@@ -39,8 +39,11 @@ class OffscreenRenderer {
   void setCamera(const CameraSettings& camera);
   const CameraSettings& camera() const;
 
+  /// How models are drawn: shaded in their colours, or as an X-ray (fluoroscopy_view.hpp): black,
+  /// unlit, at the opacity of their X-ray opacity (models that stop none are skipped).
+  enum class Style { kShaded, kXray };
   /// Draws the models' current meshes (models with no triangles are skipped).
-  Image render(const std::vector<VisualModel*>& models);
+  Image render(const std::vector<VisualModel*>& models, Style style = Style::kShaded);
 
  private:
   struct Impl;

@@ -31,6 +31,8 @@ class VesselLumenModel final : public VisualModel {
   static TriangleMesh meshWall(const geometry::VesselTree& tree, double facet_size, double approximation);
 
   std::string typeName() const override { return "VesselLumenModel"; }
+  /// X-ray: a vessel filled with contrast: faint, darker where two walls overlap.
+  double defaultXrayOpacity() const override { return 0.2; }
   bool needsBody() const override { return false; }
   void update(const SceneState&) override {}
   /// The wall, meshed the first time it is asked for (throws std::runtime_error if CGAL cannot).

@@ -41,6 +41,14 @@ class VisualModel : public BodyComponent {
   virtual int meshCount() const { return 1; }
   virtual const TriangleMesh& mesh(int index = 0) const = 0;
 
+  /// The fraction of X-rays one layer of the model stops in the fluoroscopy view
+  /// (fluoroscopy_view.hpp): the scene's "xray_opacity", else its kind's default.
+  double xrayOpacity() const { return material_.xray_opacity >= 0.0 ? material_.xray_opacity : defaultXrayOpacity(); }
+  /// The kind's: 0 (not seen: tables, markers) unless the kind says otherwise — metal and the
+  /// radiopaque jackets of wires and catheters near 1, contrast-filled vessels faint, soft
+  /// tissue fainter.
+  virtual double defaultXrayOpacity() const { return 0.0; }
+
   const Material& material() const { return material_; }
   void setMaterial(const Material& m) { material_ = m; }
 
