@@ -1,9 +1,11 @@
 #include "filum/view_command.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
@@ -13,10 +15,14 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/geometry/spline_curve.hpp"
+#include "filum/haptics/fluoroscopy_pedal.hpp"
 #include "filum/haptics/haptic_session.hpp"
+#include "filum/haptics/hub_control.hpp"
 #include "filum/haptics/instrument_set.hpp"
+#include "filum/haptics/navigation_metrics.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
 #include "filum/run_command.hpp"
+#include "filum/visual/fluoroscopy_view.hpp"
 #include "filum/visual/heads_up_display.hpp"
 #include "filum/visual/image_file.hpp"
 #include "filum/visual/instrument_visual.hpp"
@@ -86,6 +92,9 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
   std::unique_ptr<haptics::HapticSession> haptic;
   std::unique_ptr<haptics::InstrumentSet> instruments;  // on their scripts until a key gives one to the mouse
   std::unique_ptr<Scene> scene;
+  std::unique_ptr<haptics::HubControl> hub;           // arrows: push, pull and turn the hub
+  std::unique_ptr<haptics::FluoroscopyPedal> pedal;   // f: the X-ray pedal
+  std::optional<visual::FluoroscopyView> fluoroscopy; // x: the fluoroscope's monitor instead of the 3D view
   nlohmann::json document;
   double capture_factor = 3.0;  // capture distance / probe radius
   try {
@@ -102,6 +111,11 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
     }
     instruments = haptics::InstrumentSet::fromScene(document, options.scene, *scene, 1.0);
     if (instruments) instruments->start();  // devices on their own thread (a Phantom) start sampling
+    // A catheter or guidewire ("navigation"): its hub to the arrow keys.
+    if (const auto navigation = haptics::NavigationMetrics::fromScene(document, options.scene, *scene))
+      hub = haptics::HubControl::find(*scene, navigation->instrument(0).name);
+    pedal = haptics::FluoroscopyPedal::fromScene(document, options.scene);
+    fluoroscopy = visual::FluoroscopyView::fromScene(document, options.scene);
   } catch (const SceneError& e) {
     log << "error: " << e.what() << '\n';
     return kRunSceneError;
@@ -138,6 +152,20 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
     double hinge_depth = 0.0;
 
     visual::OffscreenRenderer renderer(camera);
+    std::unique_ptr<visual::OffscreenRenderer> xray;  // the C-arm's view, its own window and camera
+    visual::Image monitor;                            // the last X-ray image (held while the pedal is up)
+    bool show_xray = false;
+    int xray_frames = 0;
+    if (fluoroscopy) {
+      Vec3 lower(-0.05, -0.05, -0.05), upper(0.05, 0.05, 0.05);
+      visuals.bounds(lower, upper);
+      visual::FluoroscopyView shown = *fluoroscopy;
+      shown.size = std::min(camera.width, camera.height);
+      xray = std::make_unique<visual::OffscreenRenderer>(shown.camera(fluoroscopy->isocenter.value_or(0.5 * (lower + upper))));
+      fluoroscopy = shown;
+      monitor = visual::Image(shown.size, shown.size);
+      pedal->release(0.0);  // the hand's pedal: up until f
+    }
     visual::ViewerWindow window(camera.width, camera.height, "filum view: " + scene->settings().name);
     log << "filum view: " << scene->settings().name
         << " — left drag: push, Shift+left or g: grab, right drag: orbit, wheel: zoom, space: pause, r: restart, "
@@ -160,6 +188,18 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
           if (e.key == "q" || e.key == "Escape") quit = true;
           if (e.key == "space") paused = !paused;
           if (e.key == "g") grab_mode = !grab_mode;
+          // The hub: a stroke of 5 mm or 15° over 0.1 s a press.
+          if (hub && (e.key == "Up" || e.key == "Down")) hub->push(*scene, e.key == "Up" ? 5e-3 : -5e-3, 0.1);
+          if (hub && (e.key == "Left" || e.key == "Right"))
+            hub->turn(*scene, (e.key == "Left" ? 15.0 : -15.0) * std::numbers::pi / 180.0, 0.1);
+          if (fluoroscopy && e.key == "x") show_xray = !show_xray;
+          if (fluoroscopy && e.key == "f") {
+            const double t = scene->state().time;
+            if (pedal->on(t))
+              pedal->release(t);
+            else
+              pedal->press(t);
+          }
           if (instruments && e.key.size() == 1 && e.key[0] >= '0' && e.key[0] <= '9') {
             const int k = e.key[0] - '1';
             selected = -1;
@@ -223,6 +263,7 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
         const long steps = std::max(1L, std::lround(advance / dt));
         const auto before = Clock::now();
         for (long k = 0; k < steps; ++k) {
+          if (hub) hub->update(*scene);
           if (instruments) instruments->beforeStep(*scene);
           const StepReport report = scene->step();
           if (instruments && report.ok) instruments->afterStep(*scene);
@@ -238,8 +279,25 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
       visuals.update(scene->state());
       probe_visual.update(scene->state());
       for (auto& m : instrument_models) m->update(scene->state());
-      frame = renderer.render(models);
       std::string hud = visual::headsUpText(scene->state().time, wall_per_ms, scene->energy(scene->state()).total());
+      if (fluoroscopy) {
+        const double t = scene->state().time;
+        if (pedal->on(t)) monitor = fluoroscopy->finish(xray->render(models, visual::OffscreenRenderer::Style::kXray), xray_frames++);
+        std::ostringstream fluoro;
+        fluoro.precision(3);
+        fluoro << " | fluoro " << pedal->time(t) << " s" << (pedal->on(t) ? " (X-ray on)" : "");
+        hud += fluoro.str();
+      }
+      if (show_xray) {
+        // The monitor, centred on the window's background.
+        frame = visual::Image(camera.width, camera.height);
+        const int x0 = (camera.width - monitor.width) / 2, y0 = (camera.height - monitor.height) / 2;
+        for (int y = 0; y < monitor.height; ++y)
+          std::copy_n(monitor.bgr.begin() + 3 * static_cast<std::size_t>(y) * monitor.width, 3 * monitor.width,
+                      frame.bgr.begin() + 3 * (static_cast<std::size_t>(y + y0) * frame.width + x0));
+      } else {
+        frame = renderer.render(models);
+      }
       if (paused) hud += " | paused";
       if (grab_mode) hud += " | grab mode";
       if (selected >= 0)
@@ -254,6 +312,8 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
       visual::drawHeadsUp(frame, hud);
       visual::drawFooter(frame, instruments ? "1-9: instrument to the mouse, 0: probe | c/o: close/open jaws | left: move | "
                                               "right: orbit | wheel: zoom | space | r | q"
+                                : hub       ? std::string("up/down: push/pull the hub | left/right: turn it") +
+                                                  (fluoroscopy ? " | f: X-ray pedal | x: monitor/3D" : "") + " | space | q"
                                             : "left: push | shift+left or g: grab | right: orbit | wheel: zoom | space: pause | r | q");
       window.show(frame);
       if (options.on_frame) options.on_frame(ViewFrame{index, window, *scene, camera, *probe, instruments.get(), selected});

@@ -86,6 +86,11 @@ std::pair<Vec3, double> RodEndFrame::poseAt(double t) const {
   return {d.norm() > 0.0 ? Vec3(d.normalized()) : db, (1.0 - u) * ra + u * rb};
 }
 
+void RodEndFrame::turn(double angle, double t0, double t1) {
+  const auto [direction, roll0] = poseAt(t0);
+  keyframes_ = {Keyframe{t0, direction, roll0}, Keyframe{std::max(t1, t0 + 1e-9), direction, roll0 + angle}};
+}
+
 Eigen::Quaterniond RodEndFrame::heldFrame(double t) const {
   const auto [d, roll] = poseAt(t);
   return (Eigen::Quaterniond(Eigen::AngleAxisd(roll, d)) *

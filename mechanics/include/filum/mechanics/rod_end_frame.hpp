@@ -60,6 +60,10 @@ class RodEndFrame final : public ForceField {
   Eigen::Quaterniond heldFrame(double t) const;
   /// The roll ψ(t) the path holds the end at (rad): how far the hand has turned the hub.
   double roll(double t) const { return poseAt(t).second; }
+  /// The hand turns the hub (`filum view`'s keys, haptics/hub_control.hpp): from t0 the roll goes
+  /// linearly to roll(t0) + angle at t1 > t0 and is held there, the direction held as at t0. The
+  /// path given in the scene is dropped from t0 on.
+  void turn(double angle, double t0, double t1);
 
  private:
   void init(const Scene& scene) override;

@@ -1,0 +1,52 @@
+#include "filum/haptics/hub_control.hpp"
+
+#include <algorithm>
+
+#include "filum/constraints/projected_point_constraint.hpp"
+#include "filum/constraints/target_constraint.hpp"
+#include "filum/core/curve_body.hpp"
+#include "filum/core/node.hpp"
+#include "filum/mechanics/rod_end_frame.hpp"
+
+namespace filum::haptics {
+
+std::unique_ptr<HubControl> HubControl::find(Scene& scene, const std::string& path) {
+  Node* node = scene.root().find(path);
+  if (!node || !node->mechanicalState() || !node->mechanicalState()->curve()) return nullptr;
+  std::unique_ptr<HubControl> hub(new HubControl());
+  hub->name_ = path;
+  for (const auto& c : node->components()) {
+    if (auto* point = dynamic_cast<constraints::ProjectedPointConstraint*>(c.get()); point && point->abscissa() == 0.0)
+      hub->hub_ = point;
+    if (auto* frame = dynamic_cast<mechanics::RodEndFrame*>(c.get())) hub->frame_ = frame;
+  }
+  if (!hub->hub_) return nullptr;
+  // The introducer's axis: the hub's tangent now (at the start, before any push).
+  const CurveBody& body = *node->mechanicalState()->curve();
+  const Vec3 tangent = body.tangent(scene.state().q, 0.0);
+  hub->axis_ = tangent.norm() > 0.0 ? Vec3(tangent.normalized()) : Vec3::UnitZ();
+  return hub;
+}
+
+void HubControl::push(Scene& scene, double distance, double duration) {
+  const SceneState& now = scene.state();
+  // From where the target is now (a push under way continues from its current point).
+  const Vec3 from = hub_->target().position(now);
+  goal_ = from + distance * axis_;
+  push_end_ = now.time + duration;
+  constraints::steerTarget(*hub_, now, from, distance / duration * axis_);
+}
+
+bool HubControl::turn(const Scene& scene, double angle, double duration) {
+  if (!frame_) return false;
+  frame_->turn(angle, scene.state().time, scene.state().time + duration);
+  return true;
+}
+
+void HubControl::update(Scene& scene) {
+  if (push_end_ < 0.0 || scene.state().time < push_end_) return;
+  constraints::steerTarget(*hub_, scene.state(), goal_, Vec3::Zero());
+  push_end_ = -1.0;
+}
+
+}  // namespace filum::haptics
