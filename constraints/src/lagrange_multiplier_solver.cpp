@@ -11,7 +11,7 @@
 #include <Eigen/CholmodSupport>
 #endif
 
-#include "filum/core/scene.hpp"
+#include "filum/core/constraint_problem.hpp"
 
 namespace filum::constraints {
 
@@ -182,7 +182,7 @@ std::unique_ptr<LagrangeMultiplierSolver> LagrangeMultiplierSolver::fromParams(c
   return std::make_unique<LagrangeMultiplierSolver>(o);
 }
 
-void LagrangeMultiplierSolver::layoutColumn(const Scene& scene, Column& column, int width) const {
+void LagrangeMultiplierSolver::layoutColumn(const ConstraintProblem& problem, Column& column, int width) const {
   // Segments of the bodies the column touches, in body order (bodies were collected already).
   std::sort(column.bodies.begin(), column.bodies.end());
   column.bodies.erase(std::unique(column.bodies.begin(), column.bodies.end()), column.bodies.end());
@@ -190,7 +190,7 @@ void LagrangeMultiplierSolver::layoutColumn(const Scene& scene, Column& column, 
   int size = 0;
   for (std::size_t i = 0; i < column.bodies.size(); ++i) {
     column.starts[i] = size;
-    size += width * scene.bodies()[column.bodies[i]]->pointCount();
+    size += width * problem.bodies[column.bodies[i]].pointCount();
   }
   // y only grows: a column slot serves anchors on different bodies from call to call; the
   // segments are addressed through starts (an operator coupling bodies always asks for all of
@@ -198,21 +198,21 @@ void LagrangeMultiplierSolver::layoutColumn(const Scene& scene, Column& column, 
   if (column.y.size() < size) column.y.resize(size);
 }
 
-void LagrangeMultiplierSolver::prepareColumns(const Scene& scene, const ConstraintRows& rows,
+void LagrangeMultiplierSolver::prepareColumns(const ConstraintProblem& problem, const ConstraintRows& rows,
                                               const BlockInverse& inverse, bool separable) {
-  const auto& bodies = scene.bodies();
+  const auto& bodies = problem.bodies;
   const int body_count = static_cast<int>(bodies.size());
   const int count = separable ? rows.anchors() : rows.rows();
   const int width = separable ? 1 : 3;
   const bool coupled = inverse.coupled();
   const bool reuse = separable && options_.reuse && inverse.revision() >= 0 && &inverse == cached_inverse_ &&
-                     inverse.revision() == cached_revision_ && cached_size_ == scene.state().q.size();
+                     inverse.revision() == cached_revision_ && cached_size_ == problem.state_size;
   if (current_.size() < static_cast<std::size_t>(count)) {
     // Grows geometrically (contact rows come and go from step to step), each new column with room
     // for every body it can touch and for a row on the two largest bodies (a contact between
     // threads): a steady step allocates nothing.
     int largest = 0;
-    for (const MechanicalState* body : bodies) largest = std::max(largest, body->pointCount());
+    for (const BodyBlock& body : bodies) largest = std::max(largest, body.pointCount());
     const std::size_t old = current_.size();
     current_.resize(2 * static_cast<std::size_t>(count));
     for (std::size_t i = old; i < current_.size(); ++i) {
@@ -248,7 +248,7 @@ void LagrangeMultiplierSolver::prepareColumns(const Scene& scene, const Constrai
     } else {
       for (int t = rows.begin(i); t < rows.end(i); ++t) addBody(col, point_body_[rows.point(t)]);
     }
-    layoutColumn(scene, col, width);
+    layoutColumn(problem, col, width);
     for (int b : col.bodies) body_touched_[b] = 1;
 
     // Take over y from the previous call if the same anchor was solved there.
@@ -292,7 +292,7 @@ void LagrangeMultiplierSolver::prepareColumns(const Scene& scene, const Constrai
       for (int b : current_[i].bodies) bucket_[cursor_[b]++] = i;
 
   for (int b = 0; b < body_count; ++b) {
-    const MechanicalState& body = *bodies[b];
+    const BodyBlock& body = bodies[b];
     const int n = body.pointCount();
     const int offset = body.offset();
     const int first = bucket_start_[b], last = bucket_start_[b + 1];
@@ -351,10 +351,10 @@ void LagrangeMultiplierSolver::storeEntry(int r, int k, double value) {
   ++stats_.nonzeros;
 }
 
-void LagrangeMultiplierSolver::assembleSeparable(const Scene& scene, const ConstraintRows& rows) {
+void LagrangeMultiplierSolver::assembleSeparable(const ConstraintProblem& problem, const ConstraintRows& rows) {
   const int anchors = rows.anchors();
   const int c = rows.rows();
-  const auto& bodies = scene.bodies();
+  const auto& bodies = problem.bodies;
 
   // G_ab = w_aᵀ y_b = Σ_j w_{a,j} y_b(p_j) for a >= b (0 when they share no body).
   if (g_.rows() < anchors) g_.resize(anchors, anchors);  // grows only: no allocation in steady steps
@@ -367,7 +367,7 @@ void LagrangeMultiplierSolver::assembleSeparable(const Scene& scene, const Const
         const int p = ca.points[j];
         const int body = point_body_[p];
         for (std::size_t seg = 0; seg < cb.bodies.size(); ++seg)
-          if (cb.bodies[seg] == body) sum += ca.weights[j] * cb.y[cb.starts[seg] + p - bodies[body]->offset()];
+          if (cb.bodies[seg] == body) sum += ca.weights[j] * cb.y[cb.starts[seg] + p - bodies[body].offset()];
       }
       g_(a, b) = sum;
       g_(b, a) = sum;
@@ -389,9 +389,9 @@ void LagrangeMultiplierSolver::assembleSeparable(const Scene& scene, const Const
     for (int k = 0; k <= r; ++k) storeEntry(r, k, k == r ? diagonal_[r] : entry(r, k));
 }
 
-double LagrangeMultiplierSolver::generalEntry(const Scene& scene, const ConstraintRows& rows, int r, int k) const {
+double LagrangeMultiplierSolver::generalEntry(const ConstraintProblem& problem, const ConstraintRows& rows, int r, int k) const {
   // W_rk = L_r · y_k = Σ_{t ∈ r} c_t · y_k(p_t).
-  const auto& bodies = scene.bodies();
+  const auto& bodies = problem.bodies;
   const Column& col = current_[k];
   double sum = 0.0;
   for (int t = rows.begin(r); t < rows.end(r); ++t) {
@@ -399,14 +399,14 @@ double LagrangeMultiplierSolver::generalEntry(const Scene& scene, const Constrai
     const int body = point_body_[p];
     for (std::size_t seg = 0; seg < col.bodies.size(); ++seg)
       if (col.bodies[seg] == body)
-        sum += rows.coeff(t).dot(col.y.segment<3>(col.starts[seg] + 3 * (p - bodies[body]->offset())));
+        sum += rows.coeff(t).dot(col.y.segment<3>(col.starts[seg] + 3 * (p - bodies[body].offset())));
   }
   return sum;
 }
 
-void LagrangeMultiplierSolver::assembleGeneral(const Scene& scene, const ConstraintRows& rows) {
+void LagrangeMultiplierSolver::assembleGeneral(const ConstraintProblem& problem, const ConstraintRows& rows) {
   const int c = rows.rows();
-  auto entry = [&](int r, int k) { return generalEntry(scene, rows, r, k); };
+  auto entry = [&](int r, int k) { return generalEntry(problem, rows, r, k); };
   // Rows on disjoint sets of bodies do not couple (W_rk = 0: column k lives on its rows' bodies,
   // all of them when the operator couples bodies): most pairs of a scene of many threads in
   // contact, skipped without visiting their terms.
@@ -498,11 +498,11 @@ double LagrangeMultiplierSolver::delassusRow(int r) const {
   return sum;
 }
 
-bool LagrangeMultiplierSolver::factoredFormIsCheaper(const Scene& scene, const ConstraintRows& rows) {
+bool LagrangeMultiplierSolver::factoredFormIsCheaper(const ConstraintProblem& problem, const ConstraintRows& rows) {
   // Per sweep, a row costs the rows it couples to in assembled form (about Σ over its bodies of
   // the rows on that body), 3 × the points of its bodies in factored form (plus its terms in
   // both); the assembly's O(c² terms) is left out: it only favours the factored form further.
-  const auto& bodies = scene.bodies();
+  const auto& bodies = problem.bodies;
   rows_on_body_.assign(bodies.size(), 0);
   for (int r = 0; r < rows.rows(); ++r)
     for (int b : current_[r].bodies) ++rows_on_body_[b];
@@ -510,7 +510,7 @@ bool LagrangeMultiplierSolver::factoredFormIsCheaper(const Scene& scene, const C
   for (int r = 0; r < rows.rows(); ++r)
     for (int b : current_[r].bodies) {
       assembled += rows_on_body_[b];
-      factored += 3L * bodies[b]->pointCount();
+      factored += 3L * bodies[b].pointCount();
     }
   return factored < assembled;
 }
@@ -565,15 +565,14 @@ struct LagrangeMultiplierSolver::DenseDelassus {
 /// points of its bodies) instead of O(rows it couples to), and no O(c²) assembly.
 struct LagrangeMultiplierSolver::FactoredDelassus {
   LagrangeMultiplierSolver& solver;
-  const Scene& scene;
+  const ConstraintProblem& problem;
   const ConstraintRows& rows;
   VecX& u;
   void begin() {
     // Each body's first coordinate and size, looked up once per solve instead of per update.
     solver.body_span_.clear();
-    for (const MechanicalState* body : scene.bodies())
-      solver.body_span_.emplace_back(3 * body->offset(), 3 * body->pointCount());
-    u.setZero(3 * scene.dofPointCount());
+    for (const BodyBlock& body : problem.bodies) solver.body_span_.emplace_back(3 * body.offset(), 3 * body.pointCount());
+    u.setZero(3 * problem.dof_points);
     for (int r = 0; r < rows.rows(); ++r) changed(r, solver.lambda_[r]);
   }
   double product(int r) const { return rows.dot(r, u); }
@@ -590,7 +589,7 @@ struct LagrangeMultiplierSolver::FactoredDelassus {
     const int nb = static_cast<int>(eq.size());
     block.resize(nb, nb);
     for (int i = 0; i < nb; ++i)
-      for (int j = 0; j <= i; ++j) block(i, j) = block(j, i) = solver.generalEntry(scene, rows, eq[i], eq[j]);
+      for (int j = 0; j <= i; ++j) block(i, j) = block(j, i) = solver.generalEntry(problem, rows, eq[i], eq[j]);
   }
 };
 
@@ -833,10 +832,10 @@ void LagrangeMultiplierSolver::rememberRows(const ConstraintRows& rows) {
   }
 }
 
-void LagrangeMultiplierSolver::scatterForces(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse,
+void LagrangeMultiplierSolver::scatterForces(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse,
                                              VecX& a) {
   // a += M⁻¹ (Lᵀ λ): scatter the generalized constraint forces, one solve per touched body.
-  const int n3 = 3 * scene.dofPointCount();
+  const int n3 = 3 * problem.dof_points;
   force_.setZero(n3);
   for (int r = 0; r < rows.rows(); ++r) rows.addTransposed(r, lambda_[r], force_);
   // Internal DOFs coupled to the points by A (a rod's frames under an implicit step) follow too.
@@ -846,30 +845,30 @@ void LagrangeMultiplierSolver::scatterForces(const Scene& scene, const Constrain
     a.head(n3) += force_;
     return;
   }
-  const auto& bodies = scene.bodies();
+  const auto& bodies = problem.bodies;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (!body_touched_[b]) continue;
-    const int offset = 3 * bodies[b]->offset(), size = 3 * bodies[b]->pointCount();
+    const int offset = 3 * bodies[b].offset(), size = 3 * bodies[b].pointCount();
     inverse.solveBlock(static_cast<int>(b), force_.segment(offset, size));
     a.segment(offset, size) += force_.segment(offset, size);
   }
 }
 
-void LagrangeMultiplierSolver::mapPointsToBodies(const Scene& scene) {
-  if (point_body_scene_ == &scene && point_body_revision_ == scene.layoutRevision() &&
-      static_cast<int>(point_body_.size()) == scene.dofPointCount())
+void LagrangeMultiplierSolver::mapPointsToBodies(const ConstraintProblem& problem) {
+  if (point_body_problem_ == &problem && point_body_revision_ == problem.layout_revision &&
+      static_cast<int>(point_body_.size()) == problem.dof_points)
     return;
-  point_body_.assign(scene.dofPointCount(), 0);
-  const auto& bodies = scene.bodies();
+  point_body_.assign(problem.dof_points, 0);
+  const auto& bodies = problem.bodies;
   for (std::size_t b = 0; b < bodies.size(); ++b)
-    std::fill_n(point_body_.begin() + bodies[b]->offset(), bodies[b]->pointCount(), static_cast<int>(b));
-  point_body_scene_ = &scene;
-  point_body_revision_ = scene.layoutRevision();
+    std::fill_n(point_body_.begin() + bodies[b].offset(), bodies[b].pointCount(), static_cast<int>(b));
+  point_body_problem_ = &problem;
+  point_body_revision_ = problem.layout_revision;
 }
 
-void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse,
+void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse,
                                      VecX& a) {
-  mapPointsToBodies(scene);
+  mapPointsToBodies(problem);
   const int c = rows.rows();
   const bool separable = inverse.sameOnEveryAxis() && !inverse.coupled();
   stats_ = Statistics();
@@ -894,11 +893,11 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   // that reuse their factorization, solve through the same A.
   const bool general_kept = !separable && have_general_ && options_.reuse && inverse.revision() >= 0 &&
                             &inverse == cached_inverse_ && inverse.revision() == cached_revision_ &&
-                            cached_size_ == scene.state().q.size() && sameRowsAsLastCall(rows);
+                            cached_size_ == problem.state_size && sameRowsAsLastCall(rows);
   if (general_kept)
     stats_.reused_columns = c;
   else
-    prepareColumns(scene, rows, inverse, separable);
+    prepareColumns(problem, rows, inverse, separable);
 
   // 2. W = L M⁻¹ Lᵀ (lower triangle), dense or with the entries below round-off dropped —
   // unless every column was taken over from the same place and every row has the same factors
@@ -914,10 +913,10 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   // Contact rows through an operator that mixes the axes (an implicit step matrix): projected
   // Gauss–Seidel on the factored form (FactoredDelassus), W not assembled — only its diagonal.
   const bool factored_form = !newton && stats_.inequalities > 0 && !separable && !inverse.coupled() &&
-                             (options_.contact_form == ContactForm::kAuto ? factoredFormIsCheaper(scene, rows)
+                             (options_.contact_form == ContactForm::kAuto ? factoredFormIsCheaper(problem, rows)
                                                                            : options_.contact_form == ContactForm::kFactored);
   if (factored_form) {
-    for (int r = 0; r < c; ++r) diagonal_[r] = generalEntry(scene, rows, r, r);
+    for (int r = 0; r < c; ++r) diagonal_[r] = generalEntry(problem, rows, r, r);
   } else if (!unchanged) {
     if (stats_.sparse) {
       sparse_->triplets.clear();
@@ -925,9 +924,9 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
       if (w_.rows() < c) w_.resize(c, c);  // grows only (entries r, k < c are used)
     }
     if (separable) {
-      assembleSeparable(scene, rows);
+      assembleSeparable(problem, rows);
     } else {
-      assembleGeneral(scene, rows);
+      assembleGeneral(problem, rows);
     }
     stats_.reassembled = true;
     last_nonzeros_ = stats_.nonzeros;
@@ -943,7 +942,7 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
     solveWithNewton(rows);
     factored_last_call_ = false;
   } else if (factored_form) {
-    FactoredDelassus w{*this, scene, rows, u_};
+    FactoredDelassus w{*this, problem, rows, u_};
     solveWithContacts(rows, w);
     factored_last_call_ = false;
   } else if (stats_.inequalities > 0 && !stats_.sparse) {
@@ -990,22 +989,22 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
   if (factored_form) {
     a.head(u_.size()) += u_;  // kept by the projected Gauss–Seidel sweeps
   } else if (!separable && !inverse.coupled() && c <= kColumnSumRows) {
-    const auto& bodies = scene.bodies();
+    const auto& bodies = problem.bodies;
     for (int r = 0; r < c; ++r) {
       const Column& col = current_[r];
       for (std::size_t seg = 0; seg < col.bodies.size(); ++seg) {
-        const MechanicalState& body = *bodies[col.bodies[seg]];
+        const BodyBlock& body = bodies[col.bodies[seg]];
         const int size = 3 * body.pointCount();
         a.segment(3 * body.offset(), size) += lambda_[r] * col.y.segment(col.starts[seg], size);
       }
     }
-    if (scene.hasInternalDofs()) {  // the internal DOFs' part of A⁻¹ Lᵀ λ (a rod's frames)
-      force_.setZero(3 * scene.dofPointCount());
+    if (problem.internal_dofs) {  // the internal DOFs' part of A⁻¹ Lᵀ λ (a rod's frames)
+      force_.setZero(3 * problem.dof_points);
       for (int r = 0; r < c; ++r) rows.addTransposed(r, lambda_[r], force_);
       inverse.addInternalResponse(force_, a);
     }
   } else {
-    scatterForces(scene, rows, inverse, a);
+    scatterForces(problem, rows, inverse, a);
   }
 
   // Keep this call's columns for the next one (mass operator only).
@@ -1021,14 +1020,14 @@ void LagrangeMultiplierSolver::solve(const Scene& scene, const ConstraintRows& r
     std::sort(previous_index_.begin(), previous_index_.end());
     cached_inverse_ = &inverse;
     cached_revision_ = inverse.revision();
-    cached_size_ = scene.state().q.size();
+    cached_size_ = problem.state_size;
   } else {
     previous_index_.clear();
     have_general_ = lambda_.head(c).allFinite() && inverse.revision() >= 0;
     if (!general_kept) rememberRows(rows);
     cached_inverse_ = &inverse;
     cached_revision_ = inverse.revision();
-    cached_size_ = scene.state().q.size();
+    cached_size_ = problem.state_size;
   }
 }
 

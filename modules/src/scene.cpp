@@ -293,7 +293,7 @@ void Scene::applyConstraints(const SceneState& s, const BlockInverse& inverse, V
     if (c->active()) c->buildRows(s, rows_);
   const int first_contact_row = rows_.rows();
   const int contact_rows = collision_ ? collision_->addContactRows(s, rows_) : 0;
-  if (rows_.rows() > 0) constraint_solver_->solve(*this, rows_, inverse, a);
+  if (rows_.rows() > 0) constraint_solver_->solve(constraintProblem(), rows_, inverse, a);
   if (contact_rows > 0) collision_->takeMultipliers(constraint_solver_->multipliers(), first_contact_row);
   // Stage 3d: accelerations of the constraints' extra DOFs (a sliding point's s̈ by the direct
   // relation of [Lenoir talk 2008]), from the constrained point accelerations.
@@ -708,6 +708,20 @@ void Scene::restoreMemory() {
   if (collision_) collision_->restoreMemory(state_.memory);
   if (constraint_solver_) constraint_solver_->restoreMemory(state_.memory);
   integrator_->restoreMemory(*this, state_.memory);
+}
+
+const ConstraintProblem& Scene::constraintProblem() const {
+  ConstraintProblem& p = constraint_problem_;
+  if (p.layout_revision == layout_revision_ && p.dof_points == point_count_ && p.state_size == state_.q.size() &&
+      p.bodies.size() == bodies_.size())
+    return p;
+  p.bodies.clear();
+  for (const MechanicalState* body : bodies_) p.bodies.push_back({body->offset(), body->pointCount()});
+  p.dof_points = point_count_;
+  p.state_size = state_.q.size();
+  p.internal_dofs = hasInternalDofs();
+  p.layout_revision = layout_revision_;
+  return p;
 }
 
 }  // namespace filum

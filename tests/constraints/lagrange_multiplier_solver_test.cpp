@@ -178,7 +178,7 @@ TEST(LagrangeMultiplierSolver, GeneralOperatorsGiveTheSameAccelerations) {
   for (bool coupled : {false, true}) {
     constraints::LagrangeMultiplierSolver solver;
     VecX acc = tendency;
-    solver.solve(*scene, rows, PlainInverse(*scene, coupled), acc);
+    solver.solve(scene->constraintProblem(), rows, PlainInverse(*scene, coupled), acc);
     EXPECT_EQ(solver.statistics().columns, rows.rows());
     EXPECT_LE((acc.head(n3) - reference.head(n3)).norm(), 1e-12 * reference.head(n3).norm()) << coupled;
   }

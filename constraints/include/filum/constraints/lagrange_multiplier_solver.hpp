@@ -150,7 +150,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   static bool cholmodAvailable();
 
   std::string typeName() const override { return "LagrangeMultiplierSolver"; }
-  void solve(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a) override;
+  void solve(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a) override;
 
   /// Multipliers of the last solve (N for a fixed point: the force holding it).
   Eigen::Ref<const VecX> multipliers() const override { return lambda_.head(c_); }
@@ -175,13 +175,13 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   };
   struct SparseFactor;
 
-  void prepareColumns(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse, bool separable);
-  void layoutColumn(const Scene& scene, Column& column, int width) const;
-  void assembleSeparable(const Scene& scene, const ConstraintRows& rows);
-  void assembleGeneral(const Scene& scene, const ConstraintRows& rows);
+  void prepareColumns(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse, bool separable);
+  void layoutColumn(const ConstraintProblem& problem, Column& column, int width) const;
+  void assembleSeparable(const ConstraintProblem& problem, const ConstraintRows& rows);
+  void assembleGeneral(const ConstraintProblem& problem, const ConstraintRows& rows);
   void storeEntry(int r, int k, double value);
   /// a += A⁻¹ Lᵀ λ by scattering Lᵀ λ and one solve per touched body.
-  void scatterForces(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a);
+  void scatterForces(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a);
   void factorAndSolve();
   /// W as full symmetric rows (adjacency_), from the dense or sparse lower triangle.
   void buildAdjacency(int c);
@@ -218,10 +218,10 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   VecX wl_, compliance_, effective_diagonal_, unpolished_;  // (W + R)λ − β (residual checks), R, W_rr + R_r
   /// Contact sweeps through an operator that mixes the axes: the factored form costs less per
   /// sweep than the assembled W (row cost: points of its bodies against rows it couples to).
-  bool factoredFormIsCheaper(const Scene& scene, const ConstraintRows& rows);
+  bool factoredFormIsCheaper(const ConstraintProblem& problem, const ConstraintRows& rows);
   std::vector<long> rows_on_body_;
   /// W_rk through an operator that mixes the axes (columns per row, current_).
-  double generalEntry(const Scene& scene, const ConstraintRows& rows, int r, int k) const;
+  double generalEntry(const ConstraintProblem& problem, const ConstraintRows& rows, int r, int k) const;
 
   Options options_;
   Statistics stats_;
@@ -259,12 +259,12 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   std::vector<int> bucket_, bucket_start_, cursor_;  // columns to solve, grouped by body
   std::vector<char> body_touched_;
   // The body of each scene point, rebuilt when the scene's layout changes (refine, cut): the
-  // O(c²) loops look a term's body up here instead of scanning the bodies (Scene::bodyOfPoint).
+  // O(c²) loops look a term's body up here instead of scanning the bodies (ConstraintProblem::bodies).
   std::vector<int> point_body_;
   long point_body_revision_ = -1;
-  const Scene* point_body_scene_ = nullptr;
-  /// Brings point_body_ up to date with the scene.
-  void mapPointsToBodies(const Scene& scene);
+  const ConstraintProblem* point_body_problem_ = nullptr;
+  /// Brings point_body_ up to date with the problem's layout.
+  void mapPointsToBodies(const ConstraintProblem& problem);
   int c_ = 0;                 // rows of the current (last) call
   VecX u_;  // A⁻¹ Lᵀ λ (FactoredDelassus)
   std::vector<std::pair<int, int>> body_span_;  // FactoredDelassus: (3 · offset, 3 · points) per body

@@ -7,6 +7,7 @@
 
 #include "filum/core/block_inverse.hpp"
 #include "filum/core/component.hpp"
+#include "filum/core/constraint_problem.hpp"
 #include "filum/core/constraint_rows.hpp"
 #include "filum/core/scene_state.hpp"
 
@@ -36,7 +37,9 @@ class ConstraintSolver : public Component {
  public:
   /// Solves  A a = b,  L a = E  for a, given a_t = A⁻¹ b in `a` on entry (the constrained
   /// result on exit). `inverse` applies A⁻¹ body by body (the mass matrix for explicit steps).
-  virtual void solve(const Scene& scene, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a) = 0;
+  /// `problem` says where the bodies' points lie (Scene::constraintProblem()); the solver sees
+  /// nothing else of the scene.
+  virtual void solve(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a) = 0;
   /// λ of the last solve, one per row (N for a point row; contact rows report their force).
   virtual Eigen::Ref<const VecX> multipliers() const = 0;
   /// Writes its warm start for the next call into `memory` (Scene::endStep), and takes it back

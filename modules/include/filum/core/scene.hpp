@@ -158,6 +158,9 @@ class Scene {
   const std::vector<Rupture>& ruptures() const { return ruptures_; }
   /// Counts layout changes (refine, coarsen, cut): 0 for a scene that never changed its points.
   long layoutRevision() const { return layout_revision_; }
+  /// What the constraint solver sees of the scene (constraint_problem.hpp): the bodies' blocks of
+  /// points and the sizes, rebuilt when the layout changes.
+  const ConstraintProblem& constraintProblem() const;
   /// Steps redone in halves because the contact set of their start missed a contact
   /// (CollisionPipeline::missedContact: a pass-through, a deep overlap or a fast slide; since init).
   long contactHalvings() const { return contact_halvings_; }
@@ -301,6 +304,7 @@ class Scene {
   MassInverse mass_inverse_{*this};
   Integrator* integrator_ = nullptr;
   ConstraintSolver* constraint_solver_ = nullptr;
+  mutable ConstraintProblem constraint_problem_;  // refreshed by constraintProblem()
   CollisionPipeline* collision_ = nullptr;  // null unless collision models exist
 
   // Workspace of computeAcceleration (allocated once in init).
