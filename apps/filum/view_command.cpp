@@ -154,7 +154,7 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
     visual::OffscreenRenderer renderer(camera);
     std::unique_ptr<visual::OffscreenRenderer> xray;  // the C-arm's view, its own window and camera
     visual::Image monitor;                            // the last X-ray image (held while the pedal is up)
-    bool show_xray = false;
+    bool show_xray = false, hub_moved = false;
     int xray_frames = 0;
     if (fluoroscopy) {
       Vec3 lower(-0.05, -0.05, -0.05), upper(0.05, 0.05, 0.05);
@@ -189,9 +189,18 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
           if (e.key == "space") paused = !paused;
           if (e.key == "g") grab_mode = !grab_mode;
           // The hub: a stroke of 5 mm or 15° over 0.1 s a press.
-          if (hub && (e.key == "Up" || e.key == "Down")) hub->push(*scene, e.key == "Up" ? 5e-3 : -5e-3, 0.1);
-          if (hub && (e.key == "Left" || e.key == "Right"))
-            hub->turn(*scene, (e.key == "Left" ? 15.0 : -15.0) * std::numbers::pi / 180.0, 0.1);
+          try {
+            if (hub && (e.key == "Up" || e.key == "Down")) {
+              hub->push(*scene, e.key == "Up" ? 5e-3 : -5e-3, 0.1);
+              hub_moved = true;
+            }
+            if (hub && (e.key == "Left" || e.key == "Right")) {
+              hub_moved |= hub->turn(*scene, (e.key == "Left" ? 15.0 : -15.0) * std::numbers::pi / 180.0, 0.1);
+            }
+          } catch (const SceneError& error) {  // the hub's constraint let go (released, cut): no more keys
+            log << "filum view: the hub cannot be moved any more: " << error.what() << '\n';
+            hub.reset();
+          }
           if (fluoroscopy && e.key == "x") show_xray = !show_xray;
           if (fluoroscopy && e.key == "f") {
             const double t = scene->state().time;
@@ -207,9 +216,11 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
           }
           if (selected >= 0 && (e.key == "c" || e.key == "o"))
             instruments->moveJaws(selected, e.key == "c", scene->state().time);
-          if (e.key == "r" && instruments) {
+          if (e.key == "r" && (instruments || hub_moved)) {
             // The instruments' holds, cuts and metrics are not rewound with the state.
-            log << "filum view: r does not restart a scene with instruments; quit and open it again\n";
+            // The hand's strokes, the instruments' holds, cuts and metrics are not rewound with the state.
+            log << "filum view: r does not restart a scene whose instruments or hub the hand has moved; quit and open it "
+                   "again\n";
           } else if (e.key == "r") {
             scene->setState(initial);
             probe->touching = false;
@@ -263,7 +274,14 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
         const long steps = std::max(1L, std::lround(advance / dt));
         const auto before = Clock::now();
         for (long k = 0; k < steps; ++k) {
-          if (hub) hub->update(*scene);
+          if (hub) {
+            try {
+              hub->update(*scene);
+            } catch (const SceneError& error) {
+              log << "filum view: the hub cannot be moved any more: " << error.what() << '\n';
+              hub.reset();
+            }
+          }
           if (instruments) instruments->beforeStep(*scene);
           const StepReport report = scene->step();
           if (instruments && report.ok) instruments->afterStep(*scene);

@@ -30,11 +30,12 @@ std::unique_ptr<HubControl> HubControl::find(Scene& scene, const std::string& pa
 
 void HubControl::push(Scene& scene, double distance, double duration) {
   const SceneState& now = scene.state();
-  // From where the target is now (a push under way continues from its current point).
+  // From where the target is now to the goal: the last stroke's goal moved on by `distance` when
+  // a stroke is under way (a double press moves twice the stroke).
   const Vec3 from = hub_->target().position(now);
-  goal_ = from + distance * axis_;
+  goal_ = (push_end_ >= 0.0 ? goal_ : from) + distance * axis_;
   push_end_ = now.time + duration;
-  constraints::steerTarget(*hub_, now, from, distance / duration * axis_);
+  constraints::steerTarget(*hub_, now, from, (goal_ - from) / duration);
 }
 
 bool HubControl::turn(const Scene& scene, double angle, double duration) {

@@ -88,7 +88,10 @@ std::pair<Vec3, double> RodEndFrame::poseAt(double t) const {
 
 void RodEndFrame::turn(double angle, double t0, double t1) {
   const auto [direction, roll0] = poseAt(t0);
-  keyframes_ = {Keyframe{t0, direction, roll0}, Keyframe{std::max(t1, t0 + 1e-9), direction, roll0 + angle}};
+  // A turn of the hand under way goes on to its end roll first (a double press turns twice).
+  const double from = turned_ && keyframes_.back().time > t0 ? keyframes_.back().roll : roll0;
+  keyframes_ = {Keyframe{t0, direction, roll0}, Keyframe{std::max(t1, t0 + 1e-9), direction, from + angle}};
+  turned_ = true;
 }
 
 Eigen::Quaterniond RodEndFrame::heldFrame(double t) const {

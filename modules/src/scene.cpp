@@ -59,6 +59,7 @@ void Scene::bindBodyComponent(BodyComponent& component) {
 }
 
 void Scene::init() {
+  constraint_problem_.layout_revision = -1;  // bodies may come and go at init: rebuilt at the next solve
   if (!(settings_.dt > 0.0) || !std::isfinite(settings_.dt))
     throw SceneError(settings_.source + ": /dt", "a positive time step", std::to_string(settings_.dt));
 

@@ -6,7 +6,9 @@
 // vignette, black outside the round field, and the same noise for the same frame number.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "filum/core/scene_error.hpp"
 #include "filum/visual/fluoroscopy_view.hpp"
@@ -84,20 +86,43 @@ TEST(FluoroscopyView, TheBlockRefusesWhatNoCArmDoesAndNamesThePlace) {
   refused({{"zoom", 2}}, "zoom");
 }
 
+TEST(FluoroscopyView, EachKindHasItsXRayOpacityAndASceneMaySetIt) {
+  json points = json::array();
+  for (int i = 0; i < 8; ++i) points.push_back({0.1 * i / 7, 0.0, 0.0});
+  json document = test::splineScene(points, json::array(), 2e-3);
+  document["nodes"].push_back(
+      {{"name", "ball"},
+       {"components", {{{"type", "SphereObstacle"}, {"center", {0.05, 0.0, 0.03}}, {"radius", 0.005}},
+                       {{"type", "ObstacleModel"}, {"xray_opacity", 0.5}}}}});  // alone: the kind's colours kept
+  document["nodes"].push_back(
+      {{"name", "table"}, {"components", {{{"type", "PlaneObstacle"}, {"point", {0, 0.02, 0}}, {"normal", {0, -1, 0}}}}}});
+  auto scene = loadScene(document, "fluoro", test::visualFactory());
+  VisualScene visuals(*scene);
+  std::vector<double> opacities;
+  for (const VisualModel* m : visuals.models()) opacities.push_back(m->xrayOpacity());
+  std::sort(opacities.begin(), opacities.end());
+  // The table (0), the ball as the scene says (0.5), the thread's default skin (0.85).
+  EXPECT_EQ(opacities, (std::vector<double>{0.0, 0.5, 0.85}));
+  for (const VisualModel* m : visuals.models())
+    if (m->xrayOpacity() == 0.5) {
+      EXPECT_EQ(m->material().color, Vec3(0.70, 0.70, 0.75));  // a sphere's default colour
+    }
+}
+
 TEST(FluoroscopyView, AFrameIsDarkWhereTheWireAndTheSteelProjectAndWhiteElsewhere) {
   if (!renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)";
   std::string reason;
   static std::shared_ptr<DisplayServer> server = test::displayOrSkipReason(reason);
   if (!server) GTEST_SKIP() << reason;
-  // A wire (r = 2 mm) along the patient's left–right axis, a steel ball above it on the left, a table
-  // under both; seen AP without noise.
+  // A wire (r = 2 mm) along the patient's left–right axis, a steel ball above it on the left, the
+  // table under the patient's back (posterior, +y), crossed by every ray; seen AP without noise.
   json points = json::array();
   for (int i = 0; i < 8; ++i) points.push_back({0.1 * i / 7, 0.0, 0.0});
   json document = test::splineScene(points, json::array(), 2e-3);
   document["nodes"].push_back(
       {{"name", "things"},
        {"components", {{{"type", "SphereObstacle"}, {"center", {0.08, 0.0, 0.03}}, {"radius", 0.005}},
-                       {{"type", "PlaneObstacle"}, {"point", {0, 0, -0.02}}, {"normal", {0, 0, 1}}}}}});
+                       {{"type", "PlaneObstacle"}, {"point", {0, 0.02, 0}}, {"normal", {0, -1, 0}}}}}});
   auto scene = loadScene(document, "fluoro", test::visualFactory());
   VisualScene visuals(*scene);
   visuals.update(scene->state());

@@ -29,8 +29,11 @@ std::unique_ptr<ObstacleModel> ObstacleModel::fromParams(const Params& p) {
   auto model = std::make_unique<ObstacleModel>(o);
   // The kind's default is not known before init (the obstacle is found then): a colour given
   // here is kept, a missing one takes the kind's default at init.
-  if (p.has("color") || p.has("opacity")) model->setMaterial(Material::fromParams(p, Material{}));
+  // An X-ray opacity given alone keeps the kind's colours (and is kept over them at init).
+  const Material given = Material::fromParams(p, Material{});
+  if (p.has("color") || p.has("opacity")) model->setMaterial(given);
   model->explicit_material_ = p.has("color") || p.has("opacity");
+  model->xray_opacity_ = given.xray_opacity;
   return model;
 }
 
@@ -62,7 +65,11 @@ void ObstacleModel::init(const Scene& scene) {
                                                  : "the name of an obstacle of the same node",
                        (options_.obstacle.empty() ? "" : "\"" + options_.obstacle + "\"; ") +
                            (names.empty() ? std::string("the node has no obstacle") : "its obstacles: " + names));
-    if (!explicit_material_) setMaterial(defaultMaterial(obstacle_->shape()));
+    if (!explicit_material_) {
+      Material m = defaultMaterial(obstacle_->shape());
+      m.xray_opacity = xray_opacity_;
+      setMaterial(m);
+    }
   }
   build(obstacle_->shapeAt(scene.state().time), scene.state());
 }

@@ -74,6 +74,7 @@ class RodEndFrame final : public ForceField {
 
   End end_;
   std::vector<Keyframe> keyframes_;
+  bool turned_ = false;  // the keyframes are the hand's (turn), not the scene's path
   const FramedChain* chain_ = nullptr;
   int segment_ = 0;                     // the end segment
   Eigen::Quaterniond initial_ = Eigen::Quaterniond::Identity();  // its initial frame R₀

@@ -64,6 +64,7 @@ class ObstacleModel final : public VisualModel {
   collision::ObstacleShape drawn_;  // the shape mesh_ shows
   bool built_ = false;
   bool explicit_material_ = false;  // "color" or "opacity" given: not the kind's default
+  double xray_opacity_ = -1.0;      // "xray_opacity" given (< 0: the kind's)
 };
 
 }  // namespace filum::visual
