@@ -52,10 +52,7 @@ TEST(RunVisual, MeshesArePlayableInParaViewAndMatchTheFinalObj) {
 }
 
 TEST(RunVisual, RenderWritesFramesVideoAndContactSheet) {
-  if (!visual::renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)";
-  std::string reason;
-  const auto display = test::displayOrSkipReason(reason);
-  if (!display) GTEST_SKIP() << reason;
+  FILUM_REQUIRE_RENDERING();
   const fs::path out = fs::path(FILUM_BINARY_DIR) / "test_output" / "run_render";
   fs::remove_all(out);
   RunOptions options;
@@ -78,10 +75,7 @@ TEST(RunVisual, RenderWritesFramesVideoAndContactSheet) {
 }
 
 TEST(RunVisual, AFluoroscopyBlockAddsTheCArmsViewAndTheFluoroscopyTime) {
-  if (!visual::renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)";
-  std::string reason;
-  const auto display = test::displayOrSkipReason(reason);
-  if (!display) GTEST_SKIP() << reason;
+  FILUM_REQUIRE_RENDERING();
   const fs::path out = fs::path(FILUM_BINARY_DIR) / "test_output" / "run_fluoroscopy";
   fs::remove_all(out);
   RunOptions options;

@@ -27,10 +27,7 @@ using visual::WindowEvent;
 /// Shift + left press on the middle of the scene's first thread, a drag of 120 pixels right and
 /// 60 up, then 0.26 s held still: the grabbed point must be at the probe.
 void expectMouseGrabsAndPulls(const std::string& scene_file, const std::string& screenshot) {
-  if (!visual::renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)";
-  std::string reason;
-  const auto display = test::displayOrSkipReason(reason);
-  if (!display) GTEST_SKIP() << reason;
+  FILUM_REQUIRE_RENDERING();
 
   const fs::path out = fs::path(FILUM_BINARY_DIR) / "test_output" / "view";
   fs::create_directories(out);
@@ -96,10 +93,7 @@ TEST(ViewCommand, ArrowsPushAndTurnACathetersHubAndTheMonitorShowsTheXRay) {
   // own), Left turns it 15° (RodEndFrame::turn);
   // f presses the fluoroscopy pedal and x puts the fluoroscope's monitor in the window: a grey
   // picture.
-  if (!visual::renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)";
-  std::string reason;
-  const auto display = test::displayOrSkipReason(reason);
-  if (!display) GTEST_SKIP() << reason;
+  FILUM_REQUIRE_RENDERING();
   const fs::path out = fs::path(FILUM_BINARY_DIR) / "test_output" / "view";
   fs::create_directories(out);
   ViewOptions options;
@@ -160,10 +154,7 @@ TEST(ViewCommand, KeysGiveAnInstrumentToTheMouseAndCloseItsJaws) {
   // apps/scenes/instruments.json: key 2 gives the right grasper to the mouse (its script is left
   // where it was), a left press and a drag carry its hinge to the pointer (at the hinge's depth),
   // c closes its jaws (at 5 per second: shut within 0.2 s, 10 frames of 20 ms).
-  if (!visual::renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)";
-  std::string reason;
-  const auto display = test::displayOrSkipReason(reason);
-  if (!display) GTEST_SKIP() << reason;
+  FILUM_REQUIRE_RENDERING();
   ViewOptions options;
   options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/instruments.json";
   options.frames = 30;
@@ -202,10 +193,7 @@ TEST(ViewCommand, KeysGiveAnInstrumentToTheMouseAndCloseItsJaws) {
 }
 
 TEST(ViewCommand, QuitKeyClosesTheWindow) {
-  if (!visual::renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)";
-  std::string reason;
-  const auto display = test::displayOrSkipReason(reason);
-  if (!display) GTEST_SKIP() << reason;
+  FILUM_REQUIRE_RENDERING();
   ViewOptions options;
   options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/hanging_thread.json";
   options.frames = 1000;

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "collision_scenes.hpp"
+#include "inclined_tube_slide.hpp"
 #include "support/closest_on_triangle.hpp"
 #include "filum/core/curve_body.hpp"
 #include "filum/core/scene_error.hpp"
@@ -94,18 +95,6 @@ std::unique_ptr<TriangleMeshObstacle> lumenFromFile(const std::string& path, con
   return TriangleMeshObstacle::fromParams(Params(component, "lumen.json", "/nodes/0/components/0"));
 }
 
-/// Winding number of a closed mesh around p: Σ solid angles / 4π (Van Oosterom & Strackee).
-double windingNumber(const TriangleMeshSurface& mesh, const Vec3& p) {
-  double sum = 0.0;
-  for (const auto& t : mesh.triangles()) {
-    const Vec3 a = mesh.vertices().row(t[0]).transpose() - p, b = mesh.vertices().row(t[1]).transpose() - p,
-               c = mesh.vertices().row(t[2]).transpose() - p;
-    const double la = a.norm(), lb = b.norm(), lc = c.norm();
-    sum += 2.0 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la);
-  }
-  return sum / (4.0 * M_PI);
-}
-
 TEST(OpenLumenMesh, ThePseudoNormalsSideIsTheWindingNumbersOnAClosedMesh) {
   // Bærentzen & Aanæs: on a closed mesh, sign((x − c)·n) with n the angle-weighted pseudo-normal
   // of c's feature is the inside test, whether c is inside a face, on an edge or at a vertex.
@@ -118,7 +107,7 @@ TEST(OpenLumenMesh, ThePseudoNormalsSideIsTheWindingNumbersOnAClosedMesh) {
     const Vec3 x = box.center() + box.sizes().cwiseProduct(Vec3(u(rng), u(rng), u(rng)));
     const TriangleMeshSurface::ClosestFeature c = mesh->closestFeature(x);
     const bool by_pseudo_normal = (x - c.point).dot(c.normal) < 0.0;
-    const double w = windingNumber(*mesh, x);
+    const double w = test::windingNumber(mesh->vertices(), mesh->triangles(), x);
     ASSERT_TRUE(std::abs(w) < 1e-6 || std::abs(w - 1.0) < 1e-6) << w;  // a closed mesh: 0 or 1 to round-off
     EXPECT_EQ(by_pseudo_normal, w > 0.5) << "trial " << trial;
     EXPECT_FALSE(c.on_border);
@@ -223,8 +212,7 @@ TEST(OpenLumenMesh, AMeshThatEnclosesNoVolumeHasNoInnerSideAndIsRefused) {
   }
 }
 
-constexpr double kRod = 5e-4;     // m, rod radius
-constexpr double kLength = 0.05;  // m, rod length
+constexpr double kRod = test::kSlideRodRadius;
 
 struct SlideRun {
   double displacement = 0.0;       // m, of the rod's middle down the slope
@@ -232,48 +220,22 @@ struct SlideRun {
 };
 
 SlideRun slide(double alpha, double mu, double duration) {
-  const Vec3 axis(std::cos(alpha), 0, std::sin(alpha));
-  const Vec3 down(std::sin(alpha), 0, -std::cos(alpha));  // across the axis, to the tube's bottom face
+  // The tube's faces centred on its bottom line: the rod lies on one flat face strip.
   const double inscribed = kTube * std::cos(M_PI / kSides);
-  const Vec3 start = (inscribed - kRod) * down - 0.5 * kLength * axis, end = start + kLength * axis;
-  const std::string file = writeTube(makeTube(axis, down, false), "filum_inclined_tube.stl", 1e-3);
-  nlohmann::json document = {
-      {"dt", 1e-3},
-      {"duration", duration},
-      {"gravity", {0, 0, -9.81}},
-      {"integrator", {{"type", "ImplicitEuler"}}},
-      {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}}},
-      {"collision", {{"type", "ContactPipeline"}, {"response", "unilateral"}, {"friction", mu}}},
-      {"nodes",
-       {{{"name", "vessel"},
-         {"components",
-          {{{"type", "TriangleMeshObstacle"}, {"file", file}, {"units", "mm"}, {"side", "inside"}, {"friction", mu}}}}},
-        {{"name", "rod"},
-         {"components",
-          {{{"type", "FramedChain"},
-            {"nodes", {{"from", {start.x(), start.y(), start.z()}}, {"to", {end.x(), end.y(), end.z()}}, {"count", 11}}},
-            {"radius", kRod},
-            {"density", 1150}},
-           {{"type", "ChainElasticity"}, {"youngs_modulus", 3e7}, {"poisson_ratio", 0.5}},
-           {{"type", "SphereCollisionModel"}, {"spacing", 8e-4}}}}}}}};
-  auto scene = test::loadCollisionScene(document);
-  scene->init();
-  const CurveBody& rod = *scene->bodies()[0]->curve();
-  const Vec3 middle0 = rod.position(scene->state().q, 0.5);
-  const auto& lumen = dynamic_cast<const TriangleMeshObstacle&>(*test::pipelineOf(*scene).obstacles()[0]);
+  const auto lumen = [](const test::InclinedTube& tube) {
+    const std::string file = writeTube(makeTube(tube.axis, tube.down, false), "filum_inclined_tube.stl", 1e-3);
+    return nlohmann::json{{"type", "TriangleMeshObstacle"}, {"file", file}, {"units", "mm"}, {"side", "inside"}};
+  };
   SlideRun run;
-  const long steps = std::lround(duration / 1e-3);
-  for (long k = 0; k < steps; ++k) {
-    const StepReport report = scene->step();
-    EXPECT_TRUE(report.ok) << report.message;
-    if (!report.ok) break;
+  run.displacement = test::slideDownInclinedTube(alpha, mu, duration, inscribed, lumen, [&](const Scene& scene) {
+    const CurveBody& rod = *scene.bodies()[0]->curve();
+    const auto& mesh = dynamic_cast<const TriangleMeshObstacle&>(*test::pipelineOf(scene).obstacles()[0]);
     for (int i = 0; i <= 50; ++i) {
-      const Vec3 x = rod.position(scene->state().q, i / 50.0);
-      const double clearance = (x - lumen.surface().closestPoint(x)).norm();  // the centre line stays inside
+      const Vec3 x = rod.position(scene.state().q, i / 50.0);
+      const double clearance = (x - mesh.surface().closestPoint(x)).norm();  // the centre line stays inside
       run.worst_penetration = std::max(run.worst_penetration, kRod - clearance);
     }
-  }
-  run.displacement = -(rod.position(scene->state().q, 0.5) - middle0).dot(axis);
+  });
   return run;
 }
 
@@ -284,7 +246,7 @@ TEST(OpenLumenMesh, RodSlidesDownAnInclinedSegmentedTubeWithCoulombsAcceleration
   // 1 % short: within [−1 %, +0.5 %], asked within 1.5 % (as for the centreline lumen).
   const double alpha = M_PI / 6, mu = 0.3, t = 0.2;
   const SlideRun run = slide(alpha, mu, t);
-  const double expected = 0.5 * 9.81 * (std::sin(alpha) - mu * std::cos(alpha)) * t * t;
+  const double expected = 0.5 * test::kSlideGravity * (std::sin(alpha) - mu * std::cos(alpha)) * t * t;
   std::printf("  slid %.3f mm, Coulomb %.3f mm; deepest %.4f of r\n", 1e3 * run.displacement, 1e3 * expected,
               run.worst_penetration / kRod);
   EXPECT_NEAR(run.displacement, expected, 0.015 * expected);

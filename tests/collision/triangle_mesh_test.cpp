@@ -29,24 +29,12 @@ const std::string kOrgan = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/data/or
 
 #ifdef FILUM_WITH_CGAL
 
-/// Winding number of the closed mesh around p: Σ solid angles / 4π (Van Oosterom & Strackee).
-double windingNumber(const TriangleMeshSurface& mesh, const Vec3& p) {
-  double sum = 0.0;
-  for (const auto& t : mesh.triangles()) {
-    const Vec3 a = mesh.vertices().row(t[0]).transpose() - p, b = mesh.vertices().row(t[1]).transpose() - p,
-               c = mesh.vertices().row(t[2]).transpose() - p;
-    const double la = a.norm(), lb = b.norm(), lc = c.norm();
-    sum += 2.0 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la);
-  }
-  return sum / (4.0 * M_PI);
-}
-
 TEST(TriangleMeshSurface, ClosestPointAndInsideMatchExactReferences) {
   const auto mesh = TriangleMeshSurface::read(kOrgan);
   ASSERT_EQ(mesh->vertexCount(), 642);
   ASSERT_EQ(mesh->triangleCount(), 1280);
   // The mesh is oriented outwards: the winding number at its centre is +1.
-  EXPECT_NEAR(windingNumber(*mesh, Vec3::Zero()), 1.0, 1e-9);
+  EXPECT_NEAR(test::windingNumber(mesh->vertices(), mesh->triangles(), Vec3::Zero()), 1.0, 1e-9);
 
   std::mt19937 rng(3);
   const Eigen::AlignedBox3d box = mesh->bounds();
@@ -65,7 +53,7 @@ TEST(TriangleMeshSurface, ClosestPointAndInsideMatchExactReferences) {
     const double cgal = (x - mesh->closestPoint(x)).norm();
     EXPECT_NEAR(cgal, best, 1e-14) << "trial " << trial;
     // Inside test against the winding number (1 inside, 0 outside, exactly up to round-off).
-    const double w = windingNumber(*mesh, x);
+    const double w = test::windingNumber(mesh->vertices(), mesh->triangles(), x);
     ASSERT_TRUE(std::abs(w) < 1e-6 || std::abs(w - 1.0) < 1e-6) << w;
     EXPECT_EQ(mesh->inside(x), w > 0.5) << "trial " << trial;
     inside_count += w > 0.5;
@@ -87,7 +75,7 @@ TEST(TriangleMeshObstacle, SphereToMeshGapIsTheExactSignedDistanceMinusTheRadius
     SurfaceSample sample;
     ASSERT_TRUE(obstacle.sample(x, 1.0, sample));
     const double best = test::exactDistance(surface->vertices(), surface->triangles(), x);
-    const double sign = windingNumber(*surface, x) > 0.5 ? -1.0 : 1.0;
+    const double sign = test::windingNumber(surface->vertices(), surface->triangles(), x) > 0.5 ? -1.0 : 1.0;
     EXPECT_NEAR(sample.distance - r, sign * best - r, 1e-14);
     EXPECT_NEAR((sample.point - x).norm(), best, 1e-14);
     // The normal points from the surface towards the outside: x = point + d n.
@@ -115,7 +103,7 @@ TEST(TriangleMeshObstacle, ACavityIsTheSameSurfaceSeenFromInside) {
                                   : Vec3(box.center() + 0.5 * (box.sizes() + Vec3::Constant(0.04)).cwiseProduct(
                                                              Vec3(u(rng), u(rng), u(rng))));
     const double best = test::exactDistance(surface->vertices(), surface->triangles(), x);
-    const bool inside = windingNumber(*surface, x) > 0.5;
+    const bool inside = test::windingNumber(surface->vertices(), surface->triangles(), x) > 0.5;
     SurfaceSample sample;
     const bool hit = cavity.sample(x, max_distance, sample);
     if (inside && best > max_distance) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "collision_scenes.hpp"
+#include "inclined_tube_slide.hpp"
 #include "filum/collision/vessel_lumen_obstacle.hpp"
 #include "filum/core/curve_body.hpp"
 #include "filum/core/scene_error.hpp"
@@ -15,9 +16,8 @@ namespace filum::collision {
 namespace {
 
 constexpr double kTube = 5e-3;   // m, lumen radius
-constexpr double kRod = 5e-4;    // m, rod radius
-constexpr double kLength = 0.05; // m, rod length
-constexpr double kG = 9.81;
+constexpr double kRod = test::kSlideRodRadius;
+constexpr double kG = test::kSlideGravity;
 
 struct SlideRun {
   double displacement = 0.0;      // m, of the rod's middle along the tube's axis (down the slope: > 0)
@@ -27,60 +27,32 @@ struct SlideRun {
 };
 
 SlideRun slide(double alpha, double mu, double duration) {
-  const Vec3 axis(std::cos(alpha), 0, std::sin(alpha));
-  const Vec3 down(std::sin(alpha), 0, -std::cos(alpha));  // across the axis, towards the tube's bottom line
-  const Vec3 start = (kTube - kRod) * down - 0.5 * kLength * axis, end = start + kLength * axis;
-  const Vec3 a = -0.15 * axis, b = 0.15 * axis;
-  nlohmann::json document = {
-      {"dt", 1e-3},
-      {"duration", duration},
-      {"gravity", {0, 0, -kG}},
-      {"integrator", {{"type", "ImplicitEuler"}}},
-      {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}}},
-      {"collision", {{"type", "ContactPipeline"}, {"response", "unilateral"}, {"friction", mu}}},
-      {"nodes",
-       {{{"name", "vessel"},
-         {"components",
-          {{{"type", "VesselLumenObstacle"},
-            {"friction", mu},
-            {"branches",
-             {{{"name", "tube"},
-               {"open", {"start", "end"}},
-               {"points", {{a.x(), a.y(), a.z(), kTube}, {b.x(), b.y(), b.z(), kTube}}}}}}}}}},
-        {{"name", "rod"},
-         {"components",
-          {{{"type", "FramedChain"},
-            {"nodes", {{"from", {start.x(), start.y(), start.z()}}, {"to", {end.x(), end.y(), end.z()}}, {"count", 11}}},
-            {"radius", kRod},
-            {"density", 1150}},
-           {{"type", "ChainElasticity"}, {"youngs_modulus", 3e7}, {"poisson_ratio", 0.5}},
-           {{"type", "SphereCollisionModel"}, {"spacing", 8e-4}}}}}}}};
-  auto scene = test::loadCollisionScene(document);
-  scene->init();
-  const CurveBody& rod = *scene->bodies()[0]->curve();
-  const Vec3 middle0 = rod.position(scene->state().q, 0.5);
-  const auto& lumen = dynamic_cast<const VesselLumenObstacle&>(*test::pipelineOf(*scene).obstacles()[0]);
   SlideRun run;
-  const long steps = std::lround(duration / 1e-3);
-  for (long k = 0; k < steps; ++k) {
-    const StepReport report = scene->step();
-    EXPECT_TRUE(report.ok) << report.message;
-    if (!report.ok) break;
+  const auto lumen = [](const test::InclinedTube& tube) {
+    const Vec3 a = -0.15 * tube.axis, b = 0.15 * tube.axis;
+    return nlohmann::json{{"type", "VesselLumenObstacle"},
+                          {"branches",
+                           {{{"name", "tube"},
+                             {"open", {"start", "end"}},
+                             {"points", {{a.x(), a.y(), a.z(), kTube}, {b.x(), b.y(), b.z(), kTube}}}}}}};
+  };
+  run.displacement = test::slideDownInclinedTube(alpha, mu, duration, kTube, lumen, [&](const Scene& scene) {
+    const CurveBody& rod = *scene.bodies()[0]->curve();
+    const auto& vessel = dynamic_cast<const VesselLumenObstacle&>(*test::pipelineOf(scene).obstacles()[0]);
     for (int i = 0; i <= 50; ++i) {
-      const Vec3 x = rod.position(scene->state().q, i / 50.0);
-      const geometry::VesselTree::Sample s = lumen.tree().sample(x, kTube);
+      const Vec3 x = rod.position(scene.state().q, i / 50.0);
+      const geometry::VesselTree::Sample s = vessel.tree().sample(x, kTube);
       run.worst_penetration = std::max(run.worst_penetration, kRod - s.value / s.gradient.norm());
     }
-    const ContactPipeline& pipeline = test::pipelineOf(*scene);
+    const ContactPipeline& pipeline = test::pipelineOf(scene);
     for (int c = 0; c < static_cast<int>(pipeline.contacts().size()); ++c) {
-      const Vec3 f = pipeline.contactForce(c, scene->state());
+      const Vec3 f = pipeline.contactForce(c, scene.state());
       const Vec3 n = pipeline.contacts()[c].normal;
       const double fn = f.dot(n);
       run.worst_cone = std::max(run.worst_cone, (f - fn * n).norm() - mu * fn);
       run.largest_force = std::max(run.largest_force, f.norm());
     }
-  }
-  run.displacement = -(rod.position(scene->state().q, 0.5) - middle0).dot(axis);
+  });
   return run;
 }
 

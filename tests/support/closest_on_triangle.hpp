@@ -1,9 +1,10 @@
-// The exact distance of a point to a triangle mesh, computed apart from CGAL: every triangle's
-// closest point in closed form (the reference the mesh obstacles' AABB-tree queries are checked
-// against).
+// References for triangle-mesh queries, computed apart from CGAL: the exact distance of a point to
+// a mesh (every triangle's closest point in closed form) and the winding number of a closed mesh
+// around a point (the inside test's and the pseudo-normals' reference).
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <limits>
 #include <vector>
@@ -43,6 +44,19 @@ inline double exactDistance(const Points& vertices, const std::vector<std::array
                                                  vertices.row(t[2]).transpose()))
                               .norm());
   return best;
+}
+
+/// Winding number of a closed mesh around p: Σ solid angles / 4π (Van Oosterom & Strackee 1983):
+/// 1 inside, 0 outside, up to round-off.
+inline double windingNumber(const Points& vertices, const std::vector<std::array<int, 3>>& triangles, const Vec3& p) {
+  double sum = 0.0;
+  for (const auto& t : triangles) {
+    const Vec3 a = vertices.row(t[0]).transpose() - p, b = vertices.row(t[1]).transpose() - p,
+               c = vertices.row(t[2]).transpose() - p;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    sum += 2.0 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la);
+  }
+  return sum / (4.0 * M_PI);
 }
 
 }  // namespace filum::test

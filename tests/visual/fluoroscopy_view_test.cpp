@@ -110,10 +110,7 @@ TEST(FluoroscopyView, EachKindHasItsXRayOpacityAndASceneMaySetIt) {
 }
 
 TEST(FluoroscopyView, AFrameIsDarkWhereTheWireAndTheSteelProjectAndWhiteElsewhere) {
-  if (!renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)";
-  std::string reason;
-  static std::shared_ptr<DisplayServer> server = test::displayOrSkipReason(reason);
-  if (!server) GTEST_SKIP() << reason;
+  FILUM_REQUIRE_RENDERING();
   // A wire (r = 2 mm) along the patient's left–right axis, a steel ball above it on the left, the
   // table under the patient's back (posterior, +y), crossed by every ray; seen AP without noise.
   json points = json::array();

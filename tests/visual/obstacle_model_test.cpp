@@ -131,10 +131,7 @@ TEST(ObstacleModel, AProbeIsDrawnWhereItIs) {
 }
 
 TEST(ObstacleModel, ARenderedFrameShowsTheTablesColourWhereTheTableIs) {
-  if (!renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)";
-  std::string reason;
-  static std::shared_ptr<DisplayServer> server = test::displayOrSkipReason(reason);
-  if (!server) GTEST_SKIP() << reason;
+  FILUM_REQUIRE_RENDERING();
   const json camera = {{"position", {0.05, -0.25, 0.06}}, {"look_at", {0.05, 0.0, 0.0}}, {"up", {0, 0, 1}},
                        {"fov", 30}, {"size", {640, 400}}, {"background", {1, 1, 1}}};
   const json obstacles =

@@ -24,32 +24,12 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-/// One display for the whole test program (an Xvfb started here if DISPLAY is unset).
-std::shared_ptr<DisplayServer> display(std::string& reason) {
-  static std::shared_ptr<DisplayServer> server;
-  static std::string why;
-  static bool tried = false;
-  if (!tried) {
-    tried = true;
-    server = test::displayOrSkipReason(why);
-  }
-  reason = why;
-  return server;
-}
-
-#define REQUIRE_RENDERING()                                                                      \
-  do {                                                                                           \
-    if (!renderingAvailable()) GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF)"; \
-    std::string reason;                                                                          \
-    if (!display(reason)) GTEST_SKIP() << reason;                                                \
-  } while (0)
-
 const Vec3 kThreadColor(0.95, 0.45, 0.05);  // orange
 const json kCamera = {{"position", {0.05, -0.25, 0.06}}, {"look_at", {0.05, 0.0, 0.0}}, {"up", {0, 0, 1}},
                       {"fov", 30}, {"size", {640, 400}}, {"background", {1, 1, 1}}};
 
 TEST(OffscreenRenderer, TheThreadsProjectedAxisIsOnThreadPixelsAndTheRestIsBackground) {
-  REQUIRE_RENDERING();
+  FILUM_REQUIRE_RENDERING();
   // A wave in the xz-plane (so that a mirrored or shifted picture would miss it by tens of
   // pixels), 2 mm radius, seen from the front and a little above.
   json wave = json::array();
@@ -134,7 +114,7 @@ TEST(OffscreenRenderer, CameraFromTheSceneIsCheckedWithFileAndPath) {
 }
 
 TEST(FrameRecorder, WritesPngFramesAMotionJpegVideoAndAContactSheet) {
-  REQUIRE_RENDERING();
+  FILUM_REQUIRE_RENDERING();
   const fs::path dir = fs::path(FILUM_BINARY_DIR) / "test_output" / "visual" / "recorder";
   fs::remove_all(dir);
   json document = test::splineScene(test::helix(), json::array(), 2e-3, kCamera);

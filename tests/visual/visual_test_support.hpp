@@ -14,6 +14,7 @@
 
 #include "filum/core/scene_loader.hpp"
 #include "filum/visual/display_server.hpp"
+#include "filum/visual/offscreen_renderer.hpp"
 #include "filum/visual/triangle_mesh.hpp"
 #include "support/library_components.hpp"
 
@@ -139,15 +140,30 @@ inline double signedVolume(const visual::TriangleMesh& mesh) {
   return volume;
 }
 
-/// Ensures an X display for rendering tests; returns nullptr (and the caller skips) only when
-/// there is no DISPLAY and Xvfb is not installed.
-inline std::shared_ptr<visual::DisplayServer> displayOrSkipReason(std::string& reason) {
+/// The X display the rendering tests draw on, one for the whole test program (an Xvfb started here
+/// when DISPLAY is unset); nullptr, with the reason, when there is none. Xvfb is a dependency of
+/// every build with OpenCV (scripts/setup.sh installs it), so its absence is a failure, not a skip.
+inline std::shared_ptr<visual::DisplayServer> renderingDisplay(std::string& why) {
+  static std::shared_ptr<visual::DisplayServer> server;
+  if (server) return server;
   const char* display = std::getenv("DISPLAY");
   if ((!display || !*display) && !visual::DisplayServer::xvfbInstalled()) {
-    reason = "no X display: DISPLAY is unset and Xvfb is not installed (Debian package xvfb, scripts/setup.sh)";
+    why = "no X display: DISPLAY is unset and Xvfb, a dependency of this build, is not installed (Debian package "
+          "xvfb: scripts/setup.sh installs it)";
     return nullptr;
   }
-  return visual::DisplayServer::ensure();  // throws (the test fails) if Xvfb is installed but does not start
+  server = visual::DisplayServer::ensure();  // throws (the test fails) if Xvfb is installed but does not start
+  return server;
 }
 
 }  // namespace filum::test
+
+// At the top of a test that renders: skipped only in a build without OpenCV, which renders nothing
+// (its `filum run --render` and `filum view` say so); failed when no X display can be had.
+#define FILUM_REQUIRE_RENDERING()                                                                         \
+  do {                                                                                                    \
+    if (!::filum::visual::renderingAvailable())                                                           \
+      GTEST_SKIP() << "built without OpenCV (FILUM_WITH_OPENCV=OFF): this build renders nothing";        \
+    std::string filum_no_display;                                                                         \
+    ASSERT_NE(::filum::test::renderingDisplay(filum_no_display), nullptr) << filum_no_display;            \
+  } while (0)
