@@ -165,11 +165,10 @@ void ContactPipeline::addJacobian(const SceneState& s, double k_factor, double d
 }
 
 void ContactPipeline::contactAbscissas(const MechanicalState& body, std::vector<double>& out) const {
-  // A thread's points are identified by its first global point (offset_a, offset_b).
   if (body.pointCount() == 0) return;
   for (const Contact& c : contacts_) {
-    if (c.offset_a == body.offset()) out.push_back(c.abscissa_a);
-    if (c.model_b >= 0 && c.offset_b == body.offset()) out.push_back(c.abscissa_b);
+    if (c.a.body() == &body) out.push_back(c.a.abscissa());
+    if (c.model_b >= 0 && c.b.body() == &body) out.push_back(c.b.abscissa());
   }
 }
 
@@ -185,9 +184,8 @@ int ContactPipeline::addContactRows(const SceneState& s, ConstraintRows& rows) {
     const Contact& c = contacts_[i];
     const ContactKinematics k = contactKinematics(c, s);
     rows.beginAnchor();
-    for (int j = 0; j < c.a.count; ++j) rows.addAnchorPoint(c.offset_a + c.a.point[j], c.a.weight[j]);
-    if (!c.againstObstacle())
-      for (int j = 0; j < c.b.count; ++j) rows.addAnchorPoint(c.offset_b + c.b.point[j], -c.b.weight[j]);
+    c.a.forEachWeight([&](int point, double weight) { rows.addAnchorPoint(point, weight); });
+    if (!c.againstObstacle()) c.b.forEachWeight([&](int point, double weight) { rows.addAnchorPoint(point, -weight); });
     // n·(a_A − a_B) >= −2ω ġ − ω² g (the obstacle surface moves at constant velocity over the
     // step); t_j·(a_A − a_B) = −ω_f t_j·(v_A − v_B).
     const auto [t1, t2] = constraints::orthonormalComplement(c.normal);
@@ -211,7 +209,7 @@ void ContactPipeline::rememberForces() {
   if (contact_force_.size() == contacts_.size())
     for (std::size_t i = 0; i < contacts_.size(); ++i) {
       const Contact& c = contacts_[i];
-      remembered_.push_back({c.model_a, c.model_b, c.obstacle, c.abscissa_a, c.abscissa_b, contact_force_[i]});
+      remembered_.push_back({c.model_a, c.model_b, c.obstacle, c.a.abscissa(), c.b.abscissa(), contact_force_[i]});
     }
   sortRemembered();
   contact_force_.clear();
@@ -231,8 +229,8 @@ void ContactPipeline::saveMemory(StepMemory& memory) const {
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     const Contact& c = contacts_[i];
     const Vec3& f = contact_force_[i];
-    memory.contacts.insert(memory.contacts.end(), {double(c.model_a), double(c.model_b), double(c.obstacle), c.abscissa_a,
-                                                   c.abscissa_b, f.x(), f.y(), f.z()});
+    memory.contacts.insert(memory.contacts.end(), {double(c.model_a), double(c.model_b), double(c.obstacle), c.a.abscissa(),
+                                                   c.b.abscissa(), f.x(), f.y(), f.z()});
   }
 }
 
@@ -256,16 +254,16 @@ Vec3 ContactPipeline::rememberedForce(const Contact& c) const {
   // the closest such one.
   const SphereCollisionModel& a = *models_[c.model_a];
   const double reach = 1.0 / std::max(1, a.sphereCount() - 1);
-  const RememberedContact low{c.model_a, c.model_b, c.obstacle, c.abscissa_a - reach, 0.0, Vec3::Zero()};
+  const RememberedContact low{c.model_a, c.model_b, c.obstacle, c.a.abscissa() - reach, 0.0, Vec3::Zero()};
   auto it = std::lower_bound(remembered_.begin(), remembered_.end(), low, [](const RememberedContact& x, const RememberedContact& y) {
     return std::tie(x.model_a, x.model_b, x.obstacle, x.abscissa_a) < std::tie(y.model_a, y.model_b, y.obstacle, y.abscissa_a);
   });
   Vec3 force = Vec3::Zero();
   double closest = 2.0 * reach;
   for (; it != remembered_.end() && it->model_a == c.model_a && it->model_b == c.model_b && it->obstacle == c.obstacle &&
-         it->abscissa_a <= c.abscissa_a + reach;
+         it->abscissa_a <= c.a.abscissa() + reach;
        ++it) {
-    const double distance = std::abs(it->abscissa_a - c.abscissa_a) + (c.againstObstacle() ? 0.0 : std::abs(it->abscissa_b - c.abscissa_b));
+    const double distance = std::abs(it->abscissa_a - c.a.abscissa()) + (c.againstObstacle() ? 0.0 : std::abs(it->abscissa_b - c.b.abscissa()));
     if (distance < closest) {
       closest = distance;
       force = it->force;

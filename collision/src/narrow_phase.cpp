@@ -14,12 +14,6 @@ namespace {
 Vec3 center(const SphereCollisionModel& m, int k) { return m.centers().row(k).transpose(); }
 double speed(const SphereCollisionModel& m, int k) { return m.velocities().row(k).norm(); }
 
-/// Abscissa of the chord point (1 − t) x_k + t x_{k+1}.
-double chordAbscissa(const SphereCollisionModel& m, int k, double t) {
-  const auto& s = m.mapping().abscissas();
-  return m.mapping().joinsNext(k) ? (1.0 - t) * s[k] + t * s[k + 1] : s[k];
-}
-
 /// Whether the closest point at parameter u of chord k of m (against the chord [q0, q1]) is
 /// the one that represents it: inside the chord, or at a vertex that is the closest point of
 /// both chords sharing it, reported by the chord that starts there (or at a strand's ends).
@@ -41,7 +35,8 @@ bool representsClosestPoint(const SphereCollisionModel& m, int k, double u, cons
 /// of degree >= 2) and curved surfaces (normals that differ) keep every contact.
 void keepSpanEnds(ContactSet& out, std::size_t first) {
   const auto sameRun = [](const Contact& a, const Contact& b) {
-    return a.a.count == 2 && b.a.count == 2 && a.a.point[0] == b.a.point[0] && a.a.point[1] == b.a.point[1] &&
+    const PointWeights &wa = a.a.weights(), &wb = b.a.weights();
+    return wa.count == 2 && wb.count == 2 && wa.point[0] == wb.point[0] && wa.point[1] == wb.point[1] &&
            a.normal.dot(b.normal) >= 1.0 - 1e-12;  // one plane: normals equal to round-off
   };
   std::size_t write = first;
@@ -71,14 +66,7 @@ void findObstacleContacts(const SphereCollisionModel& model, int model_index, co
     if (sample.distance - r > reach) continue;
     Contact c;
     c.model_a = model_index;
-    c.offset_a = model.pointOffset();
-    const geometry::BasisRow& row = model.mapping().row(k);
-    c.a.count = row.count;
-    for (int j = 0; j < row.count; ++j) {
-      c.a.point[j] = row.first + j;
-      c.a.weight[j] = row.value[j];
-    }
-    c.abscissa_a = model.mapping().abscissas()[k];
+    c.a.attach(model.curve(), model.mapping().abscissas()[k], model.mapping().row(k));
     c.obstacle = obstacle_index;
     c.surface_point = sample.point;
     c.surface_velocity = sample.velocity;
@@ -110,18 +98,13 @@ bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const S
   if (!representsClosestPoint(b, l, cp.t, p0, p1)) return false;
 
   // Self-collision: skip points closer than the exclusion distance along the curve.
-  const double s_a = chordAbscissa(a, k, cp.s), s_b = chordAbscissa(b, l, cp.t);
   if (self && a.mapping().arcDistance(k, cp.s, l, cp.t) < a.exclusion()) return false;
 
   Contact c;
   c.model_a = model_a;
-  c.offset_a = a.pointOffset();
-  c.a = a.mapping().pointWeights(k, cp.s);
-  c.abscissa_a = s_a;
+  c.a = a.mapping().chordPoint(a.curve(), k, cp.s);
   c.model_b = model_b;
-  c.offset_b = b.pointOffset();
-  c.b = b.mapping().pointWeights(l, cp.t);
-  c.abscissa_b = s_b;
+  c.b = b.mapping().chordPoint(b.curve(), l, cp.t);
   c.time = settings.time;
   c.radius = radius;
   c.friction = settings.friction;

@@ -43,19 +43,17 @@ void addPenaltyJacobian(const Contact& c, const ContactKinematics& k, const Pena
     }
     block -= d_factor * c.friction * f.normal * (Phi * P);
   }
-  // σ_i σ_j w_i w_j block over the points of A (σ = +1) and B (σ = −1).
-  auto emit = [&](const PointWeights& wi, int oi, double si, const PointWeights& wj, int oj, double sj) {
-    for (int i = 0; i < wi.count; ++i)
-      for (int j = 0; j < wj.count; ++j) {
-        const double scale = si * sj * wi.weight[i] * wj.weight[j];
-        out.addBlock(oi + wi.point[i], oj + wj.point[j], scale * block);
-      }
+  // σ_i σ_j w_i w_j block over the points of A (σ = +1) and B (σ = −1): the mappings' rows.
+  auto emit = [&](const BodyPoint& pi, double si, const BodyPoint& pj, double sj) {
+    pi.forEachWeight([&](int i, double wi) {
+      pj.forEachWeight([&](int j, double wj) { out.addBlock(i, j, (si * sj * wi * wj) * block); });
+    });
   };
-  emit(c.a, c.offset_a, 1.0, c.a, c.offset_a, 1.0);
+  emit(c.a, 1.0, c.a, 1.0);
   if (!c.againstObstacle()) {
-    emit(c.a, c.offset_a, 1.0, c.b, c.offset_b, -1.0);
-    emit(c.b, c.offset_b, -1.0, c.a, c.offset_a, 1.0);
-    emit(c.b, c.offset_b, -1.0, c.b, c.offset_b, -1.0);
+    emit(c.a, 1.0, c.b, -1.0);
+    emit(c.b, -1.0, c.a, 1.0);
+    emit(c.b, -1.0, c.b, -1.0);
   }
 }
 

@@ -214,28 +214,13 @@ SparseMatrix SphereSamplingMapping::jacobian(ConstPointsRef) const {
   return J;
 }
 
-PointWeights SphereSamplingMapping::pointWeights(int k, double t) const {
-  PointWeights w;
-  auto add = [&w](const geometry::BasisRow& r, double scale) {
-    if (scale == 0.0) return;
-    for (int j = 0; j < r.count; ++j) {
-      const int p = r.first + j;
-      int slot = 0;
-      while (slot < w.count && w.point[slot] != p) ++slot;
-      if (slot == w.count) {
-        w.point[w.count] = p;
-        w.weight[w.count++] = 0.0;
-      }
-      w.weight[slot] += scale * r.value[j];
-    }
-  };
-  if (!joinsNext(k) || t <= 0.0) {
-    add(rows_[k], 1.0);
-  } else {
-    add(rows_[k], 1.0 - t);
-    add(rows_[k + 1], t);
-  }
-  return w;
+BodyPoint SphereSamplingMapping::chordPoint(const CurveBody& body, int k, double t) const {
+  BodyPoint point;
+  if (!joinsNext(k) || t <= 0.0)
+    point.attach(body, abscissas_[k], rows_[k]);
+  else
+    point.attachChord(body, abscissas_[k], rows_[k], abscissas_[k + 1], rows_[k + 1], t);
+  return point;
 }
 
 }  // namespace filum::collision

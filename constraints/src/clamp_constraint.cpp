@@ -52,7 +52,7 @@ void ClampConstraint::buildRows(const SceneState& s, ConstraintRows& rows) const
   const Vec3 dgp = geometry::curvePoint(row, v) - target_.velocity(s);
   const Vec3 rp = target_.knownAcceleration(s) + baumgarte_.term(gp, dgp);
   rows.beginAnchor();
-  for (int j = 0; j < row.count; ++j) rows.addAnchorPoint(offset + j, row.value[j]);
+  point_.forEachWeight([&](int point, double weight) { rows.addAnchorPoint(point, weight); });
   target_.addToAnchor(rows);
   for (int axis = 0; axis < 3; ++axis) rows.addAnchoredRow(Vec3::Unit(axis), rp[axis]);
 

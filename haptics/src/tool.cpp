@@ -54,8 +54,8 @@ void ToolForceField::init(const Scene& scene) {
   thread_radius_ = curve->radius();
   const int n = curve->pointCount();
   const int m = samples_ > 0 ? samples_ : std::max(8, 4 * n);
-  sample_rows_.resize(m);
-  for (int k = 0; k < m; ++k) curve->basis().evaluate(static_cast<double>(k) / (m - 1), sample_rows_[k]);
+  push_points_.resize(m);
+  for (int k = 0; k < m; ++k) push_points_[k].attach(*curve, static_cast<double>(k) / (m - 1));
   unit_load_.resize(n, 3);
   response_.resize(n, 3);
   mass_abscissa_ = std::numeric_limits<double>::quiet_NaN();  // nothing cached (NaN equals nothing)
@@ -108,20 +108,18 @@ Eigen::Matrix3d ToolForceField::Overlap::jacobian() const {
 
 template <typename Visit>
 void ToolForceField::forEachOverlap(const SceneState& s, Visit visit) const {
-  const ConstPointsMap q = body().block(s.q);
   const double k = pushStiffness(), R = tool_->radius + thread_radius_;
   const Vec3 X = toolPosition(*tool_, s.time);
-  for (const geometry::BasisRow& row : sample_rows_) {
-    const Vec3 d = geometry::curvePoint(row, q) - X;
+  for (const BodyPoint& point : push_points_) {
+    const Vec3 d = point.map(s.q) - X;
     const double distance = d.norm();
     if (distance >= R || distance == 0.0) continue;
-    visit(Overlap{row, distance, R, k, d / distance});
+    visit(Overlap{point, distance, R, k, d / distance});
   }
 }
 
 void ToolForceField::addForce(const SceneState& s, VecX& B) const {
   if (!pushing() && !grasping()) return;
-  PointsMap Q = body().block(B);
   if (grasping()) {
     Vec3 P, V;
     graspPoint(s, P, V);
@@ -129,10 +127,7 @@ void ToolForceField::addForce(const SceneState& s, VecX& B) const {
     tool_->grasp.addForce(F, B);
     return;
   }
-  forEachOverlap(s, [&](const Overlap& o) {
-    const Vec3 F = o.force();
-    for (int j = 0; j < o.row.count; ++j) Q.row(o.row.first + j) += o.row.value[j] * F.transpose();
-  });
+  forEachOverlap(s, [&](const Overlap& o) { o.point.addForce(o.force(), B); });
 }
 
 double ToolForceField::potentialEnergy(const SceneState& s) const {
@@ -149,22 +144,22 @@ double ToolForceField::potentialEnergy(const SceneState& s) const {
 
 void ToolForceField::addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const {
   if (!pushing() && !grasping()) return;
-  const int offset = body().offset();
+  // Jᵀ (∂F/∂x) J over the mapping row of the point (the grasp's, or each pushed sample's).
   if (grasping()) {
     const double k = graspStiffness(), c = graspDamping();
-    const geometry::BasisRow& row = tool_->grasp.row();
-    const int first = tool_->grasp.firstPoint();
-    for (int a = 0; a < row.count; ++a)
-      for (int b = 0; b < row.count; ++b)
-        out.addBlock(first + a, first + b,
-                     (-(k_factor * k + d_factor * c) * row.value[a] * row.value[b]) * Eigen::Matrix3d::Identity());
+    const BodyPoint& grasp = tool_->grasp;
+    grasp.forEachWeight([&](int a, double wa) {
+      grasp.forEachWeight([&](int b, double wb) {
+        out.addBlock(a, b, (-(k_factor * k + d_factor * c) * wa * wb) * Eigen::Matrix3d::Identity());
+      });
+    });
     return;
   }
   forEachOverlap(s, [&](const Overlap& o) {
     const Eigen::Matrix3d G = o.jacobian();
-    for (int a = 0; a < o.row.count; ++a)
-      for (int b = 0; b < o.row.count; ++b)
-        out.addBlock(offset + o.row.first + a, offset + o.row.first + b, (k_factor * o.row.value[a] * o.row.value[b]) * G);
+    o.point.forEachWeight([&](int a, double wa) {
+      o.point.forEachWeight([&](int b, double wb) { out.addBlock(a, b, (k_factor * wa * wb) * G); });
+    });
   });
 }
 

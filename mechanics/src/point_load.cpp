@@ -35,6 +35,7 @@ std::unique_ptr<PointLoad> PointLoad::fromParams(const Params& p) {
 void PointLoad::init(const Scene&) {
   curve_ = body().curve();
   if (!curve_) throw SceneError(origin(), "a curve body for " + describe(), body().describe());
+  point_.attach(*curve_, abscissa_);
   bool torque = false;
   for (const Keyframe& k : keyframes_) torque = torque || k.torque != Vec3::Zero();
   if (torque && !curve_->takesTorques())
@@ -54,10 +55,7 @@ PointLoad::Keyframe PointLoad::loadAt(double t) const {
 
 void PointLoad::addForce(const SceneState& s, VecX& B) const {
   const Keyframe load = loadAt(s.time);
-  BasisRow row;
-  curve_->row(abscissa_, row);
-  const int first = curve_->offset() + row.first;
-  for (int j = 0; j < row.count; ++j) B.segment<3>(3 * (first + j)) += row.value[j] * load.force;  // Q_j += b_j(s) F
+  point_.addForce(load.force, B);  // Q_j += b_j(s) F
   if (load.torque != Vec3::Zero()) curve_->addTorque(s, abscissa_, load.torque, B);
 }
 

@@ -4,6 +4,7 @@
 
 #include "filum/core/scene.hpp"
 #include "filum/core/scene_error.hpp"
+#include "filum/geometry/spline_point_mapping.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
 
 namespace filum::mechanics {
@@ -20,16 +21,18 @@ void SpringForceField::init(const Scene&) {
   const auto* spline = dynamic_cast<const DynamicSpline*>(&body());
   if (!spline) throw SceneError(origin(), "a DynamicSpline body for " + describe(), body().describe());
   if (samples_ == 0) samples_ = 2 * spline->pointCount();
-  mapping_ = std::make_unique<geometry::SplinePointMapping>(spline->basis(), geometry::uniformAbscissas(samples_));
+  const std::vector<double> abscissas = geometry::uniformAbscissas(samples_);
+  ends_.resize(samples_);
+  for (int k = 0; k < samples_; ++k) ends_[k].attach(*spline, abscissas[k]);
   x_.resize(samples_, 3);
   v_.resize(samples_, 3);
   f_.resize(samples_, 3);
-  mapping_->apply(spline->initialPositions(), x_);
+  sample(spline->initialPositions(), x_);
   // A cut curve (CurveBasis::cuts): no spring joins samples of two strands (a sample at a cut
   // belongs to the strand after it, as evaluate does).
   const std::vector<double> cuts = spline->basis().cuts();
   auto strand = [&](int k) {
-    const double s = mapping_->abscissas()[k];
+    const double s = ends_[k].abscissa();
     return static_cast<int>(std::upper_bound(cuts.begin(), cuts.end(), s) - cuts.begin());
   };
   springs_.clear();
@@ -41,10 +44,18 @@ void SpringForceField::init(const Scene&) {
   }
 }
 
+void SpringForceField::sample(ConstPointsRef q, Points& x) const {
+  for (int k = 0; k < samples_; ++k) ends_[k].apply(q, x.row(k));
+}
+
+void SpringForceField::sampleVelocities(ConstPointsRef q, ConstPointsRef v, Points& out) const {
+  for (int k = 0; k < samples_; ++k) ends_[k].applyJ(q, v, out.row(k));
+}
+
 void SpringForceField::addForce(const SceneState& s, VecX& B) const {
   const ConstPointsMap q = body().block(s.q);
-  mapping_->apply(q, x_);
-  mapping_->applyJ(q, body().block(s.v), v_);
+  sample(q, x_);
+  sampleVelocities(q, body().block(s.v), v_);
   f_.setZero();
   for (const Spring& spring : springs_) {
     const Eigen::RowVector3d d = x_.row(spring.b) - x_.row(spring.a);
@@ -56,11 +67,12 @@ void SpringForceField::addForce(const SceneState& s, VecX& B) const {
     f_.row(spring.a) += f;
     f_.row(spring.b) -= f;
   }
-  mapping_->applyJT(q, f_, body().block(B));
+  PointsMap Q = body().block(B);
+  for (int k = 0; k < samples_; ++k) ends_[k].applyJT(q, f_.row(k), Q);  // Q += Jₖᵀ fₖ
 }
 
 double SpringForceField::potentialEnergy(const SceneState& s) const {
-  mapping_->apply(body().block(s.q), x_);
+  sample(body().block(s.q), x_);
   double e = 0.0;
   for (const Spring& spring : springs_) {
     const double stretch = (x_.row(spring.b) - x_.row(spring.a)).norm() - spring.rest;
@@ -72,10 +84,8 @@ double SpringForceField::potentialEnergy(const SceneState& s) const {
 void SpringForceField::addJacobian(const SceneState& s, double k_factor, double d_factor,
                                    JacobianAccumulator& out) const {
   const ConstPointsMap q = body().block(s.q);
-  mapping_->apply(q, x_);
-  mapping_->applyJ(q, body().block(s.v), v_);
-  const SparseMatrix& W = mapping_->weights();
-  const int base = body().offset();
+  sample(q, x_);
+  sampleVelocities(q, body().block(s.v), v_);
   for (const Spring& spring : springs_) {
     const Vec3 d = (x_.row(spring.b) - x_.row(spring.a)).transpose();
     const double l = d.norm();
@@ -94,11 +104,9 @@ void SpringForceField::addJacobian(const SceneState& s, double k_factor, double 
     for (int kk = 0; kk < 2; ++kk)
       for (int mm = 0; mm < 2; ++mm) {
         const double sign = kk == mm ? -1.0 : 1.0;
-        for (SparseMatrix::InnerIterator wi(W, ends[kk]); wi; ++wi)
-          for (SparseMatrix::InnerIterator wj(W, ends[mm]); wj; ++wj) {
-            const double w = sign * wi.value() * wj.value();
-            out.addBlock(base + static_cast<int>(wi.col()), base + static_cast<int>(wj.col()), w * block);
-          }
+        ends_[ends[kk]].forEachWeight([&](int i, double wi) {
+          ends_[ends[mm]].forEachWeight([&](int j, double wj) { out.addBlock(i, j, (sign * wi * wj) * block); });
+        });
       }
   }
 }

@@ -67,8 +67,12 @@ void TissueAttachment::init(const Scene& scene) {
   if (!curve_) throw SceneError(origin(), "a curve body for " + describe(), body().describe());
   // Bound again after every layout change (refine, coarsen, cut: Scene::relayout): the tissue is
   // what it was at the start — its points keep their abscissas, their anchors and rest lengths.
-  if (!abscissas_.empty()) return;
-  const VecX& q = scene.state().q;
+  if (abscissas_.empty()) placePoints(scene.state().q);
+  points_.resize(abscissas_.size());
+  for (std::size_t i = 0; i < abscissas_.size(); ++i) points_[i].attach(*curve_, abscissas_[i]);
+}
+
+void TissueAttachment::placePoints(const VecX& q) {
   // L₀: the curve's arc length at the start (adaptive Gauss–Legendre, geometry/arc_length.hpp).
   const double length = geometry::curveLength(curve_->basis(), body().block(q));
   const int n = settings_.count;
@@ -101,20 +105,13 @@ double TissueAttachment::totalTension(const SceneState& s) const {
 }
 
 void TissueAttachment::addForce(const SceneState& s, VecX& B) const {
-  BasisRow row;
   for (int i = 0; i < settings_.count; ++i) {
-    curve_->row(abscissas_[i], row);
-    const int first = curve_->offset() + row.first;
-    Vec3 position = Vec3::Zero(), velocity = Vec3::Zero();
-    for (int j = 0; j < row.count; ++j) {
-      position += row.value[j] * s.q.segment<3>(3 * (first + j));
-      velocity += row.value[j] * s.v.segment<3>(3 * (first + j));
-    }
-    const Spring spring = springAt(position, anchors_[i], rest_lengths_[i]);
+    const BodyPoint& point = points_[i];
+    const Spring spring = springAt(point.map(s.q), anchors_[i], rest_lengths_[i]);
     // F = −k_i (1 − r_i/|d|) d − c_i Ṗ(s_i); Q_j = b_j(s_i) F.
-    Vec3 force = -point_damping_ * velocity;
+    Vec3 force = -point_damping_ * point.map(s.v);
     if (spring.taut) force -= point_stiffness_ * (1.0 - rest_lengths_[i] / spring.length) * spring.d;
-    for (int j = 0; j < row.count; ++j) B.segment<3>(3 * (first + j)) += row.value[j] * force;
+    point.addForce(force, B);
   }
 }
 
@@ -129,17 +126,15 @@ double TissueAttachment::potentialEnergy(const SceneState& s) const {
 
 void TissueAttachment::addJacobian(const SceneState& s, double k_factor, double d_factor,
                                    JacobianAccumulator& out) const {
-  BasisRow row;
   std::array<Eigen::Matrix3d, BasisRow::kMaxSupport*(BasisRow::kMaxSupport + 1) / 2> lower;
   for (int i = 0; i < settings_.count; ++i) {
-    curve_->row(abscissas_[i], row);
-    const int first = curve_->offset() + row.first;
+    // Jᵀ (∂F/∂P) J over the point's mapping row b(s_i), as the symmetric support block.
+    const BasisRow& row = points_[i].row();
+    const int first = points_[i].firstPoint();
     // The 3 × 3 block of one point: k_factor ∂F/∂P + d_factor ∂F/∂Ṗ, then b_j b_m times it.
     Eigen::Matrix3d block = (-d_factor * point_damping_) * Eigen::Matrix3d::Identity();
     if (k_factor != 0.0) {
-      Vec3 position = Vec3::Zero();
-      for (int j = 0; j < row.count; ++j) position += row.value[j] * s.q.segment<3>(3 * (first + j));
-      const Spring spring = springAt(position, anchors_[i], rest_lengths_[i]);
+      const Spring spring = springAt(points_[i].map(s.q), anchors_[i], rest_lengths_[i]);
       if (spring.taut) {
         const double ratio = rest_lengths_[i] / spring.length;
         const Vec3 unit = spring.d / spring.length;

@@ -39,8 +39,8 @@ py::dict contacts(const PythonScene& owner) {
     body[i] = bodyIndex(c.model_a);
     other[i] = c.model_b >= 0 ? bodyIndex(c.model_b) : -1;
     obstacle[i] = c.obstacle;
-    abscissa[i] = c.abscissa_a;
-    point.row(i) = pipeline->models()[c.model_a]->curve().position(scene.state().q, c.abscissa_a).transpose();
+    abscissa[i] = c.a.abscissa();
+    point.row(i) = pipeline->models()[c.model_a]->curve().position(scene.state().q, c.a.abscissa()).transpose();
     force.row(i) = pipeline->contactForce(i, scene.state()).transpose();
   }
   py::dict out;

@@ -256,7 +256,8 @@ TEST(CutBody, AHeldThreadCutInTheMiddleFallsInTwoHalves) {
     const int a = secondStrandStart(thread);
     for (const Contact& c : pipeline.contacts()) {
       bool first = false, second = false;
-      for (int j = 0; j < c.a.count; ++j) (c.a.point[j] < a ? first : second) |= c.a.weight[j] != 0.0;
+      const PointWeights& w = c.a.weights();
+      for (int j = 0; j < w.count; ++j) (w.point[j] < a ? first : second) |= w.weight[j] != 0.0;
       EXPECT_NE(first, second) << "a contact spans the cut at t = " << scene->state().time;
     }
     steps_with_contacts += !pipeline.contacts().empty();

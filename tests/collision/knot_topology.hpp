@@ -33,8 +33,8 @@ inline std::pair<double, double> knotContactRange(const Scene& scene, int body) 
   double lo = 2.0, hi = -1.0;
   for (const collision::Contact& c : pipeline.contacts())
     if (!c.againstObstacle() && c.model_a == c.model_b && pipeline.models()[c.model_a]->bodyIndex() == body) {
-      lo = std::min({lo, c.abscissa_a, c.abscissa_b});
-      hi = std::max({hi, c.abscissa_a, c.abscissa_b});
+      lo = std::min({lo, c.a.abscissa(), c.b.abscissa()});
+      hi = std::max({hi, c.a.abscissa(), c.b.abscissa()});
     }
   return {lo, hi};
 }

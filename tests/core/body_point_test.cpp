@@ -1,16 +1,19 @@
-// BodyPoint (core/body_point.hpp): the one form of a point on a curve body. Its map is the
-// body's P(s) (CurveBody::position), a force at it maps up as Σ b_j F (the work F·Ṗ(s) equals
-// the generalized force · q̇), and after a body refines its points the row is evaluated again in
-// the new layout on first use, with no call from the holder: the same material point, where it
-// was (knot insertion keeps the curve), on the refined body and on a body after it whose points
-// were renumbered.
-// Tolerances: sums of ≤ 4 products of O(0.1) numbers, 1e-15 m; the refined curve equals the old
+// BodyPoint (core/body_point.hpp): the one form of a point on a curve body and the mapping through
+// which every force at a point of a curve goes up. Its map is the body's P(s)
+// (CurveBody::position), a force at it maps up as Σ b_j F (the work F·Ṗ(s) equals the generalized
+// force · q̇), both kinds of point (of the curve, of a chord between two points of it) pass the
+// generic mapping test, and after a body refines its points the row is evaluated again in the
+// new layout on first use, with no call from the holder: the same material point, where it was
+// (knot insertion keeps the curve), on the refined body and on a body after it whose points were
+// renumbered.
+// Tolerances: sums of ≤ 8 products of O(0.1) numbers, 1e-15 m; the refined curve equals the old
 // to round-off of the Oslo matrix (~1e-16 relative), 1e-15 m asserted.
 #include <gtest/gtest.h>
 
 #include "filum/core/body_point.hpp"
 #include "filum/core/scene.hpp"
 #include "filum/core/scene_loader.hpp"
+#include "support/finite_difference.hpp"
 #include "support/library_components.hpp"
 
 namespace filum {
@@ -36,6 +39,48 @@ TEST(BodyPoint, MapsLikeTheCurveAndMapsForcesUpByItsRow) {
   const Vec3 F(0.3, -1.1, 0.4);
   point.addForce(F, B);
   EXPECT_NEAR(B.dot(s.v), F.dot(point.map(s.v)), 1e-15 * (1.0 + std::abs(F.dot(point.map(s.v)))));
+}
+
+// The generic mapping test (tests/support/finite_difference.hpp) on each kind of point. The
+// mapping is linear, so the central differences carry round-off only, ε |x| / h ≈ 2e-16 · 0.1 m /
+// 1e-6 m = 2e-11 relative to 1 + |J v| ~ 1: 1e-10 asserted.
+TEST(BodyPoint, EveryKindOfPointPassesTheGenericMappingTest) {
+  auto scene = thread();
+  CurveBody& body = *scene->bodies().front()->curve();
+  const ConstPointsMap q = body.block(scene->state().q);
+  for (const double s : {0.0, 0.37, 0.5, 1.0}) {
+    SCOPED_TRACE("the curve point s = " + std::to_string(s));
+    test::expectMappingConsistent(BodyPoint(body, s), q, 1e-6, 1e-10);
+  }
+  BasisRow row0, row1;
+  body.row(0.3, row0);
+  body.row(0.34, row1);
+  BodyPoint chord;
+  chord.attachChord(body, 0.3, row0, 0.34, row1, 0.4);
+  ASSERT_TRUE(chord.onChord());
+  EXPECT_DOUBLE_EQ(chord.abscissa(), 0.6 * 0.3 + 0.4 * 0.34);
+  {
+    SCOPED_TRACE("a chord point");
+    test::expectMappingConsistent(chord, q, 1e-6, 1e-10);
+  }
+  // The chord point is (1 − t) P(s₀) + t P(s₁), and its weights sum to one (a rigid translation
+  // moves it rigidly).
+  const VecX& x = scene->state().q;
+  EXPECT_LE((chord.map(x) - (0.6 * body.position(x, 0.3) + 0.4 * body.position(x, 0.34))).norm(), 1e-15);
+  double sum = 0.0;
+  for (int j = 0; j < chord.weights().count; ++j) sum += chord.weights().weight[j];
+  EXPECT_NEAR(sum, 1.0, 1e-15);
+  // After a refinement both kinds are evaluated again: the same points, on the new layout.
+  const Vec3 chord_before = chord.map(x), curve_before = BodyPoint(body, 0.37).map(x);
+  const BodyPoint curve_point(body, 0.37);
+  scene->refine(body, {0.2, 0.32, 0.6});
+  const VecX& refined = scene->state().q;
+  EXPECT_LE((chord.map(refined) - chord_before).norm(), 1e-15);
+  EXPECT_LE((curve_point.map(refined) - curve_before).norm(), 1e-15);
+  SCOPED_TRACE("after a refinement");
+  const ConstPointsMap q_refined = body.block(refined);
+  test::expectMappingConsistent(chord, q_refined, 1e-6, 1e-10);
+  test::expectMappingConsistent(curve_point, q_refined, 1e-6, 1e-10);
 }
 
 TEST(BodyPoint, FollowsARefinementOfItsBodyOrOfABodyBefore) {

@@ -9,8 +9,8 @@
 // through). Between two resamplings the abscissas are fixed and the mapping is linear:
 //   x_k = P(s_k) = Σ_i b_i(s_k) q_i,  J = W ⊗ I₃,  W_ki = b_i(s_k),
 // so forces F_k at the centres go up to the control points as Q_i += Σ_k b_i(s_k) F_k (applyJT),
-// and a force at a point of the chord between centres k and k+1, x = (1 − t) x_k + t x_{k+1},
-// goes up through (1 − t) W_k + t W_{k+1} (pointWeights).
+// and a point of the chord between centres k and k+1, x = (1 − t) x_k + t x_{k+1}, is the
+// BodyPoint whose row is (1 − t) W_k + t W_{k+1} (chordPoint): forces at contacts go up through it.
 //
 // A cut curve (CurveBasis::cuts) is sampled strand by strand: each strand has its own centres,
 // from its first end to its last, at its own spacing L_t / (K_t − 1) <= h, and no chord joins the
@@ -28,25 +28,11 @@
 #include <memory>
 #include <vector>
 
+#include "filum/core/body_point.hpp"
 #include "filum/core/mapping.hpp"
 #include "filum/geometry/spline_basis.hpp"
 
 namespace filum::collision {
-
-/// A point of a body as weights on its control points: x = Σ_j weight[j] q_{point[j]}.
-/// Up to two basis rows (a point on the chord between two sphere centres), merged.
-struct PointWeights {
-  static constexpr int kMax = 2 * geometry::BasisRow::kMaxSupport;
-  int count = 0;
-  std::array<int, kMax> point{};      // control point index within the body
-  std::array<double, kMax> weight{};  // dimensionless, sum 1
-
-  Vec3 evaluate(ConstPointsRef q) const {
-    Vec3 x = Vec3::Zero();
-    for (int j = 0; j < count; ++j) x += weight[j] * q.row(point[j]).transpose();
-    return x;
-  }
-};
 
 /// Spheres along one thread, at most (checked on the rest length when a scene is loaded): the
 /// broad and narrow phases visit every sphere at every step, and 1e6 is 1000 times the spheres
@@ -85,9 +71,10 @@ class SphereSamplingMapping final : public Mapping {
   const std::vector<double>& abscissas() const { return abscissas_; }
   /// Basis row of centre k.
   const geometry::BasisRow& row(int k) const { return rows_[k]; }
-  /// Weights of the chord point (1 − t) x_k + t x_{k+1} (t ∈ [0, 1] when joinsNext(k); else
-  /// centre k alone).
-  PointWeights pointWeights(int k, double t) const;
+  /// The point (1 − t) x_k + t x_{k+1} of the chord from centre k (t ∈ [0, 1] when joinsNext(k);
+  /// else centre k alone) on `body`, the body this mapping samples, as the body point whose
+  /// mapping carries forces there up to the control points.
+  BodyPoint chordPoint(const CurveBody& body, int k, double t) const;
   /// Whether centres k and k + 1 are joined by a chord (the same strand).
   bool joinsNext(int k) const { return k + 1 < outputCount() && strand_of_[k] == strand_of_[k + 1]; }
   /// The strand of centre k (0 for an uncut curve).

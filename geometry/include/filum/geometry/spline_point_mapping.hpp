@@ -1,7 +1,9 @@
 // SplinePointMapping: points at fixed abscissas s_k of a spline, x_k = P(s_k) = Σ_i b_i(s_k) q_i
 // (paper eq. 1). Linear in q: its Jacobian W ⊗ I₃ is constant, with W_ki = b_i(s_k), so forces
 // F_k at the points map up to generalized forces Q_i = Σ_k b_i(s_k) F_k (paper §3;
-// docs/architecture.md, "The three-sided model").
+// docs/architecture.md, "The three-sided model"). It samples a curve's points for outputs
+// (polylines written by filum run); a force at a point of a body goes up through that point's
+// own mapping, a BodyPoint (core/body_point.hpp).
 #pragma once
 
 #include <vector>

@@ -100,12 +100,12 @@ class ToolForceField final : public ForceField {
   }
   /// The stiffness to use: capped for explicit steps, the cap when unset.
   double gain(double requested, double cap) const;
-  /// P(s*) and Ṗ(s*) at state s, and the row b(s*).
+  /// P(s*) and Ṗ(s*) at state s.
   void graspPoint(const SceneState& s, Vec3& P, Vec3& V) const;
-  /// One sample of the push inside the sphere: its row b(s_k), its distance d to the centre
+  /// One sample of the push inside the sphere: its point s_k, its distance d to the centre
   /// (0 < d < R), the unit normal n out of the sphere; k the push stiffness.
   struct Overlap {
-    const geometry::BasisRow& row;
+    const BodyPoint& point;
     double distance, radius, stiffness;
     Vec3 normal;
     double depth() const { return radius - distance; }
@@ -120,7 +120,7 @@ class ToolForceField final : public ForceField {
   int samples_;
   double dt_ = 1e-4, thread_radius_ = 0.0, sample_mass_ = 0.0;
   bool explicit_step_ = true;
-  std::vector<geometry::BasisRow> sample_rows_;  // b(s_k) of the push samples (fixed abscissas)
+  std::vector<BodyPoint> push_points_;  // the push samples (fixed abscissas s_k)
   mutable Points unit_load_, response_;          // workspace of effectiveMass: b and M⁻¹ b
   mutable double mass_abscissa_ = 0.0, mass_at_abscissa_ = 0.0;  // its last answer
 };

@@ -15,6 +15,7 @@
 #include <memory>
 #include <vector>
 
+#include "filum/core/body_point.hpp"
 #include "filum/core/force_field.hpp"
 #include "filum/core/params.hpp"
 
@@ -63,6 +64,7 @@ class PointLoad final : public ForceField {
   double abscissa_;
   std::vector<Keyframe> keyframes_;
   const CurveBody* curve_ = nullptr;
+  BodyPoint point_;  // the loaded point: its force goes up through it
 };
 
 }  // namespace filum::mechanics

@@ -3,7 +3,7 @@
 // between neighbours (k, k+1) and bend springs between next neighbours (k, k+2), rest lengths
 // taken from the initial curve. Spring force on the pair (a, b), u = (x_b − x_a)/l:
 //   f = [k (l − l0) + c (v_b − v_a)·u] u,  F_a += f, F_b −= f,
-// mapped to the control points by Q_i += Σ_k b_i(s_k) F_k (SplinePointMapping::applyJT).
+// mapped to the control points by Q_i += Σ_k b_i(s_k) F_k (BodyPoint::applyJT).
 //
 // Jacobian. With d = x_b − x_a, P = I − u uᵀ and Δv = v_b − v_a, the pair force f(d, Δv) has
 //   G = ∂f/∂d = k u uᵀ + (k (l − l0) + c Δv·u) P / l + c u Δvᵀ P / l,   G_v = ∂f/∂Δv = c u uᵀ,
@@ -16,9 +16,9 @@
 #include <memory>
 #include <vector>
 
+#include "filum/core/body_point.hpp"
 #include "filum/core/force_field.hpp"
 #include "filum/core/params.hpp"
-#include "filum/geometry/spline_point_mapping.hpp"
 
 namespace filum::mechanics {
 
@@ -47,7 +47,11 @@ class SpringForceField final : public ForceField {
 
   double stretch_stiffness_, bend_stiffness_, damping_;
   int samples_;
-  std::unique_ptr<geometry::SplinePointMapping> mapping_;
+  /// x_k = P(s_k) and ẋ_k of every sample, through its point's mapping.
+  void sample(ConstPointsRef q, Points& x) const;
+  void sampleVelocities(ConstPointsRef q, ConstPointsRef v, Points& out) const;
+
+  std::vector<BodyPoint> ends_;  // the samples s_k, uniform on [0, 1]: the springs' end points
   std::vector<Spring> springs_;
   mutable Points x_, v_, f_;  // workspace: sample positions, velocities, forces
 };

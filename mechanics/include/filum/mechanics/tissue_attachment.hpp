@@ -27,6 +27,7 @@
 #include <memory>
 #include <vector>
 
+#include "filum/core/body_point.hpp"
 #include "filum/core/force_field.hpp"
 #include "filum/core/params.hpp"
 
@@ -76,11 +77,14 @@ class TissueAttachment final : public ForceField {
 
  private:
   void init(const Scene& scene) override;
+  /// The points' abscissas, anchors and rest lengths from the configuration q at the start.
+  void placePoints(const VecX& q);
 
   Settings settings_;
   const CurveBody* curve_ = nullptr;
   std::vector<double> abscissas_, rest_lengths_;
   std::vector<Vec3> anchors_;
+  std::vector<BodyPoint> points_;  // the attached points, at abscissas_: their forces go up through them
   double point_stiffness_ = 0.0, point_damping_ = 0.0;
 };
 

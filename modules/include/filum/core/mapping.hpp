@@ -2,15 +2,24 @@
 // (docs/architecture.md, "The three-sided model"). For a spline P(s) = Σ b_i(s) q_i the Jacobian
 // row of a point at abscissa s holds the basis values b_i(s), so a force F at s adds b_i(s) F to
 // control point i (paper §3).
+//
+// A mapping is an interface, not a scene component: the models that need one own it (a collision
+// model its sphere sampling, a visual its axis samples), and every point at which a force acts
+// holds one (BodyPoint, the mapping of one point: the route of every force from a point of a
+// curve to the control points).
 #pragma once
 
-#include "filum/core/component.hpp"
+#include <string>
+
 #include "filum/core/types.hpp"
 
 namespace filum {
 
-class Mapping : public Component {
+class Mapping {
  public:
+  virtual ~Mapping() = default;
+
+  virtual std::string typeName() const = 0;
   virtual int inputCount() const = 0;   // parent points
   virtual int outputCount() const = 0;  // child points
 
