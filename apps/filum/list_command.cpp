@@ -60,7 +60,7 @@ int listParameters(const Factory& factory, const std::string& type, std::ostream
   for (const ParameterRead& r : recorder.reads()) {
     width = std::max(width, r.key.size());
     default_width = std::max(default_width, displayWidth(r.required ? "required" : r.fallback));
-    unit_width = std::max(unit_width, displayWidth(factory.unit(type, r.key)));
+    unit_width = std::max(unit_width, displayWidth(r.unit));
   }
   const auto row = [&](const std::string& key, const std::string& fallback, const std::string& unit,
                        const std::string& what) {
@@ -70,7 +70,7 @@ int listParameters(const Factory& factory, const std::string& type, std::ostream
   };
   row("parameter", "default", "unit", "what it must be");
   for (const ParameterRead& r : recorder.reads())
-    row(r.key, r.required ? "required" : r.fallback, factory.unit(type, r.key),
+    row(r.key, r.required ? "required" : r.fallback, r.unit,
         r.expected.empty() ? "read when given (see the README's tables)" : r.expected);
   if (recorder.reads().empty()) out << "  (no parameters)\n";
   // Read by the scene loader for every component (scene_loader.cpp), not by the component.

@@ -9,7 +9,7 @@ OutputSettings readOutputSettings(const nlohmann::json& document, const std::str
   if (!document.contains("output")) return settings;
   const Params top(document, source, "");
   const Params output = top.object("output");
-  settings.interval = output.positive("interval", settings.interval);
+  settings.interval = output.positive({"interval", "s"}, settings.interval);
   settings.curve_samples = output.integer("curve_samples", 2, kMaxCurveSamples, settings.curve_samples,
                                           "a frame writes curve_samples lines per body, 10 MB per body at the limit");
   settings.knots = output.boolean("knots", settings.knots);

@@ -6,7 +6,7 @@
 namespace filum::collision {
 
 std::unique_ptr<CapsuleObstacle> CapsuleObstacle::fromParams(const Params& p) {
-  auto capsule = std::make_unique<CapsuleObstacle>(p.vec3("a"), p.vec3("b"), p.positive("radius"));
+  auto capsule = std::make_unique<CapsuleObstacle>(p.vec3({"a", "m"}), p.vec3({"b", "m"}), p.positive({"radius", "m"}));
   capsule->readCommon(p);
   return capsule;
 }

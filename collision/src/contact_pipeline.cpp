@@ -36,18 +36,18 @@ std::unique_ptr<ContactPipeline> ContactPipeline::fromParams(const Params& p) {
   } else if (response != "penalty") {
     p.fail("response", "\"penalty\" or \"unilateral\"");
   }
-  s.penalty.stiffness = p.positive("stiffness", s.penalty.stiffness);
-  s.penalty.damping = p.nonNegative("damping", s.penalty.damping);
-  s.penalty.friction_velocity = p.positive("friction_velocity", s.penalty.friction_velocity);
-  s.friction = p.nonNegative("friction", s.friction);
-  s.margin = p.nonNegative("margin", s.margin);
+  s.penalty.stiffness = p.positive({"stiffness", "N/m"}, s.penalty.stiffness);
+  s.penalty.damping = p.nonNegative({"damping", "N·s/m"}, s.penalty.damping);
+  s.penalty.friction_velocity = p.positive({"friction_velocity", "m/s"}, s.penalty.friction_velocity);
+  s.friction = p.nonNegative({"friction", "1"}, s.friction);
+  s.margin = p.nonNegative({"margin", "m"}, s.margin);
   s.continuous = p.boolean("continuous", s.continuous);
-  s.cell_size = p.nonNegative("cell_size", s.cell_size);
-  s.stabilization = p.positive("stabilization", 0.0);
-  s.friction_rate = p.positive("friction_rate", 0.0);
-  s.max_penetration = p.nonNegative("max_penetration", s.max_penetration);
+  s.cell_size = p.nonNegative({"cell_size", "m"}, s.cell_size);
+  s.stabilization = p.positive({"stabilization", "1/s"}, 0.0);
+  s.friction_rate = p.positive({"friction_rate", "1/s"}, 0.0);
+  s.max_penetration = p.nonNegative({"max_penetration", "1"}, s.max_penetration);
   if (s.max_penetration >= 1.0) p.fail("max_penetration", "a fraction of the contact distance in [0, 1)");
-  s.max_slide = p.nonNegative("max_slide", 0.0);
+  s.max_slide = p.nonNegative({"max_slide", "m"}, 0.0);
   s.contact_halvings = p.integer("contact_halvings", 0, s.contact_halvings);
   if (s.contact_halvings > 5)  // the scene halves a step 6 times at most (a pass-through beyond is a fault)
     p.fail("contact_halvings", "at most 5 (sub-steps of dt / 32)");

@@ -11,9 +11,9 @@ ImplicitSurfaceObstacle::ImplicitSurfaceObstacle(const Points& skeleton, double 
 }
 
 std::unique_ptr<ImplicitSurfaceObstacle> ImplicitSurfaceObstacle::fromParams(const Params& p) {
-  const Points skeleton = p.points("skeleton", 2);
-  const double radius = p.positive("radius");
-  const double sharpness = p.nonNegative("sharpness", 0.0);
+  const Points skeleton = p.points({"skeleton", "m"}, 2);
+  const double radius = p.positive({"radius", "m"});
+  const double sharpness = p.nonNegative({"sharpness", "1/m"}, 0.0);
   auto obstacle = std::make_unique<ImplicitSurfaceObstacle>(skeleton, radius, sharpness);
   obstacle->readCommon(p);
   return obstacle;

@@ -9,8 +9,8 @@ PlaneObstacle::PlaneObstacle(const Vec3& point, const Vec3& normal) : point_(poi
 }
 
 std::unique_ptr<PlaneObstacle> PlaneObstacle::fromParams(const Params& p) {
-  const Vec3 point = p.vec3("point", Vec3::Zero());
-  const Vec3 normal = p.vec3("normal", Vec3::UnitZ());
+  const Vec3 point = p.vec3({"point", "m"}, Vec3::Zero());
+  const Vec3 normal = p.vec3({"normal", "1"}, Vec3::UnitZ());
   if (!(normal.norm() > 0.0)) p.fail("normal", "a non-zero normal [x, y, z]");
   auto plane = std::make_unique<PlaneObstacle>(point, normal);
   plane->readCommon(p);

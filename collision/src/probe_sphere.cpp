@@ -9,7 +9,7 @@ ProbeSphere::ProbeSphere(double radius, geometry::ScriptedPath path) : radius_(r
 }
 
 std::unique_ptr<ProbeSphere> ProbeSphere::fromParams(const Params& p) {
-  const double radius = p.positive("radius");
+  const double radius = p.positive({"radius", "m"});
   auto probe = std::make_unique<ProbeSphere>(radius, geometry::ScriptedPath::fromParams(p, "path"));
   probe->readCommon(p);
   return probe;

@@ -15,11 +15,6 @@
 namespace filum::collision {
 
 void register_components(Factory& factory) {
-  // Units of the quantities whose key means another unit elsewhere (parameter_units.hpp).
-  factory.addUnits("ContactPipeline", {{"stiffness", "N/m"}, {"damping", "N·s/m"}});
-  factory.addUnits("CapsuleObstacle", {{"a", "m"}, {"b", "m"}});
-  // A vessel tree's points, radii and blend are in its "units" (m, cm or mm) times "scale".
-  factory.addUnits("VesselLumenObstacle", {{"branches", "as units"}, {"blend", "as units"}});
   factory.add("SphereCollisionModel",
               "spheres at equal curvilinear spacing along the node's spline, resampled as it stretches (paper §3)",
               [](const Params& p) { return SphereCollisionModel::fromParams(p); });

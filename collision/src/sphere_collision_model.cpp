@@ -14,10 +14,10 @@ namespace filum::collision {
 
 std::unique_ptr<SphereCollisionModel> SphereCollisionModel::fromParams(const Params& p) {
   Settings s;
-  s.radius = p.positive("radius", 0.0);
-  s.spacing = p.positive("spacing", 0.0);
+  s.radius = p.positive({"radius", "m"}, 0.0);
+  s.spacing = p.positive({"spacing", "m"}, 0.0);
   s.self_collision = p.boolean("self_collision", true);
-  s.exclusion = p.nonNegative("exclusion", -1.0);
+  s.exclusion = p.nonNegative({"exclusion", "m"}, -1.0);
   return std::make_unique<SphereCollisionModel>(s);
 }
 

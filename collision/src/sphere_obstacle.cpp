@@ -15,7 +15,7 @@ SurfaceSample sampleBall(const Vec3& center, double radius, const Vec3& velocity
 }
 
 std::unique_ptr<SphereObstacle> SphereObstacle::fromParams(const Params& p) {
-  auto sphere = std::make_unique<SphereObstacle>(p.vec3("center"), p.positive("radius"));
+  auto sphere = std::make_unique<SphereObstacle>(p.vec3({"center", "m"}), p.positive({"radius", "m"}));
   sphere->readCommon(p);
   return sphere;
 }

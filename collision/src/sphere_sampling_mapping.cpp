@@ -215,11 +215,14 @@ SparseMatrix SphereSamplingMapping::jacobian(ConstPointsRef) const {
 }
 
 BodyPoint SphereSamplingMapping::chordPoint(const CurveBody& body, int k, double t) const {
+  // A strand's last centre was evaluated from the left (evaluateOnStrand): its point says so, so
+  // that it stays that strand's end point if the body's layout changes.
+  const auto last = [this](int i) { return i + 1 == outputCount() || strand_of_[i + 1] != strand_of_[i]; };
   BodyPoint point;
   if (!joinsNext(k) || t <= 0.0)
-    point.attach(body, abscissas_[k], rows_[k]);
+    point.attach(body, abscissas_[k], rows_[k], last(k));
   else
-    point.attachChord(body, abscissas_[k], rows_[k], abscissas_[k + 1], rows_[k + 1], t);
+    point.attachChord(body, abscissas_[k], rows_[k], abscissas_[k + 1], rows_[k + 1], t, last(k), last(k + 1));
   return point;
 }
 

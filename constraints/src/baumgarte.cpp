@@ -6,7 +6,7 @@ namespace filum::constraints {
 
 Baumgarte Baumgarte::fromParams(const Params& p) {
   if (!p.has("stabilization")) return Baumgarte();
-  return Baumgarte(p.nonNegative("stabilization", 0.0));
+  return Baumgarte(p.nonNegative({"stabilization", "1/s"}, 0.0));
 }
 
 void Baumgarte::init(const Scene& scene) {

@@ -17,8 +17,8 @@ ClampConstraint::ClampConstraint(double abscissa, PointTarget target, std::optio
 std::unique_ptr<ClampConstraint> ClampConstraint::fromParams(const Params& p) {
   const double s = p.abscissa("abscissa");
   std::optional<Vec3> direction;
-  if (p.has("direction")) {
-    direction = p.vec3("direction");
+  if (p.has({"direction", "1"})) {
+    direction = p.vec3({"direction", "1"});
     if (!(direction->norm() > 0.0)) p.fail("direction", "a non-zero direction [x, y, z]");
   }
   auto c = std::make_unique<ClampConstraint>(s, PointTarget::fromParams(p), direction, Baumgarte::fromParams(p));

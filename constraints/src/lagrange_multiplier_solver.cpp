@@ -137,7 +137,7 @@ LagrangeMultiplierSolver::~LagrangeMultiplierSolver() = default;
 std::unique_ptr<LagrangeMultiplierSolver> LagrangeMultiplierSolver::fromParams(const Params& p) {
   Options o;
   o.sparse_above = p.integer("sparse_above", 0, o.sparse_above);
-  o.drop_tolerance = p.nonNegative("drop_tolerance", o.drop_tolerance);
+  o.drop_tolerance = p.nonNegative({"drop_tolerance", "1"}, o.drop_tolerance);
   if (o.drop_tolerance > 1e-6)
     p.fail("drop_tolerance", "a relative tolerance in [0, 1e-6] (entries of W below round-off, see "
                              "lagrange_multiplier_solver.hpp; larger values change the solution)");
@@ -148,18 +148,18 @@ std::unique_ptr<LagrangeMultiplierSolver> LagrangeMultiplierSolver::fromParams(c
   else if (method != "newton")
     p.fail("contact_method", "\"newton\" or \"gauss_seidel\"", "\"" + method + "\"");
   o.newton_iterations = p.integer("newton_iterations", 1, o.newton_iterations);
-  o.newton_damping = p.nonNegative("newton_damping", o.newton_damping);
+  o.newton_damping = p.nonNegative({"newton_damping", "1"}, o.newton_damping);
   if (o.newton_damping > 1e-3)
     p.fail("newton_damping", "a proximal shift in [0, 1e-3] (relative to J's unit diagonal; larger ones slow Newton to "
                              "Gauss-Seidel's pace)");
   o.newton_rows = p.integer("newton_rows", 0, o.newton_rows);
-  o.contact_compliance = p.nonNegative("contact_compliance", o.contact_compliance);
-  o.friction_compliance = p.nonNegative("friction_compliance", o.friction_compliance);
+  o.contact_compliance = p.nonNegative({"contact_compliance", "1"}, o.contact_compliance);
+  o.friction_compliance = p.nonNegative({"friction_compliance", "1"}, o.friction_compliance);
   if (o.contact_compliance > 1.0 || o.friction_compliance > 1.0)
     p.fail(o.contact_compliance > 1.0 ? "contact_compliance" : "friction_compliance",
            "a compliance in [0, 1], relative to W's diagonal (see lagrange_multiplier_solver.hpp)");
   o.contact_iterations = p.integer("contact_iterations", 1, o.contact_iterations);
-  o.contact_tolerance = p.positive("contact_tolerance", o.contact_tolerance);
+  o.contact_tolerance = p.positive({"contact_tolerance", "1"}, o.contact_tolerance);
   const std::string form = p.string("contact_form", "auto");
   if (form == "assembled")
     o.contact_form = ContactForm::kAssembled;

@@ -20,7 +20,7 @@ PointOnAxisConstraint::PointOnAxisConstraint(double abscissa, const Vec3& axis, 
 
 std::unique_ptr<PointOnAxisConstraint> PointOnAxisConstraint::fromParams(const Params& p) {
   const double s = p.abscissa("abscissa");
-  const Vec3 axis = p.vec3("axis");
+  const Vec3 axis = p.vec3({"axis", "1"});
   if (!(axis.norm() > 0.0)) p.fail("axis", "a non-zero direction [x, y, z]");
   auto c = std::make_unique<PointOnAxisConstraint>(s, axis, PointTarget::fromParams(p), Baumgarte::fromParams(p));
   readReleaseTime(p, *c);

@@ -24,11 +24,11 @@ PointTarget PointTarget::attached(std::string object, double abscissa) {
 
 PointTarget PointTarget::fromParams(const Params& p) {
   const bool has_target = p.has("target");
-  const bool has_path = p.has("path");
+  const bool has_path = p.has({"path", "s, m"});
   if (has_target && has_path) p.fail("path", "either 'target' or 'path', not both");
   if (has_path) return scripted(geometry::ScriptedPath::fromParams(p, "path"));
   if (!has_target) return PointTarget();
-  if (p.raw("target").is_object()) {
+  if (p.raw({"target", "m"}).is_object()) {
     const Params attach = p.object("target");
     PointTarget t = attached(attach.string("object"), attach.abscissa("abscissa"));
     if (t.object_.empty()) attach.fail("object", "the path of the node holding the target spline");
@@ -36,7 +36,7 @@ PointTarget PointTarget::fromParams(const Params& p) {
     attach.finish();
     return t;
   }
-  return fixed(p.vec3("target"));
+  return fixed(p.vec3({"target", "m"}));
 }
 
 void PointTarget::init(const Scene& scene, const Component& owner, const Vec3& start, const MechanicalState& own_body,

@@ -11,8 +11,6 @@
 namespace filum::constraints {
 
 void register_components(Factory& factory) {
-  // A sliding point's friction is viscous, F = −η t̂ (t̂·u), not Coulomb's μ (parameter_units.hpp).
-  factory.addUnits("SlidingPointConstraint", {{"friction", "N·s/m"}});
   factory.add("FixedPointConstraint",
               "holds the curve point at an abscissa on a fixed, scripted or attached target (3 rows)",
               [](const Params& p) { return FixedPointConstraint::fromParams(p); });

@@ -16,7 +16,7 @@ SlidingPointConstraint::SlidingPointConstraint(double abscissa, PointTarget targ
 
 std::unique_ptr<SlidingPointConstraint> SlidingPointConstraint::fromParams(const Params& p) {
   const double s = p.abscissa("abscissa");
-  const double friction = p.nonNegative("friction", 0.0);
+  const double friction = p.nonNegative({"friction", "N·s/m"}, 0.0);
   auto c = std::make_unique<SlidingPointConstraint>(s, PointTarget::fromParams(p), friction, Baumgarte::fromParams(p));
   readReleaseTime(p, *c);
   return c;

@@ -50,7 +50,7 @@ std::unique_ptr<SplineJunctionConstraint> SplineJunctionConstraint::fromParams(c
     continuity = c.get<int>();
   }
   std::optional<double> ratio;
-  if (p.has("ratio")) ratio = p.positive("ratio");
+  if (p.has("ratio")) ratio = p.positive({"ratio", "1"});
   auto junction = std::make_unique<SplineJunctionConstraint>(other, s1, s2, continuity, ratio, Baumgarte::fromParams(p));
   junction->other_where_ = p.where("other");
   readReleaseTime(p, *junction);

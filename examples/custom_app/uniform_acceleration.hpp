@@ -18,7 +18,7 @@ class UniformAcceleration final : public filum::ForceField {
   explicit UniformAcceleration(const filum::Vec3& acceleration) : acceleration_(acceleration) {}
   /// Scene-file form: {"type": "UniformAcceleration", "acceleration": [ax, ay, az]}.
   static std::unique_ptr<UniformAcceleration> fromParams(const filum::Params& p) {
-    return std::make_unique<UniformAcceleration>(p.vec3("acceleration"));
+    return std::make_unique<UniformAcceleration>(p.vec3({"acceleration", "m/s²"}));
   }
 
   std::string typeName() const override { return "UniformAcceleration"; }

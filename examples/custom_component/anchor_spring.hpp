@@ -4,13 +4,15 @@
 //   energy     E = ½ k |P(s) − A|²
 //   force      F = −k (P(s) − A) on the material point, i.e. Q_j = b_j(s) F on control point j
 //   Jacobian   ∂Q_i/∂q_j = −k b_i(s) b_j(s) I₃ (constant), ∂Q/∂q̇ = 0
+// The point is a filum::BodyPoint, the mapping of one point of the body: P(s) goes down through
+// it (map) and F goes up through it (addForce, its applyJT), as every force at a point does.
 #pragma once
 
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "filum/core/curve_body.hpp"
+#include "filum/core/body_point.hpp"
 #include "filum/core/force_field.hpp"
 #include "filum/core/mechanical_state.hpp"
 #include "filum/core/params.hpp"
@@ -26,32 +28,26 @@ class AnchorSpring final : public filum::ForceField {
   /// Scene-file form: {"type": "AnchorSpring", "stiffness": k, "abscissa": s, "anchor": [x, y, z]}.
   /// Throws filum::SceneError naming the file, the JSON path and the value at fault.
   static std::unique_ptr<AnchorSpring> fromParams(const filum::Params& p) {
-    return std::make_unique<AnchorSpring>(p.positive("stiffness"), p.abscissa("abscissa"), p.vec3("anchor"));
+    return std::make_unique<AnchorSpring>(p.positive({"stiffness", "N/m"}), p.abscissa("abscissa"), p.vec3({"anchor", "m"}));
   }
 
   std::string typeName() const override { return "AnchorSpring"; }
 
   void addForce(const filum::SceneState& s, filum::VecX& B) const override {
-    const filum::Vec3 force = -stiffness_ * (curve_->position(s.q, abscissa_) - anchor_);
-    filum::BasisRow row;  // on the stack: no allocation in a step
-    curve_->row(abscissa_, row);
-    const int first = body().offset() + row.first;  // the scene's global point numbering
-    for (int j = 0; j < row.count; ++j) B.segment<3>(3 * (first + j)) += row.value[j] * force;
+    point_.addForce(-stiffness_ * (point_.map(s.q) - anchor_), B);  // Q_j += b_j(s) F
   }
 
   double potentialEnergy(const filum::SceneState& s) const override {
-    return 0.5 * stiffness_ * (curve_->position(s.q, abscissa_) - anchor_).squaredNorm();
+    return 0.5 * stiffness_ * (point_.map(s.q) - anchor_).squaredNorm();
   }
 
-  /// Adds k_factor·K (D = 0): the blocks −k b_i b_j I₃ over the support of the row at s.
+  /// Adds k_factor·K (D = 0): the blocks −k b_i b_j I₃ over the point's mapping row (global
+  /// point numbers and weights b_j(s)).
   void addJacobian(const filum::SceneState&, double k_factor, double /*d_factor*/,
                    filum::JacobianAccumulator& out) const override {
-    filum::BasisRow row;
-    curve_->row(abscissa_, row);
-    const int first = body().offset() + row.first;
-    for (int i = 0; i < row.count; ++i)
-      for (int j = 0; j < row.count; ++j)
-        out.addIsotropic(first + i, first + j, -k_factor * stiffness_ * row.value[i] * row.value[j]);
+    point_.forEachWeight([&](int i, double b_i) {
+      point_.forEachWeight([&](int j, double b_j) { out.addIsotropic(i, j, -k_factor * stiffness_ * b_i * b_j); });
+    });
   }
   bool hasJacobian() const override { return true; }
   bool jacobianIsConstant() const override { return true; }
@@ -63,19 +59,20 @@ class AnchorSpring final : public filum::ForceField {
 
   /// The spring's tension k |P(s) − A| (N) at state s.
   double tension(const filum::SceneState& s) const {
-    return stiffness_ * (curve_->position(s.q, abscissa_) - anchor_).norm();
+    return stiffness_ * (point_.map(s.q) - anchor_).norm();
   }
 
  private:
-  /// The body is bound by the scene before init: check that it is a curve.
+  /// The body is bound by the scene before init: check that it is a curve, and hold the point.
   void init(const filum::Scene&) override {
-    curve_ = body().curve();
-    if (!curve_) throw filum::SceneError(origin(), "a curve body for " + describe(), body().describe());
+    const filum::CurveBody* curve = body().curve();
+    if (!curve) throw filum::SceneError(origin(), "a curve body for " + describe(), body().describe());
+    point_.attach(*curve, abscissa_);
   }
 
   double stiffness_, abscissa_;
   filum::Vec3 anchor_;
-  const filum::CurveBody* curve_ = nullptr;
+  filum::BodyPoint point_;  // P(s) on the body (its weights follow a refinement of the body)
 };
 
 }  // namespace custom_component

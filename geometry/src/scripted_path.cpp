@@ -17,11 +17,11 @@ ScriptedPath ScriptedPath::fromParams(const Params& p, const std::string& key) {
   const std::vector<Params> items = p.objects(key);
   if (items.empty()) p.fail(key, "at least one keyframe {\"time\": t, \"position\": [x, y, z]}");
   for (const Params& item : items) {
-    const double time = item.number("time");
+    const double time = item.number({"time", "s"});
     if (time < 0.0) item.fail("time", "a time >= 0 (s)");
     if (!keyframes.empty() && !(time > keyframes.back().time))
       item.fail("time", "a time later than the previous keyframe's (" + describeJson(keyframes.back().time) + " s)");
-    keyframes.push_back({time, item.vec3("position")});
+    keyframes.push_back({time, item.vec3({"position", "m"})});
     item.finish();
   }
   Interpolation interpolation = Interpolation::kLinear;

@@ -160,8 +160,8 @@ int VesselTree::branchIndex(const std::string& name) const {
 
 VesselTree VesselTree::fromParams(const Params& p) {
   const double scale = meshScale(p);  // "units" (and "scale"): metres per unit of the points
-  const double blend = scale * p.nonNegative("blend", 0.0);
-  const nlohmann::json& list = p.raw("branches");
+  const double blend = scale * p.nonNegative({"blend", "as units"}, 0.0);
+  const nlohmann::json& list = p.raw({"branches", "as units"});
   if (!list.is_array() || list.empty())
     p.fail("branches", "a non-empty list of branches {\"name\", \"points\": [[x, y, z, r], ...], \"open\"}");
   if (list.size() > static_cast<std::size_t>(kMaxBranches))
@@ -173,7 +173,7 @@ VesselTree VesselTree::fromParams(const Params& p) {
   for (const Params& item : items) {
     Branch branch;
     branch.name = item.string("name", "branch " + std::to_string(branches.size()));
-    const nlohmann::json& points = item.raw("points");
+    const nlohmann::json& points = item.raw({"points", "as units"});
     if (!points.is_array() || points.size() < 2)
       item.fail("points", "a list of at least 2 centre points [x, y, z, r]");
     total += static_cast<long>(points.size());

@@ -34,8 +34,8 @@ CouplingGains couplingFromParams(const Params& p, const DeviceLimits& limits, co
                                  double period) {
   const CouplingGains defaults = defaultCoupling(limits, frame, period);
   CouplingGains g;
-  g.stiffness = p.positive("stiffness", defaults.stiffness);
-  g.damping = p.nonNegative("damping", defaults.damping);
+  g.stiffness = p.positive({"stiffness", "N/m"}, defaults.stiffness);
+  g.damping = p.nonNegative({"damping", "N·s/m"}, defaults.damping);
   const double felt = frame.force_scale * frame.scale;
   const double K = felt * g.stiffness, B = felt * g.damping;
   if (K > limits.max_stiffness)

@@ -19,8 +19,8 @@ std::unique_ptr<HapticDevice> makeDevice(const Params& p, const DeviceLimits& li
     HandModel hand;
     if (p.has("hand")) {
       const Params h = p.object("hand");
-      hand.stiffness = h.nonNegative("stiffness", hand.stiffness);
-      hand.damping = h.nonNegative("damping", hand.damping);
+      hand.stiffness = h.nonNegative({"stiffness", "N/m"}, hand.stiffness);
+      hand.damping = h.nonNegative({"damping", "N·s/m"}, hand.damping);
       h.finish();
     }
     return std::make_unique<SimulatedDevice>(StylusScript::fromParams(p), limits, hand);

@@ -36,7 +36,7 @@ Eigen::Matrix3d rotationFromRows(const Params& p, const nlohmann::json& rows) {
 DeviceFrame deviceFrameFromParams(const Params& p) {
   DeviceFrame f;
   if (p.has("rotation")) {
-    const nlohmann::json& r = p.raw("rotation");
+    const nlohmann::json& r = p.raw({"rotation", "1"});
     if (r.is_string()) {
       if (r.get<std::string>() != "y_up") p.fail("rotation", "3 rows of 3 numbers, or \"y_up\"");
       f.rotation << 1, 0, 0, 0, 0, -1, 0, 1, 0;
@@ -44,9 +44,9 @@ DeviceFrame deviceFrameFromParams(const Params& p) {
       f.rotation = rotationFromRows(p, r);
     }
   }
-  f.scale = p.positive("scale", f.scale);
-  f.offset = p.vec3("offset", f.offset);
-  f.force_scale = p.positive("force_scale", f.force_scale);
+  f.scale = p.positive({"scale", "1"}, f.scale);
+  f.offset = p.vec3({"offset", "m"}, f.offset);
+  f.force_scale = p.positive({"force_scale", "1"}, f.force_scale);
   return f;
 }
 

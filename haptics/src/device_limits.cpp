@@ -25,15 +25,15 @@ std::string devicePresetNames() { return "Touch, Omni, Premium"; }
 
 DeviceLimits limitsFromParams(const Params& p, DeviceLimits base) {
   DeviceLimits l = base;
-  l.peak_force = p.positive("peak_force", l.peak_force);
-  l.continuous_force = p.positive("continuous_force", l.continuous_force);
-  l.continuous_window = p.positive("continuous_window", l.continuous_window);
-  l.max_stiffness = p.positive("max_stiffness", l.max_stiffness);
-  l.damping = p.positive("damping", l.damping);
-  l.stylus_mass = p.positive("stylus_mass", l.stylus_mass);
-  l.slew_rate = p.positive("slew_rate", l.slew_rate);
-  l.workspace_min = p.vec3("workspace_min", l.workspace_min);
-  l.workspace_max = p.vec3("workspace_max", l.workspace_max);
+  l.peak_force = p.positive({"peak_force", "N"}, l.peak_force);
+  l.continuous_force = p.positive({"continuous_force", "N"}, l.continuous_force);
+  l.continuous_window = p.positive({"continuous_window", "s"}, l.continuous_window);
+  l.max_stiffness = p.positive({"max_stiffness", "N/m"}, l.max_stiffness);
+  l.damping = p.positive({"damping", "N·s/m"}, l.damping);
+  l.stylus_mass = p.positive({"stylus_mass", "kg"}, l.stylus_mass);
+  l.slew_rate = p.positive({"slew_rate", "N/s"}, l.slew_rate);
+  l.workspace_min = p.vec3({"workspace_min", "m"}, l.workspace_min);
+  l.workspace_max = p.vec3({"workspace_max", "m"}, l.workspace_max);
   if (l.continuous_force > l.peak_force)
     p.fail("continuous_force", "a continuous force at most the peak force (" + std::to_string(l.peak_force) + " N)");
   if ((l.workspace_max - l.workspace_min).minCoeff() <= 0.0)

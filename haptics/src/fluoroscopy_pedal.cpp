@@ -11,7 +11,7 @@ std::unique_ptr<FluoroscopyPedal> FluoroscopyPedal::fromScene(const nlohmann::js
   if (!document.is_object() || !document.contains("fluoroscopy")) return nullptr;
   const Params p = Params(document, source, "").object("fluoroscopy").withOwner("fluoroscopy");
   if (!p.has("on")) return std::make_unique<FluoroscopyPedal>();
-  const nlohmann::json& list = p.raw("on");
+  const nlohmann::json& list = p.raw({"on", "s"});
   // Limits before anything is kept: a pedal pressed more than 10000 times is not a training run.
   if (!list.is_array() || list.size() > 10000)
     p.fail("on", "a list of at most 10000 spans [t0, t1] (s) over which the pedal is pressed", describeJson(list));

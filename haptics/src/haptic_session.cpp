@@ -44,7 +44,7 @@ DeviceLimits readLimits(const Params& p, const Params& device) {
 /// "rate", "frame", "watchdog" and "fade".
 ServoSettings readServoSettings(const Params& p) {
   ServoSettings settings;
-  settings.rate = p.positive("rate", 1000.0);
+  settings.rate = p.positive({"rate", "Hz"}, 1000.0);
   if (settings.rate < kMinServoRate || settings.rate > kMaxServoRate)
     p.fail("rate", "a servo rate in [100, 10000] Hz (below 100 Hz a stiff coupling buzzes; 1 kHz is a Phantom's)");
   if (p.has("frame")) {
@@ -52,8 +52,8 @@ ServoSettings readServoSettings(const Params& p) {
     settings.frame = deviceFrameFromParams(f);
     f.finish();
   }
-  settings.safety.watchdog = p.positive("watchdog", settings.safety.watchdog);
-  settings.safety.fade = p.positive("fade", settings.safety.fade);
+  settings.safety.watchdog = p.positive({"watchdog", "s"}, settings.safety.watchdog);
+  settings.safety.fade = p.positive({"fade", "s"}, settings.safety.fade);
   return settings;
 }
 
@@ -140,11 +140,11 @@ void HapticSession::readTool(const Params& tool, const Scene& scene) {
   tool_->grasp_stiffness = coupling_.stiffness;
   tool_->grasp_damping = coupling_.damping;
   if (type == "Grasper") {
-    tool_->radius = tool.positive("radius", 1e-3);
-    capture_ = tool.positive("capture", 3.0 * tool_->radius);
+    tool_->radius = tool.positive({"radius", "m"}, 1e-3);
+    capture_ = tool.positive({"capture", "m"}, 3.0 * tool_->radius);
     button_mask_ = 1u << (tool.integer("button", 1, 16, 1, "a button of the stylus, 1 to 16") - 1);
     tool_->touching = tool.boolean("push", true);
-    tool_->push_stiffness = tool.positive("push_stiffness", coupling_.stiffness);
+    tool_->push_stiffness = tool.positive({"push_stiffness", "N/m"}, coupling_.stiffness);
   } else if (type == "Attachment") {
     grasper_ = false;
     attach_object_ = tool.string("object");

@@ -33,20 +33,20 @@ InstrumentSettings InstrumentSettings::fromParams(const Params& p) {
   } else {
     p.fail("type", "\"Grasper\", \"Scissors\", \"BipolarForceps\" or \"NeedleHolder\"", "\"" + type + "\"");
   }
-  s.shape.shaft_length = p.positive("shaft_length", s.shape.shaft_length);
-  s.shape.shaft_radius = p.positive("shaft_radius", s.shape.shaft_radius);
-  s.shape.jaw_length = p.positive("jaw_length", s.shape.jaw_length);
-  s.shape.jaw_radius = p.positive("jaw_radius", s.shape.jaw_radius);
-  s.shape.max_angle = p.positive("max_angle", s.shape.max_angle);
+  s.shape.shaft_length = p.positive({"shaft_length", "m"}, s.shape.shaft_length);
+  s.shape.shaft_radius = p.positive({"shaft_radius", "m"}, s.shape.shaft_radius);
+  s.shape.jaw_length = p.positive({"jaw_length", "m"}, s.shape.jaw_length);
+  s.shape.jaw_radius = p.positive({"jaw_radius", "m"}, s.shape.jaw_radius);
+  s.shape.max_angle = p.positive({"max_angle", "rad"}, s.shape.max_angle);
   // Jaws wider than a straight angle would fold back onto the shaft.
   if (s.shape.max_angle > M_PI) p.fail("max_angle", "an angle in (0, π] (rad) between the jaws fully open");
-  s.close_below = p.number("close_below", s.close_below);
+  s.close_below = p.number({"close_below", "1"}, s.close_below);
   if (!(s.close_below > 0.0 && s.close_below < 1.0)) p.fail("close_below", "an opening in (0, 1)");
-  s.holding_force = p.positive("holding_force", s.holding_force);
-  s.grasp_stiffness = p.positive("grasp_stiffness", s.grasp_stiffness);
-  s.grasp_damping = p.nonNegative("grasp_damping", -1.0);
+  s.holding_force = p.positive({"holding_force", "N"}, s.holding_force);
+  s.grasp_stiffness = p.positive({"grasp_stiffness", "N/m"}, s.grasp_stiffness);
+  s.grasp_damping = p.nonNegative({"grasp_damping", "N·s/m"}, -1.0);
   if (!p.has("grasp_damping")) s.grasp_damping = -1.0;
-  s.coagulation_time = p.positive("coagulation_time", s.coagulation_time);
+  s.coagulation_time = p.positive({"coagulation_time", "s"}, s.coagulation_time);
   if (p.has("require_coagulation") && p.raw("require_coagulation").is_array()) {
     const nlohmann::json& list = p.raw("require_coagulation");
     for (std::size_t k = 0; k < list.size(); ++k) {
@@ -58,9 +58,9 @@ InstrumentSettings InstrumentSettings::fromParams(const Params& p) {
   } else {
     s.require_coagulation = p.boolean("require_coagulation", false);
   }
-  s.force_limit = p.positive("force_limit", s.force_limit);
+  s.force_limit = p.positive({"force_limit", "N"}, s.force_limit);
   s.collide = p.boolean("collide", true);
-  if (p.has("trocar")) s.trocar = p.vec3("trocar");
+  if (p.has("trocar")) s.trocar = p.vec3({"trocar", "m"});
   s.device = p.has("device");  // read by InstrumentSet (it builds the device)
   if (s.device && p.has("path")) p.fail("path", "a path or a device driving the instrument, not both", "both");
   if (!s.device) s.path = InstrumentPath::fromParams(p, "path", s.trocar ? &*s.trocar : nullptr);

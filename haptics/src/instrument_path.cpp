@@ -42,22 +42,22 @@ InstrumentPath InstrumentPath::fromParams(const Params& p, const std::string& ke
   double roll = 0.0, jaw = 0.0;
   for (const Params& item : items) {
     Keyframe k;
-    k.time = item.number("time");
+    k.time = item.number({"time", "s"});
     if (k.time < 0.0) item.fail("time", "a time >= 0 (s)");
     if (!keyframes.empty() && !(k.time > keyframes.back().time))
       item.fail("time", "a time later than the previous keyframe's (" + describeJson(keyframes.back().time) + " s)");
-    k.position = item.vec3("position");
+    k.position = item.vec3({"position", "m"});
     if (port) {
       if (item.has("direction"))
         item.fail("direction", "no direction with a trocar (the shaft runs from the port to the hinge)", "one");
       direction = k.position - *port;
       if (!(direction.norm() > 0.0)) item.fail("position", "a hinge away from the trocar's port");
     } else if (keyframes.empty() || item.has("direction")) {
-      direction = item.vec3("direction");
+      direction = item.vec3({"direction", "1"});
       if (!(direction.norm() > 0.0)) item.fail("direction", "a non-zero vector (the shaft's axis towards the tip)");
     }
-    roll = item.number("roll", roll);
-    jaw = item.number("jaw", jaw);
+    roll = item.number({"roll", "rad"}, roll);
+    jaw = item.number({"jaw", "1"}, jaw);
     if (!(jaw >= 0.0 && jaw <= 1.0)) item.fail("jaw", "an opening in [0, 1] (0: closed, 1: fully open)");
     k.rotation = Eigen::Quaterniond(instrumentFrame(direction, roll));
     // The shorter way round from the previous keyframe's rotation (q and −q are one rotation).

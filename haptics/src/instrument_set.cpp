@@ -54,20 +54,20 @@ std::unique_ptr<InstrumentSet> InstrumentSet::fromScene(const nlohmann::json& do
   std::unique_ptr<InstrumentSet> set(new InstrumentSet());
   if (top.has("metrics")) {
     const Params m = top.object("metrics").withOwner("metrics");
-    set->metrics_ = TraineeMetrics(m.positive("idle_speed", 5e-3));
+    set->metrics_ = TraineeMetrics(m.positive({"idle_speed", "m/s"}, 5e-3));
     if (m.has("specimen")) {
       const Params sp = m.object("specimen");
       set->specimen_ = curveAt(scene, sp, "body");
-      set->specimen_kept_end_ = sp.number("kept_end", 0.0);
+      set->specimen_kept_end_ = sp.number({"kept_end", "1"}, 0.0);
       if (set->specimen_kept_end_ != 0.0 && set->specimen_kept_end_ != 1.0)
-        sp.fail("kept_end", "0 or 1: the end of the body that stays in the patient", describeJson(sp.raw("kept_end")));
+        sp.fail("kept_end", "0 or 1: the end of the body that stays in the patient", describeJson(sp.raw({"kept_end", "1"})));
       sp.finish();
       set->metrics_.setRemovedLength(0.0);
     }
     if (m.has("inspection")) {
       const Params in = m.object("inspection");
       set->inspected_ = curveAt(scene, in, "body");
-      set->inspection_step_ = in.positive("max_step", 0.1);
+      set->inspection_step_ = in.positive({"max_step", "m"}, 0.1);
       in.finish();
       set->metrics_.setInspected(0.0, 0.0);
     }
@@ -112,10 +112,10 @@ std::unique_ptr<InstrumentSet> InstrumentSet::fromScene(const nlohmann::json& do
       const Params d = p.object("device").withOwner("instruments");
       Instrument& inst = *set->instruments_.back();
       set->devices_.back() = HapticSession::forInstrument(d, inst.hold(), duration);
-      const Vec3 direction = d.vec3("direction", Vec3(0, 0, -1));
+      const Vec3 direction = d.vec3({"direction", "1"}, Vec3(0, 0, -1));
       if (!(direction.norm() > 0.0)) d.fail("direction", "a non-zero vector (the shaft's axis towards the tip)");
       const unsigned button = 1u << (d.integer("button", 1, 16, 1, "a button of the stylus, 1 to 16") - 1);
-      inst.driveByDevice(instrumentFrame(direction, d.number("roll", 0.0)), button, d.positive("jaw_speed", 5.0));
+      inst.driveByDevice(instrumentFrame(direction, d.number({"roll", "rad"}, 0.0)), button, d.positive({"jaw_speed", "1/s"}, 5.0));
       d.finish();
     }
   }

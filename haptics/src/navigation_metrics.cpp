@@ -77,7 +77,7 @@ std::unique_ptr<NavigationMetrics> NavigationMetrics::fromScene(const nlohmann::
   if (metrics->lumen_index_ < 0)
     p.fail("vessels", "a lumen the scene's ContactPipeline touches (the wall force is measured on its contacts)",
            "\"" + p.string("vessels") + "\" without a \"collision\": {\"type\": \"ContactPipeline\"} block");
-  if (p.has("target")) metrics->target_ = p.vec3("target");
+  if (p.has("target")) metrics->target_ = p.vec3({"target", "m"});
   if (p.has("target_branch")) {
     const std::string branch = p.string("target_branch");
     metrics->target_branch_ = metrics->lumen_->tree().branchIndex(branch);
@@ -88,7 +88,7 @@ std::unique_ptr<NavigationMetrics> NavigationMetrics::fromScene(const nlohmann::
       p.fail("target_branch", "a branch of the vessel tree (" + known + ")", "\"" + branch + "\"");
     }
   }
-  metrics->force_limit_ = p.positive("force_limit", 0.5);
+  metrics->force_limit_ = p.positive({"force_limit", "N"}, 0.5);
   p.finish();
   return metrics;
 }

@@ -75,10 +75,10 @@ Rows readWaypoints(const Params& p) {
   if (static_cast<int>(items.size()) > kMaxWaypoints)
     p.fail("waypoints", "at most " + std::to_string(kMaxWaypoints) + " waypoints");
   for (const Params& item : items) {
-    const double t = item.number("time");
+    const double t = item.number({"time", "s"});
     if (t < 0.0 || (!rows.keyframes.empty() && !(t > rows.keyframes.back().time)))
       item.fail("time", "a time >= 0 (s) later than the previous waypoint's");
-    rows.keyframes.push_back({t, item.vec3("position")});
+    rows.keyframes.push_back({t, item.vec3({"position", "m"})});
     rows.buttons.push_back(static_cast<unsigned>(item.integer("buttons", 0, 0xffff, 0, "a button mask")));
     item.finish();
   }

@@ -15,16 +15,16 @@ namespace filum::mechanics {
 std::unique_ptr<AdaptiveRefinement> AdaptiveRefinement::fromParams(const Params& p) {
   Settings s;
   s.every = p.integer("every", 1, 1000000, 10, "steps between plans");
-  s.refine_angle = p.positive("refine_angle", s.refine_angle);
+  s.refine_angle = p.positive({"refine_angle", "rad"}, s.refine_angle);
   if (s.refine_angle > M_PI) p.fail("refine_angle", "a turning angle in (0, π] rad", std::to_string(s.refine_angle));
-  s.coarsen_angle = p.nonNegative("coarsen_angle", std::min(s.coarsen_angle, s.refine_angle / 4.0));
+  s.coarsen_angle = p.nonNegative({"coarsen_angle", "rad"}, std::min(s.coarsen_angle, s.refine_angle / 4.0));
   if (s.coarsen_angle > s.refine_angle / 4.0)
     p.fail("coarsen_angle",
            "at most refine_angle / 4 = " + std::to_string(s.refine_angle / 4.0) +
                " rad (the halves of a span just split must not be merged again)",
            std::to_string(s.coarsen_angle));
-  s.min_span = p.nonNegative("min_span", 0.0);
-  s.tolerance = p.positive("tolerance", s.tolerance);
+  s.min_span = p.nonNegative({"min_span", "m"}, 0.0);
+  s.tolerance = p.positive({"tolerance", "m"}, s.tolerance);
   s.max_points = p.integer("max_points", 4, kMaxControlPoints, 0, "a body's control points at most (dynamic_spline.hpp)");
   s.min_points = p.integer("min_points", 4, kMaxControlPoints, 0, "a body's control points at most (dynamic_spline.hpp)");
   if (s.max_points > 0 && s.min_points > s.max_points)

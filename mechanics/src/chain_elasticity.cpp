@@ -14,19 +14,19 @@ namespace {
 
 /// E, ν and the rest curvature of `p` over `base` (what it leaves out stays as in base).
 ChainElasticity::Span spanFromParams(const Params& p, ChainElasticity::Span base) {
-  base.youngs_modulus = p.has("youngs_modulus") || base.youngs_modulus == 0.0 ? p.positive("youngs_modulus")
+  base.youngs_modulus = p.has("youngs_modulus") || base.youngs_modulus == 0.0 ? p.positive({"youngs_modulus", "Pa"})
                                                                                : base.youngs_modulus;
-  base.poisson_ratio = p.nonNegative("poisson_ratio", base.poisson_ratio);
+  base.poisson_ratio = p.nonNegative({"poisson_ratio", "1"}, base.poisson_ratio);
   if (base.poisson_ratio > 0.5)
     p.fail("poisson_ratio", "a Poisson ratio in [0, 0.5]", std::to_string(base.poisson_ratio));
   if (p.has("rest_curvature")) {
-    const nlohmann::json& k = p.raw("rest_curvature");
+    const nlohmann::json& k = p.raw({"rest_curvature", "rad/m"});
     if (!k.is_array() || k.size() != 2 || !k[0].is_number() || !k[1].is_number() ||
         !std::isfinite(k[0].get<double>()) || !std::isfinite(k[1].get<double>()))
       p.fail("rest_curvature", "[κ1, κ2]: two finite numbers (rad/m, about d1 and d2)", k.dump());
     base.rest_curvature.head<2>() = Eigen::Vector2d(k[0].get<double>(), k[1].get<double>());
   }
-  base.rest_curvature.z() = p.number("rest_twist", base.rest_curvature.z());
+  base.rest_curvature.z() = p.number({"rest_twist", "rad/m"}, base.rest_curvature.z());
   return base;
 }
 

@@ -69,7 +69,7 @@ void densityHessian(double beta, const Vec3& x, const Vec3& y, std::array<double
 }  // namespace
 
 std::unique_ptr<CurvatureBending> CurvatureBending::fromParams(const Params& p) {
-  return std::make_unique<CurvatureBending>(p.positive("youngs_modulus"),
+  return std::make_unique<CurvatureBending>(p.positive({"youngs_modulus", "Pa"}),
                                             p.has("quadrature_nodes") ? p.integer("quadrature_nodes", 1) : 0);
 }
 

@@ -222,7 +222,7 @@ std::unique_ptr<CurveBasis> makeBasis(const Params& p, const std::string& key, i
     spec.degree = p.integer("degree", 2, 5, 3, "a NUBS of degree 2 to 5");
     spec.clamped = p.boolean("clamped", true);
     if (p.has("knots")) {
-      const nlohmann::json& knots = p.raw("knots");
+      const nlohmann::json& knots = p.raw({"knots", "1"});
       if (!knots.is_array() || knots.size() != static_cast<std::size_t>(control_points + spec.degree + 1))
         p.fail("knots", "a list of n + degree + 1 = " + std::to_string(control_points + spec.degree + 1) +
                             " non-decreasing knots", describeJson(knots));
@@ -256,23 +256,23 @@ void checkCoordinates(const Params& p, const std::string& key, const Vec3& x) {
 }
 
 Points controlPointList(const Params& p) {
-  const Points q = p.points("control_points", 1, kMaxControlPoints, kControlPointLimit);
+  const Points q = p.points({"control_points", "m"}, 1, kMaxControlPoints, kControlPointLimit);
   for (Eigen::Index i = 0; i < q.rows(); ++i)
     if (q.row(i).cwiseAbs().maxCoeff() > kMaxCoordinate)
       p.fail("control_points", "control points within ±1e6 m of the origin (dynamic_spline.hpp: scenes are in metres; "
                                "beyond, squared lengths and energies approach overflow)",
-             "point " + std::to_string(i) + " at " + describeJson(p.raw("control_points")[i]));
+             "point " + std::to_string(i) + " at " + describeJson(p.raw({"control_points", "m"})[i]));
   return q;
 }
 
 // "velocities": one per control point, each component within ±kMaxSpeed.
 Points velocityList(const Params& p, int count) {
-  const Points v = p.points("velocities", count, count,
+  const Points v = p.points({"velocities", "m/s"}, count, count,
                             "dynamic_spline.hpp: one velocity per control point, " + std::to_string(count) + " here");
   for (Eigen::Index i = 0; i < v.rows(); ++i)
     if (v.row(i).cwiseAbs().maxCoeff() > kMaxSpeed)
       p.fail("velocities", "velocities within ±1e6 m/s (dynamic_spline.hpp: beyond, kinetic energies approach overflow)",
-             "velocity " + std::to_string(i) + " " + describeJson(p.raw("velocities")[i]));
+             "velocity " + std::to_string(i) + " " + describeJson(p.raw({"velocities", "m/s"})[i]));
   return v;
 }
 
@@ -283,9 +283,9 @@ std::unique_ptr<DynamicSpline> build(const Params& p, std::unique_ptr<CurveBasis
   try {
     return std::make_unique<DynamicSpline>(std::move(basis), std::move(q), mass, radius);
   } catch (const std::runtime_error& e) {
-    p.fail(p.has("mass") ? "mass" : "density",
+    p.fail(p.has({"mass", "kg"}) ? "mass" : "density",
            "a mass whose matrix M = m ∫ b_i b_j ds is positive definite in double precision",
-           describeJson(p.raw(p.has("mass") ? "mass" : "density")) + ", total mass " + describeJson(mass) +
+           describeJson(p.raw(p.has({"mass", "kg"}) ? "mass" : "density")) + ", total mass " + describeJson(mass) +
                " kg (" + e.what() + ")");
   }
 }
@@ -306,8 +306,8 @@ Points straightThread(const Params& line, const CurveBasis& basis, int n) {
   //    P(0) = q_1 = from to P(1) = q_{n−2} = to;
   //  - NUBS: q_i at the Greville abscissae ξ_i = (t_{i+1} + ... + t_{i+d})/d mapped to [0, 1]
   //    (a B-spline reproduces a linear function from its Greville points: P(s) = from + s (to − from)).
-  const Vec3 from = line.vec3("from");
-  const Vec3 to = line.vec3("to");
+  const Vec3 from = line.vec3({"from", "m"});
+  const Vec3 to = line.vec3({"to", "m"});
   checkCoordinates(line, "from", from);
   checkCoordinates(line, "to", to);
   if ((to - from).norm() == 0.0) line.fail("to", "a point different from 'from' (a thread of non-zero length)");
@@ -332,20 +332,20 @@ Points straightThread(const Params& line, const CurveBasis& basis, int n) {
 }  // namespace
 
 double massFromParams(const Params& p, double radius, double length) {
-  if (p.has("mass") && p.has("density")) p.fail("density", "either 'mass' or 'density', not both");
-  if (p.has("mass")) return p.positive("mass");
-  if (!p.has("density")) p.fail("mass", "the body's 'mass' (kg) or its 'density' (kg/m³)");
-  const double mass = p.positive("density") * std::numbers::pi * radius * radius * length;
+  if (p.has({"mass", "kg"}) && p.has({"density", "kg/m³"})) p.fail("density", "either 'mass' or 'density', not both");
+  if (p.has({"mass", "kg"})) return p.positive({"mass", "kg"});
+  if (!p.has({"density", "kg/m³"})) p.fail("mass", "the body's 'mass' (kg) or its 'density' (kg/m³)");
+  const double mass = p.positive({"density", "kg/m³"}) * std::numbers::pi * radius * radius * length;
   if (!(mass > 0.0) || !std::isfinite(mass))
     p.fail("density", "a density giving a positive, finite mass (ρ π r² L)",
-           describeJson(p.raw("density")) + ", mass " + describeJson(mass) + " kg");
+           describeJson(p.raw({"density", "kg/m³"})) + ", mass " + describeJson(mass) + " kg");
   return mass;
 }
 
 std::unique_ptr<DynamicSpline> DynamicSpline::fromParams(const Params& p) {
   Points q;
   std::unique_ptr<CurveBasis> basis;
-  if (p.has("control_points") && p.raw("control_points").is_object()) {
+  if (p.has("control_points") && p.raw({"control_points", "m"}).is_object()) {
     const Params line = p.object("control_points");
     const int n = straightThreadCount(p, line);
     basis = makeBasis(p, "basis", n);
@@ -354,7 +354,7 @@ std::unique_ptr<DynamicSpline> DynamicSpline::fromParams(const Params& p) {
     q = controlPointList(p);
     basis = makeBasis(p, "basis", static_cast<int>(q.rows()));
   }
-  const double radius = p.positive("radius", 1e-4);
+  const double radius = p.positive({"radius", "m"}, 1e-4);
   const double length = arcLength(*basis, q);
   if (!(length > 0.0) || !std::isfinite(length))
     p.fail("control_points", "control points that span a curve of finite, non-zero length",

@@ -8,8 +8,8 @@ namespace filum::mechanics {
 
 ElasticParameters ElasticParameters::fromParams(const Params& p) {
   ElasticParameters e;
-  e.youngs_modulus = p.positive("youngs_modulus");
-  if (p.has("rest_length")) e.rest_length = p.positive("rest_length");
+  e.youngs_modulus = p.positive({"youngs_modulus", "Pa"});
+  if (p.has("rest_length")) e.rest_length = p.positive({"rest_length", "m"});
   if (p.has("quadrature_nodes")) e.quadrature_nodes = p.integer("quadrature_nodes", 1);
   return e;
 }

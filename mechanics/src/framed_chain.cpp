@@ -88,16 +88,16 @@ FramedChain::FramedChain(Points nodes, double radius, std::vector<Section> secti
 
 std::unique_ptr<FramedChain> FramedChain::fromParams(const Params& p) {
   Points nodes;
-  if (p.has("nodes") && p.raw("nodes").is_object()) {
+  if (p.has("nodes") && p.raw({"nodes", "m"}).is_object()) {
     const Params line = p.object("nodes");
-    const Vec3 from = line.vec3("from"), to = line.vec3("to");
+    const Vec3 from = line.vec3({"from", "m"}), to = line.vec3({"to", "m"});
     const int n = line.integer("count", 2, kMaxControlPoints, "framed_chain.hpp: as many nodes as a spline's points");
     if ((to - from).norm() == 0.0) line.fail("to", "a point different from 'from' (a chain of non-zero length)");
     line.finish();
     nodes.resize(n, 3);
     for (int i = 0; i < n; ++i) nodes.row(i) = (from + (to - from) * (double(i) / (n - 1))).transpose();
   } else {
-    nodes = p.points("nodes", 2, kMaxControlPoints, "framed_chain.hpp: as many nodes as a spline's points");
+    nodes = p.points({"nodes", "m"}, 2, kMaxControlPoints, "framed_chain.hpp: as many nodes as a spline's points");
   }
   for (Eigen::Index i = 0; i < nodes.rows(); ++i) {
     if (nodes.row(i).cwiseAbs().maxCoeff() > kMaxCoordinate)
@@ -105,21 +105,21 @@ std::unique_ptr<FramedChain> FramedChain::fromParams(const Params& p) {
     if (i > 0 && (nodes.row(i) - nodes.row(i - 1)).norm() == 0.0)
       p.fail("nodes", "distinct consecutive nodes (segments of non-zero length)", "node " + std::to_string(i) + " repeats node " + std::to_string(i - 1));
   }
-  const double radius = p.positive("radius", 1e-3);
+  const double radius = p.positive({"radius", "m"}, 1e-3);
   double length = 0.0;
   for (Eigen::Index i = 1; i < nodes.rows(); ++i) length += (nodes.row(i) - nodes.row(i - 1)).norm();
   std::unique_ptr<FramedChain> chain;
   if (!p.has("spans")) {
     chain = std::make_unique<FramedChain>(std::move(nodes), radius, massFromParams(p, radius, length));
   } else {
-    if (p.has("mass")) p.fail("mass", "a 'density' (kg/m³) with 'spans' (each span may change it), not a total mass");
-    const double density = p.positive("density");
+    if (p.has({"mass", "kg"})) p.fail("mass", "a 'density' (kg/m³) with 'spans' (each span may change it), not a total mass");
+    const double density = p.positive({"density", "kg/m³"});
     const std::vector<double> lengths = segmentLengths(nodes);
     std::vector<Section> sections(lengths.size(), {radius, density});
     for (const Params& span : p.objects("spans")) {
       const double from = span.abscissa("from"), to = span.abscissa("to");
       if (!(to > from)) span.fail("to", "an abscissa above 'from' (" + std::to_string(from) + ")", std::to_string(to));
-      const double r = span.positive("radius", radius), rho = span.positive("density", density);
+      const double r = span.positive({"radius", "m"}, radius), rho = span.positive({"density", "kg/m³"}, density);
       span.finish();
       double arc = 0.0;
       for (std::size_t i = 0; i < lengths.size(); arc += lengths[i], ++i)
@@ -129,7 +129,7 @@ std::unique_ptr<FramedChain> FramedChain::fromParams(const Params& p) {
   }
   if (p.has("angular_velocities"))
     chain->initial_angular_velocities_ =
-        p.points("angular_velocities", chain->segmentCount(), chain->segmentCount(), "framed_chain.hpp: one per segment");
+        p.points({"angular_velocities", "rad/s"}, chain->segmentCount(), chain->segmentCount(), "framed_chain.hpp: one per segment");
   return chain;
 }
 

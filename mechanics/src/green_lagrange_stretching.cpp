@@ -23,10 +23,10 @@ std::unique_ptr<GreenLagrangeStretching> GreenLagrangeStretching::fromParams(con
   const std::string jacobian = p.string("jacobian", "exact");
   if (jacobian != "exact" && jacobian != "definite") p.fail("jacobian", "\"exact\" or \"definite\"", "\"" + jacobian + "\"");
   auto field = std::make_unique<GreenLagrangeStretching>(ElasticParameters::fromParams(p), jacobian == "definite");
-  if (p.has("break_force") && p.has("tensile_strength"))
+  if (p.has({"break_force", "N"}) && p.has({"tensile_strength", "Pa"}))
     p.fail("tensile_strength", "either \"break_force\" (N) or \"tensile_strength\" (Pa), not both", "both");
-  if (p.has("break_force")) field->setBreakForce(p.positive("break_force"));
-  if (p.has("tensile_strength")) field->setTensileStrength(p.positive("tensile_strength"));
+  if (p.has({"break_force", "N"})) field->setBreakForce(p.positive({"break_force", "N"}));
+  if (p.has({"tensile_strength", "Pa"})) field->setTensileStrength(p.positive({"tensile_strength", "Pa"}));
   return field;
 }
 

@@ -18,9 +18,9 @@ NewtonSettings NewtonSettings::fromParams(const Params& p, const NewtonSettings&
   settings.linearized = solve == "linearized";
   settings.max_iterations = p.integer("newton_iterations", 1, settings.max_iterations);
   settings.max_halvings = p.has("max_halvings") ? p.integer("max_halvings", 0) : settings.max_halvings;
-  settings.tolerance = p.nonNegative("newton_tolerance", settings.tolerance);
+  settings.tolerance = p.nonNegative({"newton_tolerance", "1"}, settings.tolerance);
   if (settings.linearized) {
-    settings.linearization_tolerance = p.positive("linearization_tolerance", settings.linearization_tolerance);
+    settings.linearization_tolerance = p.positive({"linearization_tolerance", "1"}, settings.linearization_tolerance);
     settings.reuse_factorization = p.boolean("reuse_factorization", settings.reuse_factorization);
   } else {
     const std::string update = p.string("jacobian_update", "every_iteration");

@@ -11,10 +11,10 @@ PointLoad::PointLoad(double abscissa, std::vector<Keyframe> keyframes)
 std::unique_ptr<PointLoad> PointLoad::fromParams(const Params& p) {
   const double s = p.abscissa("abscissa");
   std::vector<Keyframe> keyframes;
-  if (p.has("path")) {
-    if (p.has("force") || p.has("torque")) p.fail("path", "either 'path' or a constant 'force'/'torque', not both");
-    for (const Params& key : p.objects("path")) {
-      Keyframe k{key.nonNegative("time", -1.0), key.vec3("force", Vec3::Zero()), key.vec3("torque", Vec3::Zero())};
+  if (p.has({"path", "s, N, N·m"})) {
+    if (p.has({"force", "N"}) || p.has({"torque", "N·m"})) p.fail("path", "either 'path' or a constant 'force'/'torque', not both");
+    for (const Params& key : p.objects({"path", "s, N, N·m"})) {
+      Keyframe k{key.nonNegative({"time", "s"}, -1.0), key.vec3({"force", "N"}, Vec3::Zero()), key.vec3({"torque", "N·m"}, Vec3::Zero())};
       if (k.time < 0.0) key.fail("time", "a time >= 0 (s)");
       if (!keyframes.empty() && k.time <= keyframes.back().time)
         key.fail("time", "a time later than the keyframe before (" + std::to_string(keyframes.back().time) + " s)",
@@ -24,11 +24,11 @@ std::unique_ptr<PointLoad> PointLoad::fromParams(const Params& p) {
     }
     if (keyframes.empty()) p.fail("path", "at least one keyframe {\"time\", \"force\", \"torque\"}", "an empty list");
   } else {
-    if (!p.has("force") && !p.has("torque")) p.fail("force", "a 'force' (N) or a 'torque' (N·m), or a 'path' of them");
-    keyframes.push_back({0.0, p.vec3("force", Vec3::Zero()), p.vec3("torque", Vec3::Zero())});
+    if (!p.has({"force", "N"}) && !p.has({"torque", "N·m"})) p.fail("force", "a 'force' (N) or a 'torque' (N·m), or a 'path' of them");
+    keyframes.push_back({0.0, p.vec3({"force", "N"}, Vec3::Zero()), p.vec3({"torque", "N·m"}, Vec3::Zero())});
   }
   for (const Keyframe& k : keyframes)
-    if (!k.force.allFinite() || !k.torque.allFinite()) p.fail(p.has("path") ? "path" : "force", "finite loads");
+    if (!k.force.allFinite() || !k.torque.allFinite()) p.fail(p.has({"path", "s, N, N·m"}) ? "path" : "force", "finite loads");
   return std::make_unique<PointLoad>(s, std::move(keyframes));
 }
 

@@ -14,7 +14,7 @@ std::unique_ptr<RayleighDamping> RayleighDamping::fromParams(const Params& p) {
   const std::string update = p.string("stiffness_update", "per_state");
   if (update != "per_state" && update != "per_step")
     p.fail("stiffness_update", "\"per_state\" or \"per_step\"", "\"" + update + "\"");
-  return std::make_unique<RayleighDamping>(p.nonNegative("stiffness_coefficient", 0.0), update == "per_step");
+  return std::make_unique<RayleighDamping>(p.nonNegative({"stiffness_coefficient", "s"}, 0.0), update == "per_step");
 }
 
 void RayleighDamping::init(const Scene& scene) {

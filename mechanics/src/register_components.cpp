@@ -23,15 +23,6 @@
 namespace filum::mechanics {
 
 void register_components(Factory& factory) {
-  // Units of the quantities whose key means another unit elsewhere (parameter_units.hpp).
-  factory.addUnits("FramedChain", {{"nodes", "m"}});
-  factory.addUnits("AdaptiveRefinement", {{"tolerance", "m"}});
-  factory.addUnits("SpringForceField", {{"damping", "N·s/m"}});
-  factory.addUnits("TissueAttachment", {{"stiffness", "N/m²"}, {"damping", "N·s/m²"}, {"from", "1"}, {"to", "1"},  // per metre of curve
-                                        {"root/from", "m"}, {"root/to", "m"}});
-  factory.addUnits("ViscousDamping", {{"coefficient", "1/s"}});  // Q = −γ M q̇
-  factory.addUnits("PointLoad", {{"path", "s, N, N·m"}});  // keyframes: time, force, torque
-  factory.addUnits("RodEndFrame", {{"path", "s, 1, rad"}});  // keyframes: time, direction, roll
   factory.add("DynamicSpline", "dynamic Lagrangian spline: control points as DOFs, banded mass (paper §3)",
               [](const Params& p) { return DynamicSpline::fromParams(p); });
   factory.add("FramedChain", "a discrete Cosserat rod: point masses with a material frame per segment (catheters, guidewires)",

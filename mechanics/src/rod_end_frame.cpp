@@ -13,12 +13,12 @@ namespace {
 /// "direction" (optional, normalized) and "roll" of p.
 RodEndFrame::Keyframe poseFromParams(const Params& p) {
   RodEndFrame::Keyframe k;
-  if (p.has("direction")) {
-    const Vec3 d = p.vec3("direction");
+  if (p.has({"direction", "1"})) {
+    const Vec3 d = p.vec3({"direction", "1"});
     if (!(d.norm() > 0.0)) p.fail("direction", "a non-zero direction");
     k.direction = d.normalized();
   }
-  k.roll = p.number("roll", 0.0);
+  k.roll = p.number({"roll", "rad"}, 0.0);
   return k;
 }
 
@@ -28,12 +28,12 @@ std::unique_ptr<RodEndFrame> RodEndFrame::fromParams(const Params& p) {
   const std::string end = p.string("end", "start");
   if (end != "start" && end != "end") p.fail("end", "\"start\" or \"end\"", "\"" + end + "\"");
   std::vector<Keyframe> keyframes;
-  if (p.has("path")) {
-    if (p.has("direction") || p.has("roll")) p.fail("path", "either a 'path' or a fixed 'direction'/'roll', not both");
-    for (const Params& key : p.objects("path")) {
+  if (p.has({"path", "s, 1, rad"})) {
+    if (p.has({"direction", "1"}) || p.has({"roll", "rad"})) p.fail("path", "either a 'path' or a fixed 'direction'/'roll', not both");
+    for (const Params& key : p.objects({"path", "s, 1, rad"})) {
       Keyframe k = poseFromParams(key);
       if (!key.has("time")) key.fail("time", "the keyframe's time (s)");
-      k.time = key.nonNegative("time", 0.0);
+      k.time = key.nonNegative({"time", "s"}, 0.0);
       if (!keyframes.empty() && k.time <= keyframes.back().time)
         key.fail("time", "a time later than the keyframe before (" + std::to_string(keyframes.back().time) + " s)",
                  std::to_string(k.time));

@@ -13,8 +13,8 @@ SpringForceField::SpringForceField(double stretch_stiffness, double bend_stiffne
     : stretch_stiffness_(stretch_stiffness), bend_stiffness_(bend_stiffness), damping_(damping), samples_(samples) {}
 
 std::unique_ptr<SpringForceField> SpringForceField::fromParams(const Params& p) {
-  return std::make_unique<SpringForceField>(p.positive("stretch_stiffness"), p.nonNegative("bend_stiffness", 0.0),
-                                            p.nonNegative("damping", 0.0), p.has("samples") ? p.integer("samples", 3, 100000, "spring end points along the curve; each step evaluates them all") : 0);
+  return std::make_unique<SpringForceField>(p.positive({"stretch_stiffness", "N/m"}), p.nonNegative({"bend_stiffness", "N/m"}, 0.0),
+                                            p.nonNegative({"damping", "N·s/m"}, 0.0), p.has("samples") ? p.integer("samples", 3, 100000, "spring end points along the curve; each step evaluates them all") : 0);
 }
 
 void SpringForceField::init(const Scene&) {

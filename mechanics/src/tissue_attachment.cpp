@@ -37,27 +37,27 @@ std::unique_ptr<TissueAttachment> TissueAttachment::fromParams(const Params& p) 
   s.to = p.has("to") ? p.abscissa("to") : 1.0;
   if (!(s.to > s.from)) p.fail("to", "an abscissa after 'from' (" + std::to_string(s.from) + ")", std::to_string(s.to));
   s.count = p.integer("count", 1, kMaxCount, 10, "one spring per point; more than a curve can resolve");
-  s.stiffness = p.positive("stiffness");
-  s.damping = p.nonNegative("damping", 0.0);
+  s.stiffness = p.positive({"stiffness", "N/m²"});
+  s.damping = p.nonNegative({"damping", "N·s/m²"}, 0.0);
   const std::string anchors = p.string("anchors", p.has("root") ? "root" : "initial");
   if (anchors == "root") {
     if (!p.has("root")) p.fail("root", "a root line {\"from\": [m], \"to\": [m]} for \"anchors\": \"root\"");
     const Params root = p.object("root");
     s.root = true;
-    s.root_from = root.vec3("from");
-    s.root_to = root.vec3("to");
+    s.root_from = root.vec3({"from", "m"});
+    s.root_to = root.vec3({"to", "m"});
     root.finish();
   } else if (anchors != "initial") {
     p.fail("anchors", "\"initial\" (where the points start) or \"root\" (along the root line)", "\"" + anchors + "\"");
   } else if (p.has("root")) {
     p.fail("root", "no root line with \"anchors\": \"initial\"");
   }
-  if (p.has("rest_length") && p.raw("rest_length").is_string()) {
+  if (p.has("rest_length") && p.raw({"rest_length", "m"}).is_string()) {
     const std::string rest = p.string("rest_length");
     if (rest != "initial") p.fail("rest_length", "a length in metres >= 0 or \"initial\"", "\"" + rest + "\"");
     s.initial_rest_length = true;
   } else {
-    s.rest_length = p.nonNegative("rest_length", 0.0);
+    s.rest_length = p.nonNegative({"rest_length", "m"}, 0.0);
   }
   return std::make_unique<TissueAttachment>(s);
 }

@@ -18,7 +18,7 @@ namespace {
 
 /// Times of one list of scheduled changes: >= 0 and increasing (entry `item` of `what`).
 double scheduledTime(const Params& item, const std::vector<double>& earlier, const char* what) {
-  const double time = item.number("time");
+  const double time = item.number({"time", "s"});
   if (!(time >= 0.0)) item.fail("time", "a time >= 0 (s)");
   if (!earlier.empty() && !(time > earlier.back()))
     item.fail("time", std::string("a time later than the previous ") + what + "'s (" + describeJson(earlier.back()) + " s)");
@@ -35,7 +35,7 @@ std::vector<CurveBody::LayoutChange> CurveBody::layoutChangesFromParams(const Pa
       LayoutChange r;
       r.time = scheduledTime(item, times, "refinement");
       times.push_back(r.time);
-      const nlohmann::json& list = item.raw("abscissas");
+      const nlohmann::json& list = item.raw({"abscissas", "1"});
       if (!list.is_array() || list.empty()) item.fail("abscissas", "a non-empty array of abscissas in (0, 1)");
       for (std::size_t k = 0; k < list.size(); ++k) {
         if (!list[k].is_number() || !(list[k].get<double>() > 0.0 && list[k].get<double>() < 1.0))
@@ -52,7 +52,7 @@ std::vector<CurveBody::LayoutChange> CurveBody::layoutChangesFromParams(const Pa
       c.kind = LayoutChange::Kind::kCut;
       c.time = scheduledTime(item, times, "cut");
       times.push_back(c.time);
-      const double s = item.number("abscissa");
+      const double s = item.number({"abscissa", "1"});
       if (!(s > 0.0 && s < 1.0)) item.fail("abscissa", "an abscissa strictly inside (0, 1) to cut at");
       c.abscissas.push_back(s);
       item.finish();

@@ -2,7 +2,6 @@
 
 #include <cctype>
 
-#include "filum/core/parameter_units.hpp"
 #include "filum/core/params.hpp"
 #include "filum/core/scene_error.hpp"
 
@@ -16,19 +15,6 @@ void Factory::add(const std::string& type, const std::string& summary, Creator c
 
 void Factory::addUnavailable(const std::string& type, const std::string& cmake_option) {
   if (!creators_.count(type)) unavailable_[type] = cmake_option;
-}
-
-void Factory::addUnits(const std::string& type, const std::map<std::string, std::string>& units) {
-  for (const auto& [key, unit] : units) units_[type][key] = unit;
-}
-
-std::string Factory::unit(const std::string& type, const std::string& key) const {
-  const auto own = units_.find(type);
-  if (own != units_.end()) {
-    const auto it = own->second.find(key);
-    if (it != own->second.end()) return it->second;
-  }
-  return commonParameterUnit(key);
 }
 
 void Factory::setDefault(const std::string& role, const std::string& type) { defaults_[role] = type; }

@@ -111,7 +111,7 @@ std::string Params::recordedKey(const std::string& key) const {
   return path_.empty() ? key : path_.substr(1) + "/" + key;
 }
 
-void Params::record(const std::string& key, const std::string& expected, const std::string& fallback) const {
+void Params::record(const Key& key, const std::string& expected, const std::string& fallback) const {
   if (!active_recorder) return;
   // The key as a path below the component's object ("outer/key" for a nested one): the recorded
   // component's own Params has the empty path (ParameterRecorder's use).
@@ -121,11 +121,12 @@ void Params::record(const std::string& key, const std::string& expected, const s
   for (ParameterRead& r : reads)
     if (r.key == full) {
       if (r.expected.empty()) r.expected = expected;  // first asked by has(): optional, now typed
+      if (r.unit.empty()) r.unit = key.unit;
       return;
     }
   // expected "" : has() asked first (a parameter read when given, with no default: optional, or
   // required by a check of the component's own).
-  reads.push_back({full, expected, expected.empty() ? "-" : fallback, !expected.empty() && fallback.empty()});
+  reads.push_back({full, expected, expected.empty() ? "-" : fallback, !expected.empty() && fallback.empty(), key.unit});
 }
 
 const json& Params::require(const std::string& key, const json& placeholder) const {
@@ -139,13 +140,13 @@ const json& Params::require(const std::string& key, const json& placeholder) con
 Params::Params(const json& obj, std::string file, std::string path, std::string owner)
     : obj_(obj), file_(std::move(file)), path_(std::move(path)), owner_(std::move(owner)) {}
 
-bool Params::has(const std::string& key) const {
-  known_.insert(key);
+bool Params::has(const Key& key) const {
+  known_.insert(key.name);
   record(key, "", "");
   // Recording, every parameter is "given" (as a placeholder), unless the recorder was told
   // otherwise: the reads it guards run and say what the parameter must be.
-  if (obj_.is_object() && obj_.contains(key)) return true;
-  return active_recorder && !active_recorder->treatedAsAbsent(recordedKey(key));
+  if (obj_.is_object() && obj_.contains(key.name)) return true;
+  return active_recorder && !active_recorder->treatedAsAbsent(recordedKey(key.name));
 }
 
 std::string Params::pointer(const std::string& key) const {
@@ -188,7 +189,7 @@ const json& Params::require(const std::string& key) const {
   return obj_.at(key);
 }
 
-double Params::number(const std::string& key) const {
+double Params::number(const Key& key) const {
   record(key, "a number", "");
   const json& value = require(key, 1.0);
   if (!value.is_number()) fail(key, "a number");
@@ -197,24 +198,24 @@ double Params::number(const std::string& key) const {
   return d;
 }
 
-double Params::number(const std::string& key, double fallback) const {
+double Params::number(const Key& key, double fallback) const {
   record(key, "a number", numberText(fallback));
   return has(key) && !absentWhileRecording(obj_, key) ? number(key) : fallback;
 }
 
-double Params::positive(const std::string& key) const {
+double Params::positive(const Key& key) const {
   record(key, "a number > 0", "");
   const double d = number(key);
   if (!(d > 0.0)) fail(key, "a positive number");
   return d;
 }
 
-double Params::positive(const std::string& key, double fallback) const {
+double Params::positive(const Key& key, double fallback) const {
   record(key, "a number > 0", numberText(fallback));
   return has(key) && !absentWhileRecording(obj_, key) ? positive(key) : fallback;
 }
 
-double Params::nonNegative(const std::string& key, double fallback) const {
+double Params::nonNegative(const Key& key, double fallback) const {
   record(key, "a number >= 0", numberText(fallback));
   if (!has(key) || absentWhileRecording(obj_, key)) return fallback;
   const double d = number(key);
@@ -223,7 +224,7 @@ double Params::nonNegative(const std::string& key, double fallback) const {
 }
 
 double Params::abscissa(const std::string& key) const {
-  record(key, "a curve abscissa in [0, 1]", "");
+  record({key, "1"}, "a curve abscissa in [0, 1]", "");
   if (active_recorder && !(obj_.is_object() && obj_.contains(key))) return 0.5;
   const double d = number(key);
   if (d < 0.0 || d > 1.0) fail(key, "a curve abscissa in [0, 1]");
@@ -294,17 +295,17 @@ Vec3 Params::toVec3(const json& value, const std::string& at, const std::string&
   return out;
 }
 
-Vec3 Params::vec3(const std::string& key) const {
+Vec3 Params::vec3(const Key& key) const {
   record(key, "[x, y, z]", "");
   return toVec3(require(key, json::array({1.0, 0.0, 0.0})), pointer(key), "a 3-vector [x, y, z]");
 }
 
-Vec3 Params::vec3(const std::string& key, const Vec3& fallback) const {
+Vec3 Params::vec3(const Key& key, const Vec3& fallback) const {
   record(key, "[x, y, z]", vec3Text(fallback));
   return has(key) && !absentWhileRecording(obj_, key) ? vec3(key) : fallback;
 }
 
-Points Params::points(const std::string& key, int minimum, int maximum, const std::string& why) const {
+Points Params::points(const Key& key, int minimum, int maximum, const std::string& why) const {
   record(key, "a list of " + std::to_string(minimum) + " to " + std::to_string(maximum) + " points [x, y, z]", "");
   const json& value = require(key, placeholderPoints(minimum));
   if (value.is_array() && value.size() > static_cast<std::size_t>(maximum))
@@ -313,7 +314,7 @@ Points Params::points(const std::string& key, int minimum, int maximum, const st
   return points(key, minimum);
 }
 
-Points Params::points(const std::string& key, int minimum) const {
+Points Params::points(const Key& key, int minimum) const {
   record(key, "a list of at least " + std::to_string(minimum) + " points [x, y, z]", "");
   const json& value = require(key, placeholderPoints(minimum));
   const std::string what = "a list of at least " + std::to_string(minimum) + " points [x, y, z]";
@@ -331,7 +332,7 @@ Params Params::object(const std::string& key) const {
   return Params(value, file_, pointer(key), owner_);
 }
 
-std::vector<Params> Params::objects(const std::string& key) const {
+std::vector<Params> Params::objects(const Key& key) const {
   record(key, "a list of objects", "");
   const json& value = require(key, json::array());
   if (!value.is_array()) fail(key, "an array of objects");
@@ -344,7 +345,7 @@ std::vector<Params> Params::objects(const std::string& key) const {
   return out;
 }
 
-const json& Params::raw(const std::string& key) const {
+const json& Params::raw(const Key& key) const {
   record(key, "a JSON value (the component's page says which)", "");
   return require(key);
 }

@@ -156,18 +156,18 @@ std::unique_ptr<Scene> loadScene(const json& document, const std::string& source
   SceneSettings& settings = scene->settings();
   settings.source = source;
   settings.name = top.string("name", source);
-  settings.dt = top.positive("dt", settings.dt);
+  settings.dt = top.positive({"dt", "s"}, settings.dt);
   if (settings.dt < kMinTimeStep || settings.dt > kMaxTimeStep)
     top.fail("dt", "a time step in [1e-9, 1] s (scene.hpp: below 1e-9 s no scene gains stability, above 1 s gravity "
                    "alone moves a point 5 m per step)");
-  settings.duration = top.positive("duration", settings.duration);
+  settings.duration = top.positive({"duration", "s"}, settings.duration);
   const std::string steps = stepCountProblem(settings.duration, settings.dt);
   if (!steps.empty())
     top.fail("duration", "a duration of 1 to " + std::to_string(kMaxSteps) +
                              " steps of dt (at least dt / 2; at most 1e8 steps, the step log of `filum run` and "
                              "hours of computing)", steps);
-  settings.gravity = top.vec3("gravity", settings.gravity);
-  settings.max_speed = top.positive("max_speed", settings.max_speed);
+  settings.gravity = top.vec3({"gravity", "m/s²"}, settings.gravity);
+  settings.max_speed = top.positive({"max_speed", "m/s"}, settings.max_speed);
   top.has("output");  // read by the applications (filum run), not by the kernel
   top.has("camera");  // read by the visual side
   top.has("haptics");  // read by the applications (haptics/haptic_session.hpp)

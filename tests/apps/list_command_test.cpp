@@ -54,10 +54,19 @@ TEST(ListCommand, AKeyWithAnotherMeaningInOneTypeHasThatTypesUnit) {
   EXPECT_EQ(columns(listing("ContactPipeline"), "stiffness").at(2), "N/m");
 }
 
+TEST(ListCommand, AQuantityReadOnlyWhenGivenSaysItsUnitWhereItsPresenceIsAsked) {
+  // Params::has({key, unit}): the listing has the unit though the value is not read without one.
+  EXPECT_EQ(columns(listing("DynamicSpline"), "density").at(2), "kg/m³");
+  EXPECT_EQ(columns(listing("PointLoad"), "force").at(2), "N");
+  EXPECT_EQ(columns(listing("PointLoad"), "torque").at(2), "N·m");
+  EXPECT_EQ(columns(listing("GreenLagrangeStretching"), "tensile_strength").at(2), "Pa");
+}
+
 TEST(ListCommand, EveryQuantityOfEveryTypeHasAUnitAndNoCountHasOne) {
   // A number, a point or an abscissa is a quantity and must say its unit ("1" for a pure
-  // number); an integer is a count, a string or a boolean a choice: no unit. A component that
-  // adds a parameter without its unit fails here, so the list stays complete.
+  // number); an integer is a count, a string or a boolean a choice: no unit. The units are those
+  // the components' fromParams state where they read each parameter (Params' Key): a component
+  // that reads a quantity without its unit fails here, so the list stays complete.
   const Factory factory = makeFactory();
   for (const std::string& type : factory.typeNames()) {
     std::ostringstream out, err;
@@ -66,11 +75,12 @@ TEST(ListCommand, EveryQuantityOfEveryTypeHasAUnitAndNoCountHasOne) {
     std::string line;
     std::getline(lines, line);  // "Type: summary"
     std::getline(lines, line);  // blank
-    std::getline(lines, line);  // header
+    std::getline(lines, line);  // header: the unit column starts under "unit" (the columns
+    const std::size_t unit_at = line.find("  unit  ") + 2;  // before it are ASCII: bytes = columns)
     while (std::getline(lines, line) && line.rfind("  ", 0) == 0) {
       const std::string key = line.substr(2, line.find(' ', 2) - 2);
       if (key == "name" || key == "object" || key == "(no") continue;
-      const std::string unit = factory.unit(type, key);
+      const std::string unit = line[unit_at] == ' ' ? "" : line.substr(unit_at, line.find("  ", unit_at) - unit_at);
       const bool quantity = line.find("a number") != std::string::npos || line.find("[x, y, z]") != std::string::npos ||
                             line.find("a curve abscissa") != std::string::npos;
       const bool count_or_choice = line.find("an integer") != std::string::npos || line.find("  a string") != std::string::npos ||

@@ -83,6 +83,37 @@ TEST(BodyPoint, EveryKindOfPointPassesTheGenericMappingTest) {
   test::expectMappingConsistent(curve_point, q_refined, 1e-6, 1e-10);
 }
 
+// A point at a strand's end at a cut (a sphere sample's row there is the left limit,
+// evaluateOnStrand) stays that strand's end point when the layout changes again: its weights on
+// the first strand's points only, its place the first strand's end.
+TEST(BodyPoint, AStrandsEndKeepsItsStrandAfterTheLayoutChanges) {
+  auto scene = thread();
+  CurveBody& body = *scene->bodies().front()->curve();
+  scene->cut(body, 0.5);
+  for (int k = 0; k < 20; ++k) ASSERT_TRUE(scene->step().ok);  // the strands move apart
+  BasisRow end_row, start_row;
+  body.basis().evaluateFromLeft(0.5, end_row);
+  body.basis().evaluate(0.5, start_row);
+  BodyPoint end, start;
+  end.attach(body, 0.5, end_row, true);
+  start.attach(body, 0.5, start_row);
+  const VecX& q = scene->state().q;
+  const Vec3 end_before = end.map(q), start_before = start.map(q);
+  ASSERT_GT((end_before - start_before).norm(), 0.0) << "the two ends were expected apart after 20 steps";
+  scene->refine(body, {0.2, 0.8});
+  const VecX& refined = scene->state().q;
+  // Knot insertion keeps each strand's curve: the ends where they were (round-off, 1e-15 m).
+  EXPECT_LE((end.map(refined) - end_before).norm(), 1e-15);
+  EXPECT_LE((start.map(refined) - start_before).norm(), 1e-15);
+  const std::vector<Strand> pieces = strands(body.basis());
+  ASSERT_EQ(pieces.size(), 2u);
+  BasisRow first_strand_end;
+  body.basis().evaluateFromLeft(0.5, first_strand_end);
+  const PointWeights& w = end.weights();
+  for (int j = 0; j < w.count; ++j)
+    EXPECT_LT(w.point[j], first_strand_end.first + first_strand_end.count) << "a weight on the second strand";
+}
+
 TEST(BodyPoint, FollowsARefinementOfItsBodyOrOfABodyBefore) {
   nlohmann::json document = readJsonFile(std::string(FILUM_TEST_DATA_DIR) + "/minimal_thread.json");
   nlohmann::json second = document["nodes"][0];

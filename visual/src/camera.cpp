@@ -10,16 +10,16 @@ namespace filum::visual {
 
 CameraSettings CameraSettings::fromParams(const Params& p) {
   CameraSettings c;
-  c.position = p.vec3("position");
-  c.look_at = p.vec3("look_at");
-  c.up = p.vec3("up", c.up);
+  c.position = p.vec3({"position", "m"});
+  c.look_at = p.vec3({"look_at", "m"});
+  c.up = p.vec3({"up", "1"}, c.up);
   if (!((c.look_at - c.position).norm() > 0.0)) p.fail("look_at", "a point other than the camera position", "the same point");
   if (!(c.up.norm() > 0.0) || c.forward().cross(c.up.normalized()).norm() < 1e-6)
     p.fail("up", "a direction not parallel to look_at − position", "a parallel or zero vector");
-  c.fov_degrees = p.positive("fov", c.fov_degrees);
+  c.fov_degrees = p.positive({"fov", "°"}, c.fov_degrees);
   if (c.fov_degrees >= 170.0) p.fail("fov", "a vertical field of view in (0, 170) degrees", std::to_string(c.fov_degrees));
   if (p.has("size")) {
-    const nlohmann::json& size = p.raw("size");
+    const nlohmann::json& size = p.raw({"size", "px"});
     if (!size.is_array() || size.size() != 2 || !size[0].is_number_integer() || !size[1].is_number_integer() ||
         size[0].get<long>() < 16 || size[1].get<long>() < 16 || size[0].get<long>() > 8192 || size[1].get<long>() > 8192)
       p.fail("size", "[width, height] in pixels, integers in [16, 8192]", describeJson(size));
@@ -30,13 +30,13 @@ CameraSettings CameraSettings::fromParams(const Params& p) {
   if (p.has("lights")) {
     for (const Params& light : p.objects("lights")) {
       Light l;
-      l.position = light.vec3("position");
+      l.position = light.vec3({"position", "m"});
       l.color = colorParam(light, "color", l.color);
       light.finish();
       c.lights.push_back(l);
     }
   }
-  c.frame_interval = p.positive("frame_interval", c.frame_interval);
+  c.frame_interval = p.positive({"frame_interval", "s"}, c.frame_interval);
   c.heads_up = p.boolean("heads_up", c.heads_up);
   p.finish();
   return c;

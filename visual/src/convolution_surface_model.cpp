@@ -11,12 +11,12 @@ namespace filum::visual {
 
 std::unique_ptr<ConvolutionSurfaceModel> ConvolutionSurfaceModel::fromParams(const Params& p) {
   Options o;
-  if (p.has("radius")) o.radius = p.positive("radius");
-  o.sharpness = p.nonNegative("sharpness", 0.0);
+  if (p.has("radius")) o.radius = p.positive({"radius", "m"});
+  o.sharpness = p.nonNegative({"sharpness", "1/m"}, 0.0);
   if (p.has("segments")) o.segments = p.integer("segments", 1);
-  if (p.has("facet_size")) o.facet_size = p.positive("facet_size");
-  if (p.has("approximation")) o.approximation = p.positive("approximation");
-  o.angle_degrees = p.positive("angle", o.angle_degrees);
+  if (p.has("facet_size")) o.facet_size = p.positive({"facet_size", "m"});
+  if (p.has("approximation")) o.approximation = p.positive({"approximation", "m"});
+  o.angle_degrees = p.positive({"angle", "°"}, o.angle_degrees);
   if (o.angle_degrees > 30.0)
     p.fail("angle", "a minimum facet angle in (0, 30] degrees (CGAL's mesher may not terminate above 30)",
            std::to_string(o.angle_degrees));

@@ -20,29 +20,29 @@ std::optional<FluoroscopyView> FluoroscopyView::fromScene(const nlohmann::json& 
 
 FluoroscopyView FluoroscopyView::fromParams(const Params& p) {
   FluoroscopyView v;
-  v.lao_degrees = p.number("lao", v.lao_degrees);
+  v.lao_degrees = p.number({"lao", "°"}, v.lao_degrees);
   if (std::abs(v.lao_degrees) > 120.0) p.fail("lao", "an LAO angle in [−120, 120] degrees (negative: RAO)", std::to_string(v.lao_degrees));
-  v.cranial_degrees = p.number("cranial", v.cranial_degrees);
+  v.cranial_degrees = p.number({"cranial", "°"}, v.cranial_degrees);
   if (std::abs(v.cranial_degrees) > 60.0)
     p.fail("cranial", "a cranial angle in [−60, 60] degrees (negative: caudal)", std::to_string(v.cranial_degrees));
-  if (p.has("isocenter")) v.isocenter = p.vec3("isocenter");
-  v.source_isocenter = p.positive("source_isocenter", v.source_isocenter);
-  v.source_detector = p.positive("source_detector", v.source_detector);
+  if (p.has("isocenter")) v.isocenter = p.vec3({"isocenter", "m"});
+  v.source_isocenter = p.positive({"source_isocenter", "m"}, v.source_isocenter);
+  v.source_detector = p.positive({"source_detector", "m"}, v.source_detector);
   if (!(v.source_detector > v.source_isocenter))
     p.fail("source_detector", "a source-detector distance beyond the source-isocentre one (" + std::to_string(v.source_isocenter) + " m)",
            std::to_string(v.source_detector));
-  v.field = p.positive("field", v.field);
+  v.field = p.positive({"field", "m"}, v.field);
   if (v.field >= 2.0 * v.source_detector) p.fail("field", "a field narrower than twice the source-detector distance", std::to_string(v.field));
   v.size = p.integer("size", 16, 4096, v.size, "pixels a side");
-  v.noise = p.nonNegative("noise", v.noise);
+  v.noise = p.nonNegative({"noise", "1"}, v.noise);
   if (v.noise > 0.5) p.fail("noise", "a noise σ in [0, 0.5] of full scale", std::to_string(v.noise));
-  v.frame_interval = p.positive("frame_interval", v.frame_interval);
-  const Vec3 left = p.vec3("left", v.left), posterior = p.vec3("posterior", v.posterior);
+  v.frame_interval = p.positive({"frame_interval", "s"}, v.frame_interval);
+  const Vec3 left = p.vec3({"left", "1"}, v.left), posterior = p.vec3({"posterior", "1"}, v.posterior);
   if (!(left.norm() > 0.0) || !(posterior.norm() > 0.0) || std::abs(left.normalized().dot(posterior.normalized())) > 1e-6)
     p.fail("posterior", "the patient's posterior direction, square to \"left\"", "a zero or oblique vector");
   v.left = left.normalized();
   v.posterior = posterior.normalized();
-  if (p.has("on")) p.raw("on");  // the pedal's (haptics/fluoroscopy_pedal.hpp), checked there
+  if (p.has("on")) p.raw({"on", "s"});  // the pedal's (haptics/fluoroscopy_pedal.hpp), checked there
   p.finish();
   return v;
 }

@@ -17,8 +17,8 @@ std::unique_ptr<MeshModel> MeshModel::fromParams(const Params& p) {
   std::filesystem::path path(file);
   if (path.is_relative()) path = std::filesystem::path(p.file()).parent_path() / path;
   const double scale = geometry::meshScale(p);  // "units" × "scale": metres per unit of the file
-  const Vec3 degrees = p.vec3("rotation", Vec3::Zero());
-  const Vec3 translation = p.vec3("translation", Vec3::Zero());
+  const Vec3 degrees = p.vec3({"rotation", "°"}, Vec3::Zero());
+  const Vec3 translation = p.vec3({"translation", "m"}, Vec3::Zero());
   TriangleMesh mesh;
   try {
     mesh = triangleMesh(geometry::readMeshFile(path.string()));

@@ -52,8 +52,8 @@ RadiusProfile::RadiusProfile(std::vector<double> u, std::vector<double> r) : u_(
 
 RadiusProfile RadiusProfile::fromParams(const Params& p, double fallback) {
   if (p.has("radius_profile")) {
-    if (p.has("radius")) p.fail("radius", "either \"radius\" or \"radius_profile\", not both", "both");
-    const nlohmann::json& list = p.raw("radius_profile");
+    if (p.has({"radius", "m"})) p.fail("radius", "either \"radius\" or \"radius_profile\", not both", "both");
+    const nlohmann::json& list = p.raw({"radius_profile", "1, m"});
     if (!list.is_array() || list.empty())
       p.fail("radius_profile", "a non-empty list of [u, radius] pairs (u: fraction of the rest length in [0, 1], radius in m)",
              describeJson(list));
@@ -71,7 +71,7 @@ RadiusProfile RadiusProfile::fromParams(const Params& p, double fallback) {
       p.fail("radius_profile", "u strictly increasing in [0, 1] and radii > 0", e.what());
     }
   }
-  return RadiusProfile(p.positive("radius", fallback));
+  return RadiusProfile(p.positive({"radius", "m"}, fallback));
 }
 
 int RadiusProfile::interval(double u) const {

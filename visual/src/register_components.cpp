@@ -10,10 +10,6 @@
 namespace filum::visual {
 
 void register_components(Factory& factory) {
-  // Angles in degrees where a viewer gives them (parameter_units.hpp: the rest are radians).
-  factory.addUnits("ConvolutionSurfaceModel", {{"angle", "°"}});
-  factory.addUnits("MeshModel", {{"rotation", "°"}});
-  factory.addUnits("VesselLumenModel", {{"branches", "as units"}, {"blend", "as units"}});  // × "scale" 
   factory.add("GeneralizedCylinder",
               "visual skin of a spline: tube with rotation-minimizing frames, radius profile, end caps",
               [](const Params& p) { return GeneralizedCylinderModel::fromParams(p); });

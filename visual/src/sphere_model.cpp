@@ -16,7 +16,7 @@ std::unique_ptr<SphereModel> SphereModel::fromParams(const Params& p) {
   int placements = 0;
   if (p.has("center")) {
     o.placement = Placement::kFixed;
-    o.center = p.vec3("center");
+    o.center = p.vec3({"center", "m"});
     ++placements;
   }
   if (p.has("abscissa")) {
@@ -26,7 +26,7 @@ std::unique_ptr<SphereModel> SphereModel::fromParams(const Params& p) {
   }
   if (p.has("abscissas")) {
     o.placement = Placement::kOnCurve;
-    const nlohmann::json& list = p.raw("abscissas");
+    const nlohmann::json& list = p.raw({"abscissas", "1"});
     if (!list.is_array() || list.empty()) p.fail("abscissas", "a non-empty list of abscissas in [0, 1]", describeJson(list));
     for (std::size_t i = 0; i < list.size(); ++i) {
       if (!list[i].is_number() || !(list[i].get<double>() >= 0.0 && list[i].get<double>() <= 1.0))
@@ -53,7 +53,7 @@ std::unique_ptr<SphereModel> SphereModel::fromParams(const Params& p) {
   if (placements != 1)
     p.fail("", "exactly one of \"center\", \"abscissa\", \"abscissas\", \"count\", \"constraint\" or \"path\"",
            std::to_string(placements) + " of them");
-  if (p.has("radius")) o.radius = p.positive("radius");
+  if (p.has({"radius", "m"})) o.radius = p.positive({"radius", "m"});
   o.resolution = p.integer("resolution", 2, 256, o.resolution, "latitude rings: 256 are finer than any pixel");
   // A sphere mesh has about 2 resolution² vertices, one per sphere: the same budget as a skin.
   const long spheres = o.placement == Placement::kEvenlyOnCurve ? o.count

@@ -37,8 +37,8 @@ std::unique_ptr<VesselLumenModel> VesselLumenModel::fromParams(const Params& p) 
   const auto tree = collision::readVesselTree(p);
   double smallest = std::numeric_limits<double>::infinity();
   for (int b = 0; b < tree->branchCount(); ++b) smallest = std::min(smallest, tree->branch(b).radii.minCoeff());
-  const double facet = p.positive("facet_size", 0.5 * smallest);
-  const double approximation = p.positive("approximation", 0.1 * facet);
+  const double facet = p.positive({"facet_size", "m"}, 0.5 * smallest);
+  const double approximation = p.positive({"approximation", "m"}, 0.1 * facet);
   auto model = std::make_unique<VesselLumenModel>(tree, facet, approximation);
   model->setMaterial(Material::fromParams(p, Material{Vec3(0.8, 0.25, 0.25), 0.35}));
   return model;

@@ -16,7 +16,7 @@ TriangleMeshObstacle::TriangleMeshObstacle(std::shared_ptr<const TriangleMeshSur
 std::unique_ptr<TriangleMeshObstacle> TriangleMeshObstacle::fromParams(const Params& p) {
   const std::string file = p.string("file");
   const double scale = geometry::meshScale(p);  // "units" × "scale": metres per unit of the file
-  const Vec3 translation = p.vec3("translation", Vec3::Zero());
+  const Vec3 translation = p.vec3({"translation", "m"}, Vec3::Zero());
   const std::string side = p.string("side", "outside");
   if (side != "outside" && side != "inside")
     p.fail("side", "\"outside\" (a solid the bodies stay out of) or \"inside\" (a cavity they stay in)",

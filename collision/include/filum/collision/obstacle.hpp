@@ -49,7 +49,7 @@ class Obstacle : public CollisionModel {
  protected:
   /// Reads the parameters every obstacle has ("friction": μ >= 0).
   void readCommon(const Params& p) {
-    if (p.has("friction")) friction_ = p.nonNegative("friction", 0.0);
+    if (p.has("friction")) friction_ = p.nonNegative({"friction", "1"}, 0.0);
   }
 
  private:

@@ -11,7 +11,7 @@ namespace filum::constraints {
 
 /// Reads "release_at" (optional, >= 0) into c.
 inline void readReleaseTime(const Params& p, Constraint& c) {
-  if (p.has("release_at")) c.setReleaseTime(p.nonNegative("release_at", 0.0));
+  if (p.has("release_at")) c.setReleaseTime(p.nonNegative({"release_at", "s"}, 0.0));
 }
 
 }  // namespace filum::constraints

@@ -19,7 +19,7 @@ class ViscousDamping final : public ForceField {
   /// coefficient γ (1/s) >= 0: a free body's velocity decays as e^{−γ t}.
   explicit ViscousDamping(double coefficient) : coefficient_(coefficient) {}
   static std::unique_ptr<ViscousDamping> fromParams(const Params& p) {
-    return std::make_unique<ViscousDamping>(p.nonNegative("coefficient", 0.0));
+    return std::make_unique<ViscousDamping>(p.nonNegative({"coefficient", "1/s"}, 0.0));
   }
 
   std::string typeName() const override { return "ViscousDamping"; }

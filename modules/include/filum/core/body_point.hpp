@@ -2,7 +2,8 @@
 // by which a force at a point of a curve reaches the body's control points (docs/architecture.md,
 // "The three-sided model"). Everyone who applies a force at a point of a curve holds one:
 // constraints (their own point, an attached target, junctions), contacts (both sides), springs
-// (their end points), point loads, tissue attachments and the haptic tool's grasp.
+// (their end points), point loads, tissue attachments and the haptic tool's grasp and push
+// samples.
 //
 // Two kinds of point, one mapping. A point of the curve at abscissa s,
 //   x = P(s) = Σ_j b_j(s) q_{first+j}                                  (paper eq. 1),
@@ -18,11 +19,13 @@
 // points (CurveBody::refine, coarsen, Scene::refine) every accessor evaluates them again at the
 // same abscissas in the new basis, on first use (the body's layoutRevision() tells): a refinement
 // keeps the curve, so the point stays where it was, and no holder can use weights of a layout
-// that is gone. Global indices read the body's offset live, so a point also follows another
-// body's change.
+// that is gone. A point at a strand's end at a cut keeps the strand's own end point (its row
+// evaluated from the left, CurveBasis::strands). Global indices read the body's offset live, so a
+// point also follows another body's change.
 #pragma once
 
 #include <array>
+#include <cassert>
 
 #include "filum/core/curve_body.hpp"
 #include "filum/core/mapping.hpp"
@@ -68,21 +71,25 @@ class BodyPoint final : public Mapping {
     moveTo(abscissa);
   }
   /// The same, with the row at s already evaluated in the body's current layout (a sphere
-  /// sample's row, collision/sphere_sampling_mapping.hpp).
-  void attach(const CurveBody& body, double abscissa, const BasisRow& row) {
+  /// sample's row, collision/sphere_sampling_mapping.hpp); from_left: the row is the left limit
+  /// at s (a strand's end at a cut: evaluateOnStrand), and is evaluated so again after a change.
+  void attach(const CurveBody& body, double abscissa, const BasisRow& row, bool from_left = false) {
     body_ = &body;
-    setCurvePoint(abscissa, row);
+    setCurvePoint(abscissa, row, from_left);
   }
   /// The point (1 − t) P(s₀) + t P(s₁) of the chord between two points of `body` (t ∈ [0, 1]),
   /// from their rows in the body's current layout; its abscissa, for reports and for the
   /// holders that track points along the body, is (1 − t) s₀ + t s₁. t = 0 is the curve point s₀.
+  /// from_left0/1 as for attach (a chord ends at its strand's last point).
   void attachChord(const CurveBody& body, double s0, const BasisRow& row0, double s1, const BasisRow& row1,
-                   double t) {
+                   double t, bool from_left0 = false, bool from_left1 = false) {
     body_ = &body;
-    if (t <= 0.0) return setCurvePoint(s0, row0);
+    if (t <= 0.0) return setCurvePoint(s0, row0, from_left0);
     s0_ = s0;
     s1_ = s1;
     t_ = t;
+    from_left0_ = from_left0;
+    from_left1_ = from_left1;
     abscissa_ = (1.0 - t) * s0 + t * s1;
     mergeChord(row0, row1);
     revision_ = body.layoutRevision();
@@ -92,21 +99,22 @@ class BodyPoint final : public Mapping {
   void moveTo(double abscissa) {
     t_ = 0.0;
     abscissa_ = abscissa;
+    from_left0_ = false;
     if (!body_) return;
     body_->row(abscissa_, row_);
-    setCurvePoint(abscissa_, row_);
+    setCurvePoint(abscissa_, row_, false);
   }
   /// The weights again if the body's layout changed since they were evaluated (no-op otherwise;
   /// the accessors below do it themselves).
   void refresh() const {
     if (!body_ || revision_ == body_->layoutRevision()) return;
     if (t_ == 0.0) {
-      body_->row(abscissa_, row_);
+      evaluate(abscissa_, from_left0_, row_);
       fillFromRow();
     } else {
       BasisRow row1;
-      body_->row(s0_, row_);
-      body_->row(s1_, row1);
+      evaluate(s0_, from_left0_, row_);
+      evaluate(s1_, from_left1_, row1);
       mergeChord(row_, row1);
     }
     revision_ = body_->layoutRevision();
@@ -126,6 +134,7 @@ class BodyPoint final : public Mapping {
   /// The basis row at the abscissa, with its derivatives b'(s), b''(s) — a point of the curve
   /// only (a chord point has no single row; onChord()).
   const BasisRow& row() const {
+    assert(!onChord() && "BodyPoint::row() of a chord point");
     refresh();
     return row_;
   }
@@ -143,10 +152,7 @@ class BodyPoint final : public Mapping {
     v_out.row(0) = combine(v_in).transpose();
   }
   /// Q_{p_j} += w_j F (accumulates).
-  void applyJT(ConstPointsRef, ConstPointsRef f_out, PointsRef f_in) const override {
-    const PointWeights& w = weights();
-    for (int j = 0; j < w.count; ++j) f_in.row(w.point[j]) += w.weight[j] * f_out.row(0);
-  }
+  void applyJT(ConstPointsRef, ConstPointsRef f_out, PointsRef f_in) const override { scatter(f_out, f_in); }
   /// w ⊗ I₃: 3 × 3·pointCount().
   SparseMatrix jacobian(ConstPointsRef in) const override;
 
@@ -162,11 +168,10 @@ class BodyPoint final : public Mapping {
     for (int j = 0; j < b.count; ++j) sum += b.d1[j] * global.segment<3>(3 * (first + j));
     return sum;
   }
-  /// B += scale · Jᵀ F: a force F (N) at the point, mapped up through applyJT.
+  /// B += scale · Jᵀ F: a force F (N) at the point, mapped up as applyJT maps it.
   void addForce(const Vec3& F, VecX& B, double scale = 1.0) const {
     const Eigen::Matrix<double, 1, 3, Eigen::RowMajor> f = scale * F.transpose();
-    const PointsMap block = body_->block(B);
-    applyJT(block, f, block);
+    scatter(f, body_->block(B));
   }
   /// visit(global point, w_j) for the mapping row's points (the Jacobian row, to assemble
   /// constraint rows and stiffness blocks).
@@ -178,9 +183,10 @@ class BodyPoint final : public Mapping {
   }
 
  private:
-  void setCurvePoint(double abscissa, const BasisRow& row) {
+  void setCurvePoint(double abscissa, const BasisRow& row, bool from_left) {
     t_ = 0.0;
     abscissa_ = abscissa;
+    from_left0_ = from_left;
     if (&row != &row_) row_ = row;
     fillFromRow();
     revision_ = body_->layoutRevision();
@@ -191,6 +197,18 @@ class BodyPoint final : public Mapping {
       weights_.point[j] = row_.first + j;
       weights_.weight[j] = row_.value[j];
     }
+  }
+  /// b(s) in the body's current layout: its left limit for a strand's end at a cut.
+  void evaluate(double s, bool from_left, BasisRow& out) const {
+    if (from_left)
+      body_->basis().evaluateFromLeft(s, out);
+    else
+      body_->row(s, out);
+  }
+  /// out_{p_j} += w_j f (f: 1 × 3): Jᵀ f.
+  void scatter(ConstPointsRef f, PointsRef out) const {
+    const PointWeights& w = weights();
+    for (int j = 0; j < w.count; ++j) out.row(w.point[j]) += w.weight[j] * f.row(0);
   }
   void mergeChord(const BasisRow& row0, const BasisRow& row1) const {
     weights_.count = 0;
@@ -208,6 +226,7 @@ class BodyPoint final : public Mapping {
   const CurveBody* body_ = nullptr;
   double abscissa_ = 0.0;
   double s0_ = 0.0, s1_ = 0.0, t_ = 0.0;  // a chord point: its ends and place (t_ = 0: on the curve)
+  bool from_left0_ = false, from_left1_ = false;  // rows at s (s0_) and s1_ are left limits
   mutable BasisRow row_;          // b(s) in the body's layout of revision_ (a point of the curve)
   mutable PointWeights weights_;  // the mapping row in that layout
   mutable long revision_ = -1;

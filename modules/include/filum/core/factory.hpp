@@ -22,13 +22,6 @@ class Factory {
   void add(const std::string& type, const std::string& summary, Creator creator);
   /// Registers a type that was built out, with the CMake option that brings it.
   void addUnavailable(const std::string& type, const std::string& cmake_option);
-  /// The units of a type's quantities, key → unit ("m", "N/m", "1" for a pure number), for
-  /// `filum list`: what the type's parameters mean where the same key means one unit throughout
-  /// the project (parameterUnit's common table) is not said again.
-  void addUnits(const std::string& type, const std::map<std::string, std::string>& units);
-  /// The unit of a type's parameter: the type's own (addUnits), else the key's common one
-  /// (parameter_units.hpp), else "" (not a quantity, or not said).
-  std::string unit(const std::string& type, const std::string& key) const;
   /// The type used for a role ("Integrator", "ConstraintSolver") when a scene names none.
   void setDefault(const std::string& role, const std::string& type);
   std::string defaultFor(const std::string& role) const;
@@ -46,7 +39,6 @@ class Factory {
   std::map<std::string, std::string> summaries_;
   std::map<std::string, std::string> unavailable_;
   std::map<std::string, std::string> defaults_;
-  std::map<std::string, std::map<std::string, std::string>> units_;
 };
 
 /// Registers the kernel's own components (none that simulate; kept for symmetry).

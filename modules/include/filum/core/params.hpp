@@ -20,10 +20,27 @@ std::size_t editDistance(const std::string& a, const std::string& b);
 
 /// One parameter a component's fromParams asked for: its key ("outer/key" inside a nested
 /// object), what it must be (the accessor's own check: "a number > 0", "an integer >= 2 and <=
-/// 100000"), and its default as text ("" when it is required).
+/// 100000"), its default as text ("" when it is required) and the unit the reading code takes
+/// it in ("" for counts, names and switches).
 struct ParameterRead {
   std::string key, expected, fallback;
   bool required = false;
+  std::string unit;
+};
+
+/// A parameter's key, and for a quantity the unit the reading code takes its value in, stated
+/// where it is read: p.positive({"radius", "m"}). Scene files are in SI units throughout; "1"
+/// marks a pure number (a ratio, a friction coefficient, a direction, a colour). `filum list`
+/// prints the units from these reads, so the listing is the code's own.
+struct Key {
+  Key(const char* name) : name(name) {}
+  Key(std::string name) : name(std::move(name)) {}
+  Key(const char* name, const char* unit) : name(name), unit(unit) {}
+  Key(std::string name, const char* unit) : name(std::move(name)), unit(unit) {}
+  operator const std::string&() const { return name; }
+
+  std::string name;
+  const char* unit = "";
 };
 
 /// While one is alive (in this thread), every Params records the parameters it is asked for, and
@@ -61,17 +78,18 @@ class Params {
   /// obj must outlive the Params. file is for messages only; path is obj's JSON pointer.
   Params(const nlohmann::json& obj, std::string file, std::string path, std::string owner = "");
 
-  bool has(const std::string& key) const;
+  /// Whether the object holds `key` (a quantity read only when given says its unit here too).
+  bool has(const Key& key) const;
 
   /// Any finite number (units are the caller's; say them in `what`).
-  double number(const std::string& key) const;
-  double number(const std::string& key, double fallback) const;
+  double number(const Key& key) const;
+  double number(const Key& key, double fallback) const;
   /// A number > 0.
-  double positive(const std::string& key) const;
-  double positive(const std::string& key, double fallback) const;
+  double positive(const Key& key) const;
+  double positive(const Key& key, double fallback) const;
   /// A number >= 0.
-  double nonNegative(const std::string& key, double fallback) const;
-  /// A curve abscissa in [0, 1].
+  double nonNegative(const Key& key, double fallback) const;
+  /// A curve abscissa in [0, 1] (unit "1").
   double abscissa(const std::string& key) const;
   /// An integer >= minimum.
   int integer(const std::string& key, int minimum) const;
@@ -84,19 +102,19 @@ class Params {
   std::string string(const std::string& key, const std::string& fallback) const;
   bool boolean(const std::string& key, bool fallback) const;
   /// [x, y, z] of finite numbers.
-  Vec3 vec3(const std::string& key) const;
-  Vec3 vec3(const std::string& key, const Vec3& fallback) const;
+  Vec3 vec3(const Key& key) const;
+  Vec3 vec3(const Key& key, const Vec3& fallback) const;
   /// A list of [x, y, z] with at least `minimum` entries.
-  Points points(const std::string& key, int minimum) const;
+  Points points(const Key& key, int minimum) const;
   /// The same with at most `maximum` entries (checked before allocating); `why` as for integer().
-  Points points(const std::string& key, int minimum, int maximum, const std::string& why) const;
+  Points points(const Key& key, int minimum, int maximum, const std::string& why) const;
 
   /// A nested object as Params (the key must hold an object).
   Params object(const std::string& key) const;
   /// A nested array of objects.
-  std::vector<Params> objects(const std::string& key) const;
+  std::vector<Params> objects(const Key& key) const;
   /// The raw value (marks the key as read).
-  const nlohmann::json& raw(const std::string& key) const;
+  const nlohmann::json& raw(const Key& key) const;
 
   /// Throws if the object holds a key that no accessor asked for.
   void finish() const;
@@ -122,8 +140,8 @@ class Params {
   /// require(), with `placeholder` for a missing key while a ParameterRecorder records.
   const nlohmann::json& require(const std::string& key, const nlohmann::json& placeholder) const;
   /// Tells the active ParameterRecorder (if any) that `key` is read: what it must be and its
-  /// default ("" and required when it has none). The first read of a key wins.
-  void record(const std::string& key, const std::string& expected, const std::string& fallback) const;
+  /// default ("" and required when it has none), and its unit. The first read of a key wins.
+  void record(const Key& key, const std::string& expected, const std::string& fallback) const;
   /// The key as the recorder names it: "outer/key" inside a nested object.
   std::string recordedKey(const std::string& key) const;
   /// "nothing (the parameter is missing)", naming an unread key that looks like a misspelling.
