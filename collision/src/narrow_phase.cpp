@@ -66,7 +66,7 @@ void findObstacleContacts(const SphereCollisionModel& model, int model_index, co
     if (sample.distance - r > reach) continue;
     Contact c;
     c.model_a = model_index;
-    c.a.attach(model.curve(), model.mapping().abscissas()[k], model.mapping().row(k));
+    c.a = model.mapping().chordPoint(model.curve(), k, 0.0);  // centre k
     c.obstacle = obstacle_index;
     c.surface_point = sample.point;
     c.surface_velocity = sample.velocity;

@@ -95,6 +95,7 @@ void SphereSamplingMapping::resample(ConstPointsRef q) {
   abscissas_.resize(total);
   rows_.resize(total);
   strand_of_.resize(total);
+  left_limit_.resize(total);
   arc_of_.resize(total);
   actual_spacing_ = 0.0;
   int k = 0;
@@ -154,6 +155,7 @@ int SphereSamplingMapping::sampleStrand(int t, int first, double base) {
   abscissas_[first + count - 1] = strands_[t].end;
   for (int i = 0; i < count; ++i) {
     evaluateOnStrand(*basis_, strands_[t], abscissas_[first + i], rows_[first + i]);
+    left_limit_[first + i] = abscissas_[first + i] >= strands_[t].end;  // as evaluateOnStrand decides
     strand_of_[first + i] = t;
     arc_of_[first + i] = base + i * strand_spacing_[t];
   }
@@ -217,12 +219,12 @@ SparseMatrix SphereSamplingMapping::jacobian(ConstPointsRef) const {
 BodyPoint SphereSamplingMapping::chordPoint(const CurveBody& body, int k, double t) const {
   // A strand's last centre was evaluated from the left (evaluateOnStrand): its point says so, so
   // that it stays that strand's end point if the body's layout changes.
-  const auto last = [this](int i) { return i + 1 == outputCount() || strand_of_[i + 1] != strand_of_[i]; };
   BodyPoint point;
   if (!joinsNext(k) || t <= 0.0)
-    point.attach(body, abscissas_[k], rows_[k], last(k));
+    point.attach(body, abscissas_[k], rows_[k], left_limit_[k]);
   else
-    point.attachChord(body, abscissas_[k], rows_[k], abscissas_[k + 1], rows_[k + 1], t, last(k), last(k + 1));
+    point.attachChord(body, abscissas_[k], rows_[k], abscissas_[k + 1], rows_[k + 1], t, left_limit_[k],
+                      left_limit_[k + 1]);
   return point;
 }
 

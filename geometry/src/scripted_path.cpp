@@ -14,7 +14,7 @@ ScriptedPath::ScriptedPath(std::vector<Keyframe> keyframes, Interpolation interp
 
 ScriptedPath ScriptedPath::fromParams(const Params& p, const std::string& key) {
   std::vector<Keyframe> keyframes;
-  const std::vector<Params> items = p.objects(key);
+  const std::vector<Params> items = p.objects({key, "s, m"});  // keyframes: time, position
   if (items.empty()) p.fail(key, "at least one keyframe {\"time\": t, \"position\": [x, y, z]}");
   for (const Params& item : items) {
     const double time = item.number({"time", "s"});

@@ -34,7 +34,7 @@ Vec3 InstrumentPath::position(double t) const {
 }
 
 InstrumentPath InstrumentPath::fromParams(const Params& p, const std::string& key, const Vec3* port) {
-  const std::vector<Params> items = p.objects(key);
+  const std::vector<Params> items = p.objects({key, "s, m, 1, 1"});  // time, position, direction, jaw
   if (items.empty())
     p.fail(key, "at least one keyframe {\"time\": t, \"position\": [x, y, z], \"direction\": [x, y, z], \"jaw\": o}");
   std::vector<Keyframe> keyframes;

@@ -223,20 +223,20 @@ double Params::nonNegative(const Key& key, double fallback) const {
   return d;
 }
 
-double Params::abscissa(const std::string& key) const {
-  record({key, "1"}, "a curve abscissa in [0, 1]", "");
-  if (active_recorder && !(obj_.is_object() && obj_.contains(key))) return 0.5;
+double Params::abscissa(const Key& key) const {
+  record({key.name, "1"}, "a curve abscissa in [0, 1]", "");
+  if (active_recorder && !(obj_.is_object() && obj_.contains(key.name))) return 0.5;
   const double d = number(key);
   if (d < 0.0 || d > 1.0) fail(key, "a curve abscissa in [0, 1]");
   return d;
 }
 
-int Params::integer(const std::string& key, int minimum) const {
+int Params::integer(const Key& key, int minimum) const {
   // 1e8: no count of a scene comes near it, and it fits an int with room for the sums of counts.
   return integer(key, minimum, 100000000, "the largest count any scene parameter takes");
 }
 
-int Params::integer(const std::string& key, int minimum, int maximum, const std::string& why) const {
+int Params::integer(const Key& key, int minimum, int maximum, const std::string& why) const {
   const std::string range = "an integer >= " + std::to_string(minimum);
   record(key, maximum < 100000000 ? range + " and <= " + std::to_string(maximum) : range, "");
   // A placeholder count: small, allowed (4 points make a cubic spline).
@@ -250,29 +250,29 @@ int Params::integer(const std::string& key, int minimum, int maximum, const std:
   return static_cast<int>(i);
 }
 
-int Params::integer(const std::string& key, int minimum, int maximum, int fallback, const std::string& why) const {
+int Params::integer(const Key& key, int minimum, int maximum, int fallback, const std::string& why) const {
   record(key, "an integer >= " + std::to_string(minimum) + " and <= " + std::to_string(maximum), std::to_string(fallback));
   return has(key) && !absentWhileRecording(obj_, key) ? integer(key, minimum, maximum, why) : fallback;
 }
 
-int Params::integer(const std::string& key, int minimum, int fallback) const {
+int Params::integer(const Key& key, int minimum, int fallback) const {
   record(key, "an integer >= " + std::to_string(minimum), std::to_string(fallback));
   return has(key) && !absentWhileRecording(obj_, key) ? integer(key, minimum) : fallback;
 }
 
-std::string Params::string(const std::string& key) const {
+std::string Params::string(const Key& key) const {
   record(key, "a string", "");
   const json& value = require(key, "");
   if (!value.is_string()) fail(key, "a string");
   return value.get<std::string>();
 }
 
-std::string Params::string(const std::string& key, const std::string& fallback) const {
+std::string Params::string(const Key& key, const std::string& fallback) const {
   record(key, "a string", "\"" + fallback + "\"");
   return has(key) && !absentWhileRecording(obj_, key) ? string(key) : fallback;
 }
 
-bool Params::boolean(const std::string& key, bool fallback) const {
+bool Params::boolean(const Key& key, bool fallback) const {
   record(key, "true or false", fallback ? "true" : "false");
   if (!has(key) || absentWhileRecording(obj_, key)) return fallback;
   const json& value = require(key);
@@ -325,7 +325,7 @@ Points Params::points(const Key& key, int minimum) const {
   return out;
 }
 
-Params Params::object(const std::string& key) const {
+Params Params::object(const Key& key) const {
   record(key, "an object", "");
   const json& value = require(key, json::object());
   if (!value.is_object()) fail(key, "an object");

@@ -60,6 +60,9 @@ TEST(ListCommand, AQuantityReadOnlyWhenGivenSaysItsUnitWhereItsPresenceIsAsked) 
   EXPECT_EQ(columns(listing("PointLoad"), "force").at(2), "N");
   EXPECT_EQ(columns(listing("PointLoad"), "torque").at(2), "N·m");
   EXPECT_EQ(columns(listing("GreenLagrangeStretching"), "tensile_strength").at(2), "Pa");
+  // A list of keyframes says the units of its entries (time, position).
+  EXPECT_EQ(columns(listing("ProbeSphere"), "path").at(2), "s, m");
+  EXPECT_EQ(columns(listing("FixedPointConstraint"), "path").at(2), "s, m");
 }
 
 TEST(ListCommand, EveryQuantityOfEveryTypeHasAUnitAndNoCountHasOne) {
@@ -76,6 +79,7 @@ TEST(ListCommand, EveryQuantityOfEveryTypeHasAUnitAndNoCountHasOne) {
     std::getline(lines, line);  // "Type: summary"
     std::getline(lines, line);  // blank
     std::getline(lines, line);  // header: the unit column starts under "unit" (the columns
+    ASSERT_NE(line.find("  unit  "), std::string::npos) << type << ": no unit column in " << line;
     const std::size_t unit_at = line.find("  unit  ") + 2;  // before it are ASCII: bytes = columns)
     while (std::getline(lines, line) && line.rfind("  ", 0) == 0) {
       const std::string key = line.substr(2, line.find(' ', 2) - 2);

@@ -58,6 +58,7 @@ class SphereSamplingMapping final : public Mapping {
     abscissas_.reserve(count);
     rows_.reserve(count);
     strand_of_.reserve(count);
+    left_limit_.reserve(count);
     arc_of_.reserve(count);
   }
 
@@ -102,6 +103,7 @@ class SphereSamplingMapping final : public Mapping {
   std::vector<double> abscissas_;
   std::vector<geometry::BasisRow> rows_;
   std::vector<int> strand_of_;          // strand of every centre
+  std::vector<char> left_limit_;        // its row is the left limit (a strand's end at a cut)
   std::vector<double> strand_spacing_;  // L_t / (K_t − 1) of every strand at the last resample
   std::vector<double> arc_of_;          // arc length from s = 0 to every centre, strands end to end
   /// K of strand t from its current length (table_length_ filled): ⌈L / h⌉ + 1, or for a polyline

@@ -35,8 +35,8 @@ struct ParameterRead {
 struct Key {
   Key(const char* name) : name(name) {}
   Key(std::string name) : name(std::move(name)) {}
-  Key(const char* name, const char* unit) : name(name), unit(unit) {}
-  Key(std::string name, const char* unit) : name(std::move(name)), unit(unit) {}
+  Key(const char* name, const char* unit) : name(name), unit(unit ? unit : "") {}
+  Key(std::string name, const char* unit) : name(std::move(name)), unit(unit ? unit : "") {}
   operator const std::string&() const { return name; }
 
   std::string name;
@@ -90,17 +90,17 @@ class Params {
   /// A number >= 0.
   double nonNegative(const Key& key, double fallback) const;
   /// A curve abscissa in [0, 1] (unit "1").
-  double abscissa(const std::string& key) const;
+  double abscissa(const Key& key) const;
   /// An integer >= minimum.
-  int integer(const std::string& key, int minimum) const;
-  int integer(const std::string& key, int minimum, int fallback) const;
+  int integer(const Key& key, int minimum) const;
+  int integer(const Key& key, int minimum, int fallback) const;
   /// An integer in [minimum, maximum], checked before the caller allocates anything for it;
   /// `why` says where the maximum comes from (memory, physics) and goes into the message.
-  int integer(const std::string& key, int minimum, int maximum, const std::string& why) const;
-  int integer(const std::string& key, int minimum, int maximum, int fallback, const std::string& why) const;
-  std::string string(const std::string& key) const;
-  std::string string(const std::string& key, const std::string& fallback) const;
-  bool boolean(const std::string& key, bool fallback) const;
+  int integer(const Key& key, int minimum, int maximum, const std::string& why) const;
+  int integer(const Key& key, int minimum, int maximum, int fallback, const std::string& why) const;
+  std::string string(const Key& key) const;
+  std::string string(const Key& key, const std::string& fallback) const;
+  bool boolean(const Key& key, bool fallback) const;
   /// [x, y, z] of finite numbers.
   Vec3 vec3(const Key& key) const;
   Vec3 vec3(const Key& key, const Vec3& fallback) const;
@@ -110,7 +110,7 @@ class Params {
   Points points(const Key& key, int minimum, int maximum, const std::string& why) const;
 
   /// A nested object as Params (the key must hold an object).
-  Params object(const std::string& key) const;
+  Params object(const Key& key) const;
   /// A nested array of objects.
   std::vector<Params> objects(const Key& key) const;
   /// The raw value (marks the key as read).
