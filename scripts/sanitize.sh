@@ -46,7 +46,7 @@ ctest_arguments=("$@")
 case "${1:-}" in
   --build-only) ctest_arguments=() ;;
   --ci)
-    targets=(--target test_core fuzz_scene fuzz_obj fuzz_off fuzz_ply fuzz_stl)
+    targets=(--target test_core fuzz_scene fuzz_obj fuzz_off fuzz_ply fuzz_stl fuzz_vtp)
     ctest_arguments=(-L 'core|fuzz') ;;
 esac
 cmake --build "$build" -j"$(nproc)" "${targets[@]}"

@@ -20,8 +20,9 @@ PolygonSoup readMesh(std::string_view bytes, MeshFormat format, const std::strin
     case MeshFormat::kOff: return mesh_parsing::readOff(bytes, name);
     case MeshFormat::kPly: return mesh_parsing::readPly(bytes, name);
     case MeshFormat::kStl: return mesh_parsing::readStl(bytes, name);
+    case MeshFormat::kVtp: return mesh_parsing::readVtp(bytes, name);
   }
-  throw std::runtime_error(name + ": expected a mesh format (OBJ, OFF, PLY, STL), found none");
+  throw std::runtime_error(name + ": expected a mesh format (OBJ, OFF, PLY, STL, VTP), found none");
 }
 
 MeshFormat meshFormatOfPath(const std::string& path) {
@@ -31,7 +32,8 @@ MeshFormat meshFormatOfPath(const std::string& path) {
   if (extension == ".off") return MeshFormat::kOff;
   if (extension == ".ply") return MeshFormat::kPly;
   if (extension == ".stl") return MeshFormat::kStl;
-  throw std::runtime_error(path + ": expected a mesh file .obj, .off, .ply or .stl, found the extension \"" + extension +
+  if (extension == ".vtp") return MeshFormat::kVtp;
+  throw std::runtime_error(path + ": expected a mesh file .obj, .off, .ply, .stl or .vtp, found the extension \"" + extension +
                            "\"");
 }
 

@@ -1,4 +1,4 @@
-// What the four mesh readers (obj_, off_, ply_, stl_mesh_reader.cpp) share, private to the
+// What the mesh readers (obj_, off_, ply_, stl_, vtp_mesh_reader.cpp) share, private to the
 // geometry library: a cursor over the bytes that knows its line and says where it failed, number
 // parsing with overflow and finiteness checks, and the soup builder that enforces the limits of
 // mesh_file.hpp (vertices, triangles, indices in range) as it grows.
@@ -105,5 +105,6 @@ PolygonSoup readObj(std::string_view bytes, const std::string& name);
 PolygonSoup readOff(std::string_view bytes, const std::string& name);
 PolygonSoup readPly(std::string_view bytes, const std::string& name);
 PolygonSoup readStl(std::string_view bytes, const std::string& name);
+PolygonSoup readVtp(std::string_view bytes, const std::string& name);
 
 }  // namespace filum::geometry::mesh_parsing

@@ -118,7 +118,7 @@ const std::vector<BadScene> kCases = {
     {"tiny_sphere_spacing.json", " /nodes/0/components/1/spacing",
      "expected at most 1000000 spheres along the thread (sphere_sampling_mapping.hpp",
      "found 100000001.0 spheres of spacing 1e-09 m on 0.1 m"},
-    {"huge_mesh_header.json", " /nodes/0/components/1/file (MeshModel)", "expected a readable .obj, .off, .ply or .stl mesh",
+    {"huge_mesh_header.json", " /nodes/0/components/1/file (MeshModel)", "expected a readable .obj, .off, .ply, .stl or .vtp mesh",
      "a header announcing 1000000000 vertices and 1 faces in a file of 25 bytes"},
     {"tiny_time_step.json", " /dt", "expected a time step in [1e-9, 1] s (scene.hpp", "found 1e-300"},
     {"short_duration.json", " /duration", "expected a duration of 1 to 100000000 steps of dt",

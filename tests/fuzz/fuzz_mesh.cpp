@@ -1,6 +1,6 @@
 // libFuzzer target: the bytes of a mesh file through geometry's one mesh reader (readMesh, used
 // by collision's TriangleMeshSurface and visual's MeshModel), in the format FILUM_FUZZ_FORMAT
-// (one program per format: OBJ, OFF, PLY, STL).
+// (one program per format: OBJ, OFF, PLY, STL, VTP).
 //
 // Contract checked: any input gives a mesh whose indices are in range and coordinates finite,
 // or a std::runtime_error; a crash, a sanitizer report, a hang (-timeout) or an allocation

@@ -1,6 +1,6 @@
 // Mesh files (mesh_file.hpp): one reader for collision and visual. The quirks
 // of real exports that CGAL's OBJ reader refused, one small file each; STL ascii and binary and
-// PLY of both byte orders giving the same connected surface as an OFF; the units of a scene;
+// PLY of both byte orders and VTP ascii and binary giving the same connected surface as an OFF; the units of a scene;
 // errors that name the file and the line; headers announcing more than the file holds, refused
 // before anything is allocated; and mutated files, which may only ever be refused.
 #include <gtest/gtest.h>
@@ -99,7 +99,7 @@ TEST(MeshFile, ExtensionIsCaseInsensitiveAndUnknownOnesAreRefused) {
     }
     return std::string();
   }();
-  EXPECT_NE(message.find("cube.3ds: expected a mesh file .obj, .off, .ply or .stl, found the extension \".3ds\""),
+  EXPECT_NE(message.find("cube.3ds: expected a mesh file .obj, .off, .ply, .stl or .vtp, found the extension \".3ds\""),
             std::string::npos)
       << message;
   try {
@@ -250,6 +250,97 @@ TEST(MeshFile, PlyOfBothByteOrdersGivesTheSurfaceOfTheOff) {
   }
 }
 
+// Base64 (RFC 4648), written here independently of the reader.
+std::string base64(const std::string& bytes) {
+  static const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const unsigned a = static_cast<unsigned char>(bytes[i]);
+    const unsigned b = i + 1 < bytes.size() ? static_cast<unsigned char>(bytes[i + 1]) : 0u;
+    const unsigned c = i + 2 < bytes.size() ? static_cast<unsigned char>(bytes[i + 2]) : 0u;
+    out += alphabet[a >> 2];
+    out += alphabet[((a & 3) << 4) | (b >> 4)];
+    out += i + 1 < bytes.size() ? alphabet[((b & 15) << 2) | (c >> 6)] : '=';
+    out += i + 2 < bytes.size() ? alphabet[c & 63] : '=';
+  }
+  return out;
+}
+
+// The unit cube of cube.off as a binary VTP (VTK's XML PolyData, format="binary": base64 of a
+// byte-count header and the values): Float32 points, Int32 or Int64 indices, a UInt32 or UInt64
+// header, either byte order.
+std::string binaryVtpCube(const PolygonSoup& cube, bool big, bool header64) {
+  const auto array = [&](const std::string& values) {
+    std::string block;
+    if (header64)
+      put<std::uint64_t>(block, values.size(), big);
+    else
+      put<std::uint32_t>(block, static_cast<std::uint32_t>(values.size()), big);
+    return base64(block + values);
+  };
+  std::string points, connectivity, offsets;
+  for (int v = 0; v < 8; ++v)
+    for (int k = 0; k < 3; ++k) put<float>(points, static_cast<float>(cube.vertices(v, k)), big);
+  const int quads[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  for (int f = 0; f < 6; ++f) {
+    for (int index : quads[f]) put<std::int64_t>(connectivity, index, big);
+    put<std::int32_t>(offsets, 4 * (f + 1), big);
+  }
+  return std::string("<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"") +
+         (big ? "BigEndian" : "LittleEndian") + "\" header_type=\"" + (header64 ? "UInt64" : "UInt32") +
+         "\">\n<PolyData>\n<Piece NumberOfPoints=\"8\" NumberOfPolys=\"6\">\n<Points>\n"
+         "<DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"binary\">\n" +
+         array(points) + "\n</DataArray>\n</Points>\n<Polys>\n"
+         "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"binary\">" + array(connectivity) +
+         "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"binary\">" + array(offsets) +
+         "</DataArray>\n</Polys>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+}
+
+TEST(MeshFile, VtpAsciiAndBinaryGiveTheSurfaceOfTheOff) {
+  // A segmented surface as 3D Slicer, VMTK or ParaView save it: ascii with point data and empty
+  // verts, lines and strips; binary of both byte orders and both header types.
+  const PolygonSoup cube = readMeshFile(kData + "cube.off");
+  const PolygonSoup ascii = readMeshFile(kData + "cube.vtp");
+  expectSameSurface(ascii, cube, "ascii VTP");
+  EXPECT_TRUE(ascii.triangles == cube.triangles) << "same fan";
+  for (const bool big : {false, true})
+    for (const bool header64 : {false, true}) {
+      const std::string what = std::string(big ? "big" : "little") + "-endian binary VTP, " +
+                               (header64 ? "UInt64" : "UInt32") + " header";
+      const PolygonSoup soup = readMesh(binaryVtpCube(cube, big, header64), MeshFormat::kVtp, "cube.vtp");
+      expectSameSurface(soup, cube, what);
+      EXPECT_TRUE(soup.vertices == cube.vertices) << what;  // 0 and 1 are exact in Float32
+    }
+}
+
+TEST(MeshFile, VtpThatCannotBeReadSaysWhatToSaveInstead) {
+  const std::string ascii = fileBytes(kData + "cube.vtp");
+  const auto refusal = [](const std::string& text) {
+    try {
+      readMesh(text, MeshFormat::kVtp, "vessel.vtp");
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(read)");
+  };
+  std::string compressed = ascii;
+  compressed.replace(compressed.find("header_type"), 0, "compressor=\"vtkZLibDataCompressor\" ");
+  EXPECT_NE(refusal(compressed).find("vessel.vtp:4: expected uncompressed data"), std::string::npos) << refusal(compressed);
+  std::string appended = ascii;
+  appended.replace(appended.find("format=\"ascii\" RangeMin=\"0\" RangeMax=\"1.73"), 14, "format=\"appended\"");
+  EXPECT_NE(refusal(appended).find("format=\"appended\""), std::string::npos) << refusal(appended);
+  EXPECT_NE(refusal(appended).find("inline"), std::string::npos) << refusal(appended);
+  std::string outside = ascii;
+  outside.replace(outside.find("3 0 4 7"), 7, "3 0 4 8");  // a point that is not there
+  EXPECT_NE(refusal(outside).find("vessel.vtp:"), std::string::npos) << refusal(outside);
+  std::string short_offsets = ascii;
+  short_offsets.replace(short_offsets.find("4 8 12 16 20 24"), 15, "4 8 12 16 20 22");
+  EXPECT_NE(refusal(short_offsets).find("vessel.vtp:36: expected the polys' connectivity of at most 22 values"), std::string::npos) << refusal(short_offsets);
+  std::string image = ascii;
+  image.replace(image.find("type=\"PolyData\""), 16, "type=\"ImageData\"");
+  EXPECT_NE(refusal(image).find("expected a PolyData file"), std::string::npos) << refusal(image);
+}
+
 // ---- Refusals: the file, the line, what was expected, what was found -------------------------
 
 TEST(MeshFile, MalformedInputIsRefusedWithFileLineExpectedAndFound) {
@@ -341,6 +432,8 @@ TEST(MeshFile, MutatedFilesAreReadOrRefusedNeverAnythingElse) {
       {binaryPlyCube(readMeshFile(kData + "cube.off"), false), MeshFormat::kPly},
       {binaryStl(readMeshFile(kData + "cube.off")), MeshFormat::kStl},
       {asciiStl(readMeshFile(kData + "cube.off")), MeshFormat::kStl},
+      {fileBytes(kData + "cube.vtp"), MeshFormat::kVtp},
+      {binaryVtpCube(readMeshFile(kData + "cube.off"), false, true), MeshFormat::kVtp},
   };
   std::mt19937 rng(14);
   const char interesting[] = {'\0', '\n', '\r', ' ', '\t', '-', '/', '#', '9', 'e', '.', '\xff', '\x7f'};

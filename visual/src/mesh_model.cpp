@@ -23,7 +23,7 @@ std::unique_ptr<MeshModel> MeshModel::fromParams(const Params& p) {
   try {
     mesh = triangleMesh(geometry::readMeshFile(path.string()));
   } catch (const std::runtime_error& e) {
-    p.fail("file", "a readable .obj, .off, .ply or .stl mesh", std::string("\"") + file + "\" (" + e.what() + ")");
+    p.fail("file", "a readable .obj, .off, .ply, .stl or .vtp mesh", std::string("\"") + file + "\" (" + e.what() + ")");
   }
   // x_world = R (scale x) + t, R = Rz Ry Rx; normals turn with R.
   const double k = std::numbers::pi / 180.0;

@@ -14,7 +14,11 @@
 //   - STL (stl_mesh_reader.cpp): ascii ("solid" ... "endsolid") and binary (80-byte header,
 //     triangle count, 50 bytes a triangle); corners with the same coordinates are merged into one
 //     vertex, so that the mesh is connected (CGAL's inside test needs a closed surface), and the
-//     triangles that merging collapses are dropped.
+//     triangles that merging collapses are dropped;
+//   - VTP (vtp_mesh_reader.cpp): VTK XML PolyData as 3D Slicer, VMTK and ParaView write segmented
+//     vessels: one Piece, its Points and its Polys (connectivity and offsets), in format "ascii"
+//     or "binary" (base64, UInt32 or UInt64 header, either byte order, any numeric type);
+//     compressed or appended data refused with what to save instead.
 // Every format: lines may end in LF, CRLF or CR; words may be separated by any run of spaces and
 // tabs; polygons are fanned into triangles (v0, v_k, v_{k+1}); coordinates are in the file's own
 // units (the scene's "units" and "scale" turn them into metres: mesh_units.hpp).
@@ -47,7 +51,7 @@ struct PolygonSoup {
   TriangleIndices triangles;  // F × 3, each index in [0, V)
 };
 
-enum class MeshFormat { kObj, kOff, kPly, kStl };
+enum class MeshFormat { kObj, kOff, kPly, kStl, kVtp };
 
 /// Vertices of a mesh file, at most: 4e6 vertices (96 MB of coordinates) is beyond what a step's
 /// collision queries or a frame's drawing can use (the same bound as a skin's,
