@@ -1,16 +1,21 @@
 // VTK XML PolyData (.vtp; VTK's file format description, "XML File Formats": the format 3D
 // Slicer, VMTK and ParaView write segmented vessel surfaces in): <VTKFile type="PolyData"> with
-// one <Piece NumberOfPoints="V" NumberOfPolys="F">, the points in <Points><DataArray
-// NumberOfComponents="3"> and the polygons in <Polys> as two DataArrays, "connectivity" (the
-// corners of every polygon, one after another) and "offsets" (where each polygon ends in it).
-// DataArrays in format="ascii" (whitespace-separated numbers) or format="binary" (base64 of a
-// header, the byte count as UInt32 or UInt64 by the file's header_type, then the values in the
-// file's byte_order), of types Float32/Float64 (points) and Int8..UInt64 (indices). Compressed
-// data (a "compressor" attribute) and appended data (format="appended") are refused with what to
-// do instead; verts, lines and strips are ignored (a surface's triangles are its polys).
+// one <Piece NumberOfPoints="V" NumberOfPolys="F" NumberOfStrips="S">, the points in
+// <Points><DataArray NumberOfComponents="3"> and the cells in <Polys> (polygons, fanned into
+// triangles) and <Strips> (triangle strips) as two DataArrays each, "connectivity" (the corners of
+// every cell, one after another) and "offsets" (where each cell ends in it).
+// DataArrays inline, in format="ascii" (whitespace-separated numbers) or format="binary" (base64
+// of a header, the byte count as UInt32 or UInt64 by the file's header_type, then the values in
+// the file's byte_order), of types Float32/Float64 (points) and Int8..UInt64 (indices); elements
+// after the data inside a DataArray (VTK's <InformationKey> of the array's ranges) are skipped.
+// VTK's writers save appended, zlib-compressed data by default: a "compressor" attribute and
+// format="appended" are refused with how to save the file instead (ascii, or binary without
+// compression). Verts and lines are ignored (a surface is its polys and strips).
 // The XML is scanned, not validated: only the elements above are looked for.
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -79,11 +84,20 @@ class VtpScanner {
     return {};
   }
   [[noreturn]] void failAt(std::size_t offset, const std::string& expected, const std::string& found) const {
-    // The line of the byte, for the message.
-    long line = 1;
-    for (std::size_t i = 0; i < offset && i < bytes_.size(); ++i) line += bytes_[i] == '\n';
-    Cursor at(std::string_view(), cursor_.name(), true, line);
+    Cursor at(std::string_view(), cursor_.name(), true, lineOf(offset));
     at.fail(expected, found);
+  }
+  /// The line of a byte (1-based; LF, CRLF and a lone CR end a line).
+  long lineOf(std::size_t offset) const {
+    long line = 1;
+    for (std::size_t i = 0; i < offset && i < bytes_.size(); ++i)
+      line += bytes_[i] == '\n' || (bytes_[i] == '\r' && (i + 1 >= bytes_.size() || bytes_[i + 1] != '\n'));
+    return line;
+  }
+  /// The first byte at or after `from` that is not white space (where an array's values start).
+  std::size_t firstValue(std::size_t from) const {
+    const std::size_t at = bytes_.find_first_not_of(" \t\r\n", from);
+    return at == std::string_view::npos ? from : at;
   }
   std::string_view bytes() const { return bytes_; }
   const Cursor& cursor() const { return cursor_; }
@@ -105,7 +119,10 @@ std::vector<double> dataArray(const VtpScanner& scan, const Tag& tag, const Enco
                               const std::string& what) {
   const std::string_view format = VtpScanner::attribute(tag.attributes, "format");
   const std::string_view type = VtpScanner::attribute(tag.attributes, "type");
-  const std::size_t stop = tag.empty ? tag.content : scan.end("DataArray", tag.content);
+  // The data: up to the first element inside the array (VTK writes an <InformationKey> of its
+  // ranges after it) or its end.
+  const std::size_t stop = tag.empty ? tag.content : std::min(scan.end("DataArray", tag.content),
+                                                             scan.bytes().find('<', tag.content));
   const std::string_view text = scan.bytes().substr(tag.content, stop - tag.content);
   std::vector<double> out;
   if (format == "appended")
@@ -113,14 +130,13 @@ std::vector<double> dataArray(const VtpScanner& scan, const Tag& tag, const Enco
                                     "Binary and no compression)",
                 "format=\"appended\"");
   if (format == "ascii") {
-    Cursor words(text, scan.cursor().name());
+    Cursor words(text, scan.cursor().name(), true, scan.lineOf(tag.content));  // messages at the value's line
     std::string_view word;
     while (words.nextWord(word)) {
       if (static_cast<long long>(out.size()) >= limit)
-        scan.failAt(tag.content, what + " of at most " + std::to_string(limit) + " values (as the Piece's counts say)",
-                    "more");
+        words.fail(what + " of at most " + std::to_string(limit) + " values (as the Piece's counts say)", "more");
       double value = 0.0;
-      if (!parseNumber(word, value)) scan.failAt(tag.content, what + ": numbers", quoted(word));
+      if (!parseNumber(word, value)) words.fail(what + ": numbers", quoted(word));
       out.push_back(value);
     }
     return out;
@@ -139,8 +155,16 @@ std::vector<double> dataArray(const VtpScanner& scan, const Tag& tag, const Enco
     else if (c >= '0' && c <= '9') v = c - '0' + 52;
     else if (c == '+') v = 62;
     else if (c == '/') v = 63;
-    else if (c == '=' || c == ' ' || c == '\n' || c == '\r' || c == '\t') continue;
-    else scan.failAt(tag.content, what + ": base64 data", quoted(std::string_view(&c, 1)));
+    else if (c == ' ' || c == '\n' || c == '\r' || c == '\t') continue;
+    else if (c == '=') {  // padding: the group ends here (pieces may be encoded one after another)
+      if (filled >= 2) raw.push_back(static_cast<unsigned char>((quad[0] << 2) | (quad[1] >> 4)));
+      if (filled == 3) raw.push_back(static_cast<unsigned char>(((quad[1] & 15) << 4) | (quad[2] >> 2)));
+      if (filled == 1) scan.failAt(scan.firstValue(tag.content), what + ": base64 groups of 2 to 4 characters", "1");
+      filled = 0;
+      continue;
+    } else {
+      scan.failAt(scan.firstValue(tag.content), what + ": base64 data", quoted(std::string_view(&c, 1)));
+    }
     quad[filled++] = v;
     if (filled == 4) {
       raw.push_back(static_cast<unsigned char>((quad[0] << 2) | (quad[1] >> 4)));
@@ -149,6 +173,7 @@ std::vector<double> dataArray(const VtpScanner& scan, const Tag& tag, const Enco
       filled = 0;
     }
   }
+  if (filled == 1) scan.failAt(scan.firstValue(tag.content), what + ": base64 groups of 2 to 4 characters", "1");
   if (filled >= 2) raw.push_back(static_cast<unsigned char>((quad[0] << 2) | (quad[1] >> 4)));
   if (filled == 3) raw.push_back(static_cast<unsigned char>(((quad[1] & 15) << 4) | (quad[2] >> 2)));
   const auto unsignedAt = [&](std::size_t at, int size) {
@@ -179,6 +204,9 @@ std::vector<double> dataArray(const VtpScanner& scan, const Tag& tag, const Enco
   for (const Type& k : kTypes)
     if (type == k.name) t = &k;
   if (!t) scan.failAt(tag.content, what + " of a numeric type (Float32, Float64, Int8 ... UInt64)", quoted(type));
+  if (count_bytes % static_cast<unsigned long long>(t->size) != 0)
+    scan.failAt(tag.content, what + ": a byte count that is a multiple of " + std::to_string(t->size) + " (" + t->name + ")",
+                std::to_string(count_bytes));
   const unsigned long long n = count_bytes / static_cast<unsigned long long>(t->size);
   if (static_cast<long long>(n) > limit || n > static_cast<unsigned long long>(limit))
     scan.failAt(tag.content, what + " of at most " + std::to_string(limit) + " values", std::to_string(n));
@@ -220,25 +248,87 @@ long long count(const VtpScanner& scan, const Tag& piece, std::string_view key) 
   long long value = 0;
   if (text.empty()) return 0;
   if (!parseInteger(text, value) || value < 0)
-    scan.failAt(piece.content, "a count " + std::string(key) + "=\"n\" (n >= 0) on the Piece", quoted(text));
+    scan.failAt(piece.start, "a count " + std::string(key) + "=\"n\" (n >= 0) on the Piece", quoted(text));
   return value;
+}
+
+/// A number for a message ("%g": 8, 1e+300).
+std::string numberText(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
+/// The cells of <Polys> or <Strips>: each cell's corners, checked before a triangle is made:
+/// offsets whole numbers growing by at least 3 (a polygon or strip of 3 or more points) up to
+/// the connectivity's size, indices of points in [0, V).
+struct Cells {
+  std::vector<double> offsets, connectivity;
+};
+
+Cells readCells(const VtpScanner& scan, const std::string& element, std::size_t from, std::size_t until, long long count,
+                long long vertex_count, const Encoding& encoding) {
+  const Tag block = scan.tag(element, from, until, "the <" + element + "> of the Piece (its count is not 0)");
+  const std::size_t block_end = scan.end(element, block.content);
+  const std::string cells = "the " + element + "' ";
+  const Tag offsets_tag = namedArray(scan, block.content, block_end, "offsets", cells + "\"offsets\" <DataArray>");
+  Cells c;
+  c.offsets = dataArray(scan, offsets_tag, encoding, count, cells + "offsets");
+  const std::size_t offsets_at = scan.firstValue(offsets_tag.content);
+  if (static_cast<long long>(c.offsets.size()) != count)
+    scan.failAt(offsets_at, std::to_string(count) + " offsets (the Piece's count)", std::to_string(c.offsets.size()));
+  // The connectivity's size is the last offset: at least 3 corners a cell, and at most the
+  // corners of the kMaxMeshTriangles triangles they may give (a cell of n corners gives n − 2
+  // triangles: corners <= triangles + 2 F).
+  const double corners = c.offsets.back();
+  if (!(corners >= 3.0 * static_cast<double>(count)) ||
+      corners > static_cast<double>(kMaxMeshTriangles) + 2.0 * static_cast<double>(count))
+    scan.failAt(offsets_at, "a last offset of at least 3 × the count and at most the corners of " +
+                                std::to_string(kMaxMeshTriangles) + " triangles",
+                numberText(corners));
+  double begin = 0.0;
+  for (long long f = 0; f < count; ++f) {
+    const double end = c.offsets[static_cast<std::size_t>(f)];
+    if (!(end >= begin + 3.0) || end > corners || end != std::floor(end))
+      scan.failAt(offsets_at, "offsets that are whole numbers growing by at least 3 (a cell of 3 or more points)",
+                  "offset " + std::to_string(f) + " = " + numberText(end) + " after " + numberText(begin));
+    begin = end;
+  }
+  const Tag connectivity_tag =
+      namedArray(scan, block.content, block_end, "connectivity", cells + "\"connectivity\" <DataArray>");
+  c.connectivity = dataArray(scan, connectivity_tag, encoding, static_cast<long long>(corners), cells + "connectivity");
+  const std::size_t connectivity_at = scan.firstValue(connectivity_tag.content);
+  if (static_cast<double>(c.connectivity.size()) != corners)
+    scan.failAt(connectivity_at, "a connectivity of " + numberText(corners) + " indices (the last offset)",
+                std::to_string(c.connectivity.size()));
+  for (const double index : c.connectivity)
+    if (!(index >= 0.0 && index < static_cast<double>(vertex_count)) || index != std::floor(index))
+      scan.failAt(connectivity_at,
+                  "indices of points in the connectivity (whole numbers in [0, " + std::to_string(vertex_count) + "))",
+                  numberText(index));
+  return c;
 }
 
 }  // namespace
 
 PolygonSoup readVtp(std::string_view bytes, const std::string& name) {
   const VtpScanner scan(bytes, name);
-  SoupBuilder soup(scan.cursor());
+  SoupBuilder soup(scan.cursor());  // every check it makes is made before, at its place
   const std::size_t all = bytes.size();
   const Tag file = scan.tag("VTKFile", 0, all, "a VTK XML file (<VTKFile type=\"PolyData\" ...>)");
   if (VtpScanner::attribute(file.attributes, "type") != "PolyData")
     scan.failAt(file.start, "a PolyData file (<VTKFile type=\"PolyData\">)",
                 quoted(VtpScanner::attribute(file.attributes, "type")));
   if (!VtpScanner::attribute(file.attributes, "compressor").empty())
-    scan.failAt(file.start, "uncompressed data (VTK writer: SetCompressorTypeToNone; ParaView: Compressor None)",
+    scan.failAt(file.start,
+                "uncompressed data (ParaView: save with Data Mode Ascii, or Binary with Compressor None; VTK: "
+                "SetDataModeToAscii, or SetCompressorTypeToNone and SetDataModeToBinary)",
                 "compressor=\"" + std::string(VtpScanner::attribute(file.attributes, "compressor")) + "\"");
   Encoding encoding;
-  encoding.big_endian = VtpScanner::attribute(file.attributes, "byte_order") == "BigEndian";
+  const std::string_view byte_order = VtpScanner::attribute(file.attributes, "byte_order");
+  if (!byte_order.empty() && byte_order != "LittleEndian" && byte_order != "BigEndian")
+    scan.failAt(file.start, "byte_order \"LittleEndian\" or \"BigEndian\"", quoted(byte_order));
+  encoding.big_endian = byte_order == "BigEndian";
   const std::string_view header_type = VtpScanner::attribute(file.attributes, "header_type");
   if (!header_type.empty() && header_type != "UInt32" && header_type != "UInt64")
     scan.failAt(file.start, "header_type \"UInt32\" or \"UInt64\"", quoted(header_type));
@@ -250,64 +340,60 @@ PolygonSoup readVtp(std::string_view bytes, const std::string& name) {
     scan.failAt(piece_end, "one Piece (a surface merged into one: VTK's vtkAppendPolyData)", "more than one");
   const long long vertex_count = count(scan, piece, "NumberOfPoints");
   const long long polygon_count = count(scan, piece, "NumberOfPolys");
-  if (polygon_count == 0) scan.failAt(piece.content, "polygons (NumberOfPolys > 0): a surface's triangles", "none");
-  if (polygon_count > kMaxMeshTriangles)
-    scan.failAt(piece.content, "at most " + std::to_string(kMaxMeshTriangles) + " polygons",
-                std::to_string(polygon_count));
-  soup.expectVertices(vertex_count);
+  const long long strip_count = count(scan, piece, "NumberOfStrips");
+  if (polygon_count == 0 && strip_count == 0)
+    scan.failAt(piece.start, "polygons or triangle strips (NumberOfPolys or NumberOfStrips > 0): a surface", "none");
+  if (vertex_count < 3 || vertex_count > kMaxMeshVertices)
+    scan.failAt(piece.start, "NumberOfPoints from 3 to " + std::to_string(kMaxMeshVertices), std::to_string(vertex_count));
+  if (polygon_count > kMaxMeshTriangles || strip_count > kMaxMeshTriangles)
+    scan.failAt(piece.start, "at most " + std::to_string(kMaxMeshTriangles) + " cells of each kind",
+                std::to_string(std::max(polygon_count, strip_count)));
 
-  // Points: 3 V coordinates.
+  // Points: 3 V finite coordinates (decoded before anything is allocated for V: their bytes exist).
   const Tag points = scan.tag("Points", piece.content, piece_end, "the <Points> of the Piece");
   const std::size_t points_end = scan.end("Points", points.content);
   const Tag coordinates = namedArray(scan, points.content, points_end, "", "the points' <DataArray>");
   const std::string_view components = VtpScanner::attribute(coordinates.attributes, "NumberOfComponents");
-  if (components != "3") scan.failAt(coordinates.content, "points of NumberOfComponents=\"3\"", quoted(components));
+  if (components != "3") scan.failAt(coordinates.start, "points of NumberOfComponents=\"3\"", quoted(components));
   const std::vector<double> xyz = dataArray(scan, coordinates, encoding, 3 * vertex_count, "the points");
+  const std::size_t xyz_at = scan.firstValue(coordinates.content);
   if (static_cast<long long>(xyz.size()) != 3 * vertex_count)
-    scan.failAt(coordinates.content, std::to_string(3 * vertex_count) + " coordinates (NumberOfPoints × 3)",
-                std::to_string(xyz.size()));
+    scan.failAt(xyz_at, std::to_string(3 * vertex_count) + " coordinates (NumberOfPoints × 3)", std::to_string(xyz.size()));
+  for (std::size_t k = 0; k < xyz.size(); ++k)
+    if (!std::isfinite(xyz[k]))
+      scan.failAt(xyz_at, "finite coordinates", "coordinate " + std::to_string(k) + " = " + numberText(xyz[k]));
+  soup.expectVertices(vertex_count);
   for (long long i = 0; i < vertex_count; ++i) soup.addVertex(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
 
-  // Polys: offsets (F ends) into connectivity.
-  const Tag polys = scan.tag("Polys", piece.content, piece_end, "the <Polys> of the Piece");
-  const std::size_t polys_end = scan.end("Polys", polys.content);
-  const std::vector<double> offsets =
-      dataArray(scan, namedArray(scan, polys.content, polys_end, "offsets", "the polys' \"offsets\" <DataArray>"),
-                encoding, polygon_count, "the polys' offsets");
-  if (static_cast<long long>(offsets.size()) != polygon_count)
-    scan.failAt(polys.content, std::to_string(polygon_count) + " offsets (NumberOfPolys)", std::to_string(offsets.size()));
-  // The connectivity's size is the last offset: at least 3 corners a polygon, and at most the
-  // corners of the kMaxMeshTriangles triangles they may fan into (a polygon of n corners gives
-  // n − 2 triangles: corners <= triangles + 2 F).
-  const double corners = offsets.back();
-  if (!(corners >= 3.0 * polygon_count) || corners > static_cast<double>(kMaxMeshTriangles + 2 * polygon_count))
-    scan.failAt(polys.content, "a last offset of at least 3 × NumberOfPolys and at most the corners of " +
-                                   std::to_string(kMaxMeshTriangles) + " triangles",
-                std::to_string(corners));
-  const std::vector<double> connectivity = dataArray(
-      scan, namedArray(scan, polys.content, polys_end, "connectivity", "the polys' \"connectivity\" <DataArray>"),
-      encoding, static_cast<long long>(corners), "the polys' connectivity");
-  if (static_cast<double>(connectivity.size()) != corners)
-    scan.failAt(polys.content, "a connectivity of " + std::to_string(static_cast<long long>(corners)) +
-                                   " indices (the last offset)",
-                std::to_string(connectivity.size()));
+  // Polygons, fanned (v0, v_k, v_{k+1}); strips, triangle k of a strip p_0 p_1 ... being
+  // (p_k, p_{k+1}, p_{k+2}) for even k and (p_{k+1}, p_k, p_{k+2}) for odd k, so that the strip's
+  // triangles keep one orientation.
   std::vector<long long> polygon;
-  long long begin = 0;
-  for (long long f = 0; f < polygon_count; ++f) {
-    const double end = offsets[f];
-    if (!(end >= static_cast<double>(begin) + 3.0) || end > corners)
-      scan.failAt(polys.content, "offsets that grow by at least 3 (a polygon of 3 or more corners) up to the last",
-                  "offset " + std::to_string(f) + " = " + std::to_string(end));
-    polygon.clear();
-    for (auto i = begin; i < static_cast<long long>(end); ++i) {
-      const double index = connectivity[static_cast<std::size_t>(i)];
-      if (!(index >= 0.0 && index < static_cast<double>(kMaxMeshVertices)) || index != std::floor(index))
-        scan.failAt(polys.content, "indices of points in the connectivity (integers in [0, NumberOfPoints))",
-                    std::to_string(index));
-      polygon.push_back(static_cast<long long>(index));
+  if (polygon_count > 0) {
+    const Cells polys = readCells(scan, "Polys", piece.content, piece_end, polygon_count, vertex_count, encoding);
+    std::size_t begin = 0;
+    for (const double end : polys.offsets) {
+      polygon.assign(polys.connectivity.begin() + static_cast<std::ptrdiff_t>(begin),
+                     polys.connectivity.begin() + static_cast<std::ptrdiff_t>(end));
+      soup.addPolygon(polygon);
+      begin = static_cast<std::size_t>(end);
     }
-    soup.addPolygon(polygon);
-    begin = static_cast<long long>(end);
+  }
+  if (strip_count > 0) {
+    const Cells strips = readCells(scan, "Strips", piece.content, piece_end, strip_count, vertex_count, encoding);
+    std::size_t begin = 0;
+    for (const double end : strips.offsets) {
+      const auto p = [&](std::size_t k) { return static_cast<long long>(strips.connectivity[begin + k]); };
+      for (std::size_t k = 0; begin + k + 2 < static_cast<std::size_t>(end); ++k) {
+        if (p(k) == p(k + 1) || p(k + 1) == p(k + 2) || p(k) == p(k + 2)) continue;  // a join of strips
+        if (k % 2 == 0)
+          polygon = {p(k), p(k + 1), p(k + 2)};
+        else
+          polygon = {p(k + 1), p(k), p(k + 2)};
+        soup.addPolygon(polygon);
+      }
+      begin = static_cast<std::size_t>(end);
+    }
   }
   return soup.finish();
 }

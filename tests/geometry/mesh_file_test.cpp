@@ -303,6 +303,8 @@ TEST(MeshFile, VtpAsciiAndBinaryGiveTheSurfaceOfTheOff) {
   const PolygonSoup ascii = readMeshFile(kData + "cube.vtp");
   expectSameSurface(ascii, cube, "ascii VTP");
   EXPECT_TRUE(ascii.triangles == cube.triangles) << "same fan";
+  // Version 0.1 (no header_type: UInt32), the offsets before the connectivity.
+  expectSameSurface(readMeshFile(kData + "cube_binary.vtp"), cube, "binary VTP of version 0.1");
   for (const bool big : {false, true})
     for (const bool header64 : {false, true}) {
       const std::string what = std::string(big ? "big" : "little") + "-endian binary VTP, " +
@@ -311,6 +313,21 @@ TEST(MeshFile, VtpAsciiAndBinaryGiveTheSurfaceOfTheOff) {
       expectSameSurface(soup, cube, what);
       EXPECT_TRUE(soup.vertices == cube.vertices) << what;  // 0 and 1 are exact in Float32
     }
+}
+
+TEST(MeshFile, VtpStripsKeepOneOrientation) {
+  // Triangle strips (VTK's vtkStripper): triangle k of p_0 p_1 ... is (p_k, p_k+1, p_k+2) for
+  // even k and (p_k+1, p_k, p_k+2) for odd k, so that neighbours share an edge in opposite
+  // directions; a repeated point (a join of two strips) gives no triangle.
+  const std::string strip =
+      "<VTKFile type=\"PolyData\"><PolyData><Piece NumberOfPoints=\"5\" NumberOfStrips=\"1\"><Points>"
+      "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 1 0 1 1 0 2 1 0</DataArray>"
+      "</Points><Strips><DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2 3 3 4</DataArray>"
+      "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">6</DataArray></Strips></Piece></PolyData></VTKFile>";
+  const PolygonSoup soup = readMesh(strip, MeshFormat::kVtp, "strip.vtp");
+  TriangleIndices expected(2, 3);
+  expected << 0, 1, 2, 2, 1, 3;  // (2, 3, 3) and (3, 3, 4) repeat a point: the join
+  EXPECT_TRUE(soup.triangles == expected) << soup.triangles;
 }
 
 TEST(MeshFile, VtpThatCannotBeReadSaysWhatToSaveInstead) {
@@ -323,19 +340,33 @@ TEST(MeshFile, VtpThatCannotBeReadSaysWhatToSaveInstead) {
     }
     return std::string("(read)");
   };
+  // The line of a text in the file (1-based), where a message must point.
+  const auto lineOf = [&](const std::string& text) {
+    return std::to_string(1 + std::count(ascii.begin(), ascii.begin() + static_cast<long>(ascii.find(text)), '\n'));
+  };
   std::string compressed = ascii;
   compressed.replace(compressed.find("header_type"), 0, "compressor=\"vtkZLibDataCompressor\" ");
-  EXPECT_NE(refusal(compressed).find("vessel.vtp:4: expected uncompressed data"), std::string::npos) << refusal(compressed);
+  EXPECT_NE(refusal(compressed).find("vessel.vtp:" + lineOf("<VTKFile") + ": expected uncompressed data"), std::string::npos)
+      << refusal(compressed);
   std::string appended = ascii;
   appended.replace(appended.find("format=\"ascii\" RangeMin=\"0\" RangeMax=\"1.73"), 14, "format=\"appended\"");
   EXPECT_NE(refusal(appended).find("format=\"appended\""), std::string::npos) << refusal(appended);
   EXPECT_NE(refusal(appended).find("inline"), std::string::npos) << refusal(appended);
+  // A point that is not there: named at the line of the connectivity's values.
   std::string outside = ascii;
-  outside.replace(outside.find("3 0 4 7"), 7, "3 0 4 8");  // a point that is not there
-  EXPECT_NE(refusal(outside).find("vessel.vtp:"), std::string::npos) << refusal(outside);
+  outside.replace(outside.find("3 0 4 7"), 7, "3 0 4 8");
+  EXPECT_NE(refusal(outside).find("vessel.vtp:" + lineOf("0 3 2 1") + ": expected indices of points"), std::string::npos)
+      << refusal(outside);
+  std::string not_a_number = ascii;
+  not_a_number.replace(not_a_number.find("0 1 1\n"), 5, "0 1 x");
+  EXPECT_NE(refusal(not_a_number).find("vessel.vtp:" + lineOf("0 0 1  1 0 1") + ": expected the points: numbers"),
+            std::string::npos)
+      << refusal(not_a_number);
   std::string short_offsets = ascii;
   short_offsets.replace(short_offsets.find("4 8 12 16 20 24"), 15, "4 8 12 16 20 22");
-  EXPECT_NE(refusal(short_offsets).find("vessel.vtp:36: expected the polys' connectivity of at most 22 values"), std::string::npos) << refusal(short_offsets);
+  EXPECT_NE(refusal(short_offsets).find("vessel.vtp:" + lineOf("4 8 12 16 20 24") +
+                                   ": expected offsets that are whole numbers growing by at least 3 (a cell of 3 or "
+                                   "more points), found offset 5 = 22 after 20"), std::string::npos) << refusal(short_offsets);
   std::string image = ascii;
   image.replace(image.find("type=\"PolyData\""), 16, "type=\"ImageData\"");
   EXPECT_NE(refusal(image).find("expected a PolyData file"), std::string::npos) << refusal(image);

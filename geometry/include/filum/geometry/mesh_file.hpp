@@ -15,10 +15,11 @@
 //     triangle count, 50 bytes a triangle); corners with the same coordinates are merged into one
 //     vertex, so that the mesh is connected (CGAL's inside test needs a closed surface), and the
 //     triangles that merging collapses are dropped;
-//   - VTP (vtp_mesh_reader.cpp): VTK XML PolyData as 3D Slicer, VMTK and ParaView write segmented
-//     vessels: one Piece, its Points and its Polys (connectivity and offsets), in format "ascii"
-//     or "binary" (base64, UInt32 or UInt64 header, either byte order, any numeric type);
-//     compressed or appended data refused with what to save instead.
+//   - VTP (vtp_mesh_reader.cpp): VTK XML PolyData, the format of 3D Slicer, VMTK and ParaView:
+//     one Piece, its Points, Polys and triangle Strips (connectivity and offsets), inline in
+//     format "ascii" or "binary" (base64, UInt32 or UInt64 header, either byte order, any numeric
+//     type). VTK's default, appended zlib-compressed data, is refused with how to save the file
+//     instead (ParaView: Data Mode Ascii, or Binary with Compressor None).
 // Every format: lines may end in LF, CRLF or CR; words may be separated by any run of spaces and
 // tabs; polygons are fanned into triangles (v0, v_k, v_{k+1}); coordinates are in the file's own
 // units (the scene's "units" and "scale" turn them into metres: mesh_units.hpp).
@@ -66,7 +67,7 @@ inline constexpr long kMaxMeshTriangles = 2 * kMaxMeshVertices;
 /// for malformed input, with what was expected and what was found; at least one triangle.
 PolygonSoup readMesh(std::string_view bytes, MeshFormat format, const std::string& name);
 
-/// The format of a path by its extension, case-insensitive (.obj, .off, .ply, .stl). Throws
+/// The format of a path by its extension, case-insensitive (.obj, .off, .ply, .stl, .vtp). Throws
 /// std::runtime_error "path: expected ..., found ..." for any other.
 MeshFormat meshFormatOfPath(const std::string& path);
 

@@ -15,7 +15,7 @@ std::string inputFileProblem(const std::string& path, std::uintmax_t max_bytes);
 /// The size of a file that inputFileProblem accepted (bytes).
 std::uintmax_t inputFileSize(const std::string& path);
 
-/// Mesh files (.obj, .off, .ply, .stl), at most: 256 MiB is a mesh of several million
+/// Mesh files (.obj, .off, .ply, .stl, .vtp), at most: 256 MiB is a mesh of several million
 /// triangles, beyond what a step's collision queries or a frame's drawing can use. The counts a
 /// mesh header announces are checked against the bytes by the reader itself
 /// (geometry/mesh_file.hpp), before it allocates for them.

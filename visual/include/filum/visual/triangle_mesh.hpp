@@ -26,7 +26,7 @@ struct TriangleMesh {
 /// Area-weighted vertex normals of the triangles (unit; a vertex of no triangle gets +z).
 void computeVertexNormals(TriangleMesh& mesh);
 
-/// A mesh read from a file (geometry::readMeshFile: OBJ, OFF, PLY, STL) with its smooth vertex
+/// A mesh read from a file (geometry::readMeshFile: OBJ, OFF, PLY, STL, VTP) with its smooth vertex
 /// normals: triangleMesh(geometry::readMeshFile(path)).
 TriangleMesh triangleMesh(geometry::PolygonSoup soup);
 
