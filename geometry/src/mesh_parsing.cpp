@@ -8,6 +8,12 @@
 
 namespace filum::geometry::mesh_parsing {
 
+std::string numberText(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
 std::string quoted(std::string_view word) {
   constexpr std::size_t kShown = 40;
   std::string text = "\"";

@@ -15,6 +15,8 @@ namespace filum::geometry::mesh_parsing {
 
 /// A word for a message: quoted, at most 40 characters, control bytes as \xNN.
 std::string quoted(std::string_view word);
+/// A number for a message, exactly and briefly ("%.17g": 8, 0.10000000000000001, 1e+300).
+std::string numberText(double value);
 
 /// A decimal integer (optional sign), the whole word; false on anything else or overflow.
 bool parseInteger(std::string_view word, long long& value);

@@ -114,12 +114,6 @@ class Values {
   Encoding encoding_;
 };
 
-std::string describe(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
-}
-
 struct Header {
   Encoding encoding = Encoding::kAscii;
   std::vector<Element> elements;
@@ -229,14 +223,14 @@ PolygonSoup readPly(std::string_view bytes, const std::string& name) {
         if (!(count >= 0.0 && count == std::floor(count) &&
               count * static_cast<double>(values.minimumBytes(p.type)) <= static_cast<double>(cursor.remaining()) + 1.0))
           cursor.fail("a list length that fits in the rest of the file (" + std::to_string(cursor.remaining()) + " bytes)",
-                      describe(count));
+                      numberText(count));
         const bool indices = face && (p.name == "vertex_indices" || p.name == "vertex_index");
         polygon.clear();
         for (long long item = 0; item < static_cast<long long>(count); ++item) {
           const double value = values.next(p.type);
           if (!indices) continue;
           if (!(value == std::floor(value) && std::abs(value) < 9.0e15))
-            cursor.fail("integer vertex indices", describe(value));
+            cursor.fail("integer vertex indices", numberText(value));
           polygon.push_back(static_cast<long long>(value));
         }
         if (indices) soup.addPolygon(polygon);

@@ -252,13 +252,6 @@ long long count(const VtpScanner& scan, const Tag& piece, std::string_view key) 
   return value;
 }
 
-/// A number for a message ("%g": 8, 1e+300).
-std::string numberText(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
-
 /// The cells of <Polys> or <Strips>: each cell's corners, checked before a triangle is made:
 /// offsets whole numbers growing by at least 3 (a polygon or strip of 3 or more points) up to
 /// the connectivity's size, indices of points in [0, V).
