@@ -10,6 +10,7 @@
 #include "filum/constraints/projected_point_constraint.hpp"
 #include "filum/core/node.hpp"
 #include "filum/core/scene.hpp"
+#include "filum/core/scene_error.hpp"
 
 namespace filum::collision {
 
@@ -60,6 +61,7 @@ void ContactPipeline::init(const Scene& scene) {
   scene.root().collect(models_);
   scene.root().collect(obstacles_);
   for (SphereCollisionModel* m : models_) m->init(scene);
+  findTubes();
   // Margin: contacts are kept up to half the smallest radius of gap (beyond the sweep).
   double smallest = std::numeric_limits<double>::infinity();
   for (const SphereCollisionModel* m : models_) smallest = std::min(smallest, m->radius());
@@ -67,6 +69,33 @@ void ContactPipeline::init(const Scene& scene) {
   broad_phase_ = UniformGridBroadPhase(settings_.cell_size);
   contacts_.clear();
   restored_ = false;  // a new layout: the next detection starts afresh, restored or not
+}
+
+void ContactPipeline::findTubes() {
+  const int count = static_cast<int>(models_.size());
+  tube_of_.assign(count, -1);
+  for (int m = 0; m < count; ++m) {
+    const SphereCollisionModel& model = *models_[m];
+    if (model.inside().empty()) continue;
+    const std::string where = model.origin() + "/inside";
+    for (int t = 0; t < count; ++t)
+      if (t != m && models_[t]->node() && models_[t]->node()->path() == model.inside()) tube_of_[m] = t;
+    if (tube_of_[m] < 0) {
+      std::string known;
+      for (const SphereCollisionModel* t : models_)
+        if (t != &model && t->node()) known += (known.empty() ? "" : ", ") + describeJson(t->node()->path());
+      throw SceneError(where, "the node path of a body with a SphereCollisionModel (" + (known.empty() ? std::string("there is none") : known) + ")",
+                       describeJson(model.inside()));
+    }
+    const SphereCollisionModel& tube = *models_[tube_of_[m]];
+    if (!(tube.lumenRadius() > model.radius()))
+      throw SceneError(where, "a tube whose SphereCollisionModel has a \"lumen_radius\" above this instrument's radius " +
+                                  describeJson(model.radius()) + " m",
+                       describeJson(model.inside()) + (tube.lumenRadius() > 0.0 ? " with lumen_radius " + describeJson(tube.lumenRadius()) + " m"
+                                                                                 : std::string(" without a lumen_radius")));
+    if (tube_of_[tube_of_[m]] == m)
+      throw SceneError(where, "a tube that does not run inside this instrument", describeJson(model.inside()) + ", itself inside this one");
+  }
 }
 
 void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double h) {
@@ -100,6 +129,15 @@ void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double 
       findObstacleContacts(*models_[m], m, *obstacles_[o], o, narrow, contacts_);
   stats_.obstacle_contacts = static_cast<int>(contacts_.size());
 
+  // 2b. Instruments inside tubes: held in the lumen.
+  for (int m = 0; m < model_count; ++m) {
+    const int t = tube_of_[m];
+    if (t < 0) continue;
+    const double mu = models_[t]->lumenFriction().value_or(settings_.friction);
+    findLumenContacts(*models_[m], m, *models_[t], t, mu, narrow, contacts_);
+  }
+  stats_.lumen_contacts = static_cast<int>(contacts_.size()) - stats_.obstacle_contacts;
+
   // 3. Thread–thread: chords in bounding spheres of their start and predicted end positions.
   chords_.clear();
   chord_owner_.clear();
@@ -125,6 +163,7 @@ void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double 
     for (const IndexPair& pair : pairs_) {
       const auto [ma, k] = chord_owner_[pair.first];
       const auto [mb, l] = chord_owner_[pair.second];
+      if (coaxial(ma, mb)) continue;  // held inside instead (2b)
       if (ma == mb) {
         const SphereCollisionModel& model = *models_[ma];
         if (!model.selfCollision()) continue;
@@ -135,7 +174,7 @@ void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double 
       findChordContact(*models_[ma], ma, k, *models_[mb], mb, l, narrow, contacts_);
     }
   }
-  stats_.thread_contacts = static_cast<int>(contacts_.size()) - stats_.obstacle_contacts;
+  stats_.thread_contacts = static_cast<int>(contacts_.size()) - stats_.obstacle_contacts - stats_.lumen_contacts;
   if (settings_.max_slide > 0.0) {
     start_offset_.resize(contacts_.size());
     for (std::size_t i = 0; i < contacts_.size(); ++i) {
@@ -302,6 +341,7 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
     for (std::size_t i = 0; i < contacts_.size(); ++i) {
       const Contact& c = contacts_[i];
       if (c.againstObstacle() || contact_force_[i].dot(c.normal) <= 0.0) continue;  // pressed thread contacts
+      if (coaxial(c.model_a, c.model_b)) continue;  // along a lumen: the wall's normal holds as it slides
       const ContactKinematics k = contactKinematics(c, after);
       const Vec3 moved = (k.x_a - k.x_b) - start_offset_[i];
       if ((moved - moved.dot(c.normal) * c.normal).norm() > settings_.max_slide) return Miss::kOverlapOrSlide;
@@ -334,6 +374,7 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
     const auto [mb, l] = chord_owner_[pair.second];
     const SphereCollisionModel& a = *models_[ma];
     const SphereCollisionModel& b = *models_[mb];
+    if (coaxial(ma, mb)) continue;  // one runs inside the other: their centre lines are meant to be close
     if (ma == mb && a.mapping().chordDistanceBound(k, l) < a.exclusion()) continue;  // as in beginStep
     MovingSegment sa{a.centers().row(k).transpose(), a.centers().row(k + 1).transpose(),
                      after_centers_[ma].row(k).transpose(), after_centers_[ma].row(k + 1).transpose()};

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Geometry>
 
@@ -25,20 +26,10 @@ bool representsClosestPoint(const SphereCollisionModel& m, int k, double u, cons
   return closestPointsOnSegments(center(m, k - 1), center(m, k), q0, q1).s >= 1.0;
 }
 
-/// Fewer rows where they would be redundant: of consecutive contacts out[first..] with one linear
-/// piece of the curve (degree 1: a rod's segment, two control points) and one normal (a flat
-/// obstacle face there), keeps the first and the last. Exact: on a straight piece against a
-/// plane the gap n·P(s) − d − r is linear in s, so the spheres between two contacts cannot come
-/// closer than the nearer of them, and their rows n · (b_0 x_i + b_1 x_{i+1}) are combinations of
-/// the two kept ones — rows that only made the contact solve's matrix larger and singular (a rod
-/// lying on a table had ~7 spheres per 10 mm segment: 3.5 times the rows). Curved pieces (splines
-/// of degree >= 2) and curved surfaces (normals that differ) keep every contact.
-void keepSpanEnds(ContactSet& out, std::size_t first) {
-  const auto sameRun = [](const Contact& a, const Contact& b) {
-    const PointWeights &wa = a.a.weights(), &wb = b.a.weights();
-    return wa.count == 2 && wb.count == 2 && wa.point[0] == wb.point[0] && wa.point[1] == wb.point[1] &&
-           a.normal.dot(b.normal) >= 1.0 - 1e-12;  // one plane: normals equal to round-off
-  };
+/// Keeps the first and the last of each run of consecutive contacts of out[first..] that
+/// sameRun(out[k], out[j]) joins to the run's first one.
+template <class SameRun>
+void keepRunEnds(ContactSet& out, std::size_t first, SameRun sameRun) {
   std::size_t write = first;
   for (std::size_t k = first; k < out.size();) {
     std::size_t end = k + 1;  // [k, end): one run
@@ -48,6 +39,60 @@ void keepSpanEnds(ContactSet& out, std::size_t first) {
     k = end;
   }
   out.resize(write);
+}
+
+/// Whether two contacts may join one run of keepRunEnds: both on the same straight piece of A
+/// and, unless against an obstacle, the same straight piece of B (rows of two control points).
+bool onSamePieces(const Contact& x, const Contact& y) {
+  const auto same = [](const PointWeights& p, const PointWeights& q) {
+    return p.count == 2 && q.count == 2 && p.point[0] == q.point[0] && p.point[1] == q.point[1];
+  };
+  return same(x.a.weights(), y.a.weights()) && (x.againstObstacle() || same(x.b.weights(), y.b.weights()));
+}
+
+/// Fewer rows where they would be redundant: of consecutive contacts out[first..] with one linear
+/// piece of the curve (degree 1: a rod's segment, two control points) and one normal (a flat
+/// obstacle face there), keeps the first and the last. Exact: on a straight piece against a
+/// plane the gap n·P(s) − d − r is linear in s, so the spheres between two contacts cannot come
+/// closer than the nearer of them, and their rows n · (b_0 x_i + b_1 x_{i+1}) are combinations of
+/// the two kept ones — rows that only made the contact solve's matrix larger and singular (a rod
+/// lying on a table had ~7 spheres per 10 mm segment: 3.5 times the rows). Curved pieces (splines
+/// of degree >= 2) and curved surfaces (normals that differ) keep every contact.
+void keepSpanEnds(ContactSet& out, std::size_t first) {
+  keepRunEnds(out, first, [](const Contact& a, const Contact& b) {
+    return onSamePieces(a, b) && a.normal.dot(b.normal) >= 1.0 - 1e-12;  // one plane: normals equal to round-off
+  });
+}
+
+/// The nearest point of a tube's centre line to x: chord l, parameter u, distance d; chord −1
+/// when that point lies beyond one of the tube's open ends.
+struct AxisPoint {
+  int chord = -1;
+  double u = 0.0;
+  double distance = 0.0;
+};
+
+AxisPoint nearestAxisPoint(const SphereCollisionModel& tube, const Vec3& x) {
+  AxisPoint best;
+  double nearest = std::numeric_limits<double>::infinity();
+  bool beyond_end = false;
+  for (int l = 0; l + 1 < tube.sphereCount(); ++l) {
+    if (!tube.mapping().joinsNext(l)) continue;  // a cut: no chord across it
+    const Vec3 y0 = center(tube, l), y1 = center(tube, l + 1), e = y1 - y0;
+    const double length2 = e.squaredNorm();
+    const double t = length2 > 0.0 ? (x - y0).dot(e) / length2 : 0.0;
+    const double u = std::clamp(t, 0.0, 1.0);
+    const double d = (x - (y0 + u * e)).norm();
+    if (d < nearest) {
+      nearest = d;
+      best = {l, u, d};
+      const bool first = l == 0 || !tube.mapping().joinsNext(l - 1);
+      const bool last = l + 2 >= tube.sphereCount() || !tube.mapping().joinsNext(l + 1);
+      beyond_end = (first && t < 0.0) || (last && t > 1.0);
+    }
+  }
+  if (beyond_end) best.chord = -1;
+  return best;
 }
 
 }  // namespace
@@ -122,6 +167,38 @@ bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const S
   }
   out.push_back(c);
   return true;
+}
+
+void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const SphereCollisionModel& tube,
+                       int model_tube, double friction, const NarrowPhaseSettings& settings, ContactSet& out) {
+  const double clearance = tube.lumenRadius() - inner.radius();  // R_in − r
+  const std::size_t first = out.size();
+  double tube_speed = 0.0;  // the largest speed of the tube's centre line
+  for (int l = 0; l < tube.sphereCount(); ++l) tube_speed = std::max(tube_speed, speed(tube, l));
+  for (int k = 0; k < inner.sphereCount(); ++k) {
+    const Vec3 x = center(inner, k);
+    const AxisPoint axis = nearestAxisPoint(tube, x);
+    if (axis.chord < 0) continue;  // beyond the tube's ends
+    const double reach = settings.margin + (speed(inner, k) + tube_speed) * settings.time_step;
+    if (clearance - axis.distance > reach) continue;  // g = (R_in − r) − d
+    const int l = axis.chord;
+    const Vec3 y0 = center(tube, l), y1 = center(tube, l + 1);
+    const Vec3 y = y0 + axis.u * (y1 - y0);
+    Contact c;
+    c.model_a = model_inner;
+    c.a = inner.mapping().chordPoint(inner.curve(), k, 0.0);  // centre k
+    c.model_b = model_tube;
+    c.b = tube.mapping().chordPoint(tube.curve(), l, axis.u);
+    c.time = settings.time;
+    c.radius = -clearance;
+    c.friction = friction;
+    // n = (y − x)/d, towards the axis; a sphere on the axis (d = 0: far from the wall, the
+    // contact only waits) takes any direction across the chord.
+    const double scale = (y1 - y0).norm() + inner.radius();
+    c.normal = axis.distance > 1e-12 * scale ? Vec3((y - x) / axis.distance) : Vec3((y1 - y0).unitOrthogonal());
+    out.push_back(c);
+  }
+  keepRunEnds(out, first, onSamePieces);
 }
 
 }  // namespace filum::collision

@@ -18,6 +18,9 @@ std::unique_ptr<SphereCollisionModel> SphereCollisionModel::fromParams(const Par
   s.spacing = p.positive({"spacing", "m"}, 0.0);
   s.self_collision = p.boolean("self_collision", true);
   s.exclusion = p.nonNegative({"exclusion", "m"}, -1.0);
+  s.lumen_radius = p.positive({"lumen_radius", "m"}, 0.0);
+  if (p.has({"lumen_friction", "1"})) s.lumen_friction = p.nonNegative({"lumen_friction", "1"}, 0.0);
+  s.inside = p.string("inside", "");
   return std::make_unique<SphereCollisionModel>(s);
 }
 
@@ -46,6 +49,11 @@ void SphereCollisionModel::init(const Scene& scene) {
                          " spheres along the thread (sphere_sampling_mapping.hpp: every step visits each sphere)",
                      describeJson(std::floor(spheres)) + " spheres of spacing " + describeJson(spacing) + " m on " +
                          describeJson(rest_length) + " m");
+  if (settings_.lumen_radius > 0.0 && !(settings_.lumen_radius < radius_))
+    throw SceneError(origin() + "/lumen_radius", "a lumen radius below the tube's outer radius " + describeJson(radius_) + " m",
+                     describeJson(settings_.lumen_radius) + " m");
+  if (settings_.lumen_friction && settings_.lumen_radius == 0.0)
+    throw SceneError(origin() + "/lumen_friction", "a \"lumen_radius\" beside it (only a tube has a lumen)", "none");
   exclusion_ = settings_.exclusion >= 0.0 ? settings_.exclusion : 4.0 * radius_;
   mapping_ = std::make_unique<SphereSamplingMapping>(curve_->basis(), spacing);
   mapping_->resample(curve_->initialPositions());

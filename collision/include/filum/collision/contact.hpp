@@ -10,6 +10,8 @@
 // are those found at the step's start; only positions and velocities change between integrator
 // stages. The gap, positive when apart,
 //   g(q, t) = n·(x_A(q) − x_B(q, t)) − R,   R = r_A + r_B (thread–thread), r_A (thread–obstacle),
+//                                            −(R_in − r_A) (A inside the lumen of tube B, with n
+//                                            towards B's axis: narrow_phase.hpp),
 // with x_B(t) = p_0 + v_B (t − t_0) for an obstacle (surface point p_0 moving with the surface
 // velocity v_B), has the constant gradient ∂g/∂q_j = w_{A,j} n − w_{B,j} n, and
 //   ġ = n·(v_A − v_B).
@@ -57,7 +59,8 @@ ContactKinematics contactKinematics(const Contact& c, const SceneState& s);
 void addContactForce(const Contact& c, const Vec3& F, VecX& B);
 
 /// The contact set of one step, in a deterministic order (thread–obstacle contacts by model,
-/// obstacle and sphere, then thread–thread contacts by sorted broad-phase pair).
+/// obstacle and sphere, then instruments inside tubes by model and sphere, then thread–thread
+/// contacts by sorted broad-phase pair).
 using ContactSet = std::vector<Contact>;
 
 }  // namespace filum::collision

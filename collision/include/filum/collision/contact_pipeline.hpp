@@ -11,6 +11,10 @@
 //      of its start and predicted end positions (x + v h), go through the uniform-grid broad
 //      phase (O(n)); candidate pairs go to the chord narrow phase (narrow_phase.hpp) with
 //      continuous detection, so that no contact a step could reach is missed;
+//   3b. coaxial instruments: the spheres of an instrument running in a tube (a guidewire in a
+//      catheter, SphereCollisionModel "inside") against the tube's centre line, held inside its
+//      lumen (narrow_phase.hpp, findLumenContacts); the pair's chord contacts of step 3, which
+//      would push the two apart, are not sought;
 //   4. the contact set, in a deterministic order (models, spheres and obstacles in declaration
 //      order, chord pairs sorted).
 // Response (stage 3), "response" in the scene file:
@@ -79,6 +83,7 @@ class ContactPipeline final : public CollisionPipeline {
     bool pairs_overflow = false;  // the broad phase stopped at its budget (bodies swept too far)
     int obstacle_contacts = 0;
     int thread_contacts = 0;    // thread–thread (self included)
+    int lumen_contacts = 0;     // instruments inside tubes
   };
 
   explicit ContactPipeline(Settings settings) : settings_(settings) {}
@@ -133,6 +138,8 @@ class ContactPipeline final : public CollisionPipeline {
   const Statistics& statistics() const { return stats_; }
   const std::vector<SphereCollisionModel*>& models() const { return models_; }
   const std::vector<Obstacle*>& obstacles() const { return obstacles_; }
+  /// The model index of the tube model m runs in, or −1.
+  int tubeOf(int m) const { return tube_of_[m]; }
 
   /// Force on thread point A of contact i at state s (N): the penalty force, or in unilateral
   /// mode the multipliers of the last solve.
@@ -149,6 +156,11 @@ class ContactPipeline final : public CollisionPipeline {
   double stabilization_ = 0.0, friction_rate_ = 0.0;  // ω, ω_f in use
   std::vector<SphereCollisionModel*> models_;
   std::vector<Obstacle*> obstacles_;
+  std::vector<int> tube_of_;  // per model: the model of the tube it runs in, or −1
+  /// Whether models a and b are an instrument and the tube it runs in (no chord contacts).
+  bool coaxial(int a, int b) const { return tube_of_[a] == b || tube_of_[b] == a; }
+  /// Resolves every model's "inside" to the tube's model (SceneError naming the component).
+  void findTubes();
   UniformGridBroadPhase broad_phase_;
   std::vector<BoundingSphere> chords_;
   std::vector<std::pair<int, int>> chord_owner_;  // (model, chord) of every broad-phase entry

@@ -19,6 +19,22 @@
 // that starts there; closest points inside chords are always kept. On one thread, chords that
 // are neighbours or closer than the exclusion distance along the curve are skipped
 // (sphere_collision_model.hpp).
+//
+// Inside a tube (coaxial instruments: an instrument A of radius r running in the lumen of radius
+// R_in of a tube B): each sphere x_k of A against the tube's centre line, the chords
+// [y_l, y_{l+1}] of B; the nearest point y = y_l + u (y_{l+1} − y_l) at distance d. A sphere
+// stays inside while d <= R_in − r, so the gap is
+//   g = (R_in − r) − d = n·(x_A − x_B) − R   with   n = (y − x)/d   (towards the axis),
+//                                                    R = −(R_in − r),
+// the thread–thread contact of contact.hpp with a negative contact distance, and its rows, force
+// (λ n on A, pushing it back towards the axis, −λ n on the tube's wall) and friction are those of
+// every contact. Kept while g <= margin + (|v_k| + max |w_l|) h, as above. A sphere whose nearest
+// point is beyond a strand's end of the tube (u <= 0 on its first chord, u >= 1 on its last) is
+// outside it: past the tip, or behind the hub, where the tube holds nothing. Of consecutive
+// contacts between one straight piece of A (degree 1: a rod's segment) and one straight piece of
+// B, only the first and the last are kept: the distance from a point moving along a line to
+// another line is convex in the parameter, so d is largest, and g smallest, at the ends of the
+// run, and the spheres in between cannot leave the lumen while those two are held.
 #pragma once
 
 #include "filum/collision/contact.hpp"
@@ -42,5 +58,10 @@ void findObstacleContacts(const SphereCollisionModel& model, int model_index, co
 /// For a == b (self-collision) the caller passes k < l.
 bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const SphereCollisionModel& b, int model_b,
                       int l, const NarrowPhaseSettings& settings, ContactSet& out);
+
+/// Appends to `out` the contacts holding the spheres of `inner` inside the lumen of `tube`
+/// (tube.lumenRadius() > inner.radius()), with friction μ.
+void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const SphereCollisionModel& tube,
+                       int model_tube, double friction, const NarrowPhaseSettings& settings, ContactSet& out);
 
 }  // namespace filum::collision

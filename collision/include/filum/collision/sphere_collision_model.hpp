@@ -11,7 +11,16 @@
 // with radius of curvature ρ at arc distance Δ are 2ρ sin(Δ/2ρ) apart, so with ρ >= r (a thread
 // cannot bend tighter than its own radius) points closer than πr along the curve may be within
 // 2r of each other without touching; the default exclusion 4r leaves a margin.
+//
+// Coaxial instruments (a guidewire in a catheter, a coil in a microcatheter): a tube declares the
+// radius of its lumen ("lumen_radius", R_in), and an instrument running in it names the tube's
+// node ("inside"). The pipeline then holds the instrument's spheres inside the lumen wherever
+// they lie along the tube (narrow_phase.hpp, findLumenContacts) and drops the ordinary contacts
+// between the two, which would push them apart.
 #pragma once
+
+#include <optional>
+#include <string>
 
 #include <memory>
 
@@ -34,11 +43,16 @@ class SphereCollisionModel final : public CollisionModel {
     double spacing = 0.0;       // h (m); 0: r
     bool self_collision = true;
     double exclusion = -1.0;    // m along the curve; < 0: 4 r
+    double lumen_radius = 0.0;  // R_in (m) of a tube's lumen; 0: a solid body
+    std::optional<double> lumen_friction;  // μ inside the lumen; none: the pipeline's
+    std::string inside;         // node path of the tube this instrument runs in; empty: none
   };
   explicit SphereCollisionModel(Settings settings) : settings_(settings) {}
 
   /// "radius": r (m, default: the DynamicSpline's radius), "spacing": h (m, default r),
-  /// "self_collision": bool (default true), "exclusion": m along the curve (default 4 r).
+  /// "self_collision": bool (default true), "exclusion": m along the curve (default 4 r);
+  /// a tube: "lumen_radius": R_in (m, below the radius r), "lumen_friction": μ (default the
+  /// pipeline's "friction"); an instrument in a tube: "inside": the tube's node path.
   static std::unique_ptr<SphereCollisionModel> fromParams(const Params& p);
 
   std::string typeName() const override { return "SphereCollisionModel"; }
@@ -55,6 +69,11 @@ class SphereCollisionModel final : public CollisionModel {
   double radius() const { return radius_; }
   double exclusion() const { return exclusion_; }
   bool selfCollision() const { return settings_.self_collision; }
+  /// R_in (m) of the lumen of a tube; 0 for a solid body.
+  double lumenRadius() const { return settings_.lumen_radius; }
+  const std::optional<double>& lumenFriction() const { return settings_.lumen_friction; }
+  /// The node path of the tube this instrument runs in, or empty.
+  const std::string& inside() const { return settings_.inside; }
 
   const SphereSamplingMapping& mapping() const { return *mapping_; }
   int sphereCount() const { return mapping_->outputCount(); }

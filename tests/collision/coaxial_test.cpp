@@ -1,0 +1,217 @@
+// Coaxial instruments (narrow_phase.hpp, findLumenContacts): a guidewire inside a tube held
+// straight and level by clamps at both ends, gravity across them. The tube is a steel hypotube
+// (E = 200 GPa) so that its floor is level: a polymer catheter clamped 20 cm apart sags under
+// its weight with end slopes of ~1e-3, which tilts the floor's normals by as much and adds
+// ±μ⁻¹·1e-3 ≈ 0.5 % to the axial force balance of a wire lying off the middle. References from the mechanics
+// of a rigid body on a rough floor, computed here and not by the code under test:
+// - at rest the wire lies on the bottom of the lumen, its centre line R_in − r below the
+//   catheter's, and the lumen's contact forces carry exactly its weight m g;
+// - pulled along the axis by F below μ m g it sticks (no creep); above, it slides with
+//   m dv/dt = F − μ m g − c m v (Coulomb's kinetic friction with the viscous damping c of the
+//   scene), stepped here by the same implicit Euler recurrence the scene uses;
+// - the ordinary contacts between the two bodies, which would push the wire out through the wall,
+//   are not sought.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "filum/all_components.hpp"
+#include "filum/collision/contact_pipeline.hpp"
+#include "filum/core/curve_body.hpp"
+#include "filum/core/scene.hpp"
+#include "filum/core/scene_error.hpp"
+#include "filum/core/scene_loader.hpp"
+
+namespace filum::collision {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kDt = 1e-3;            // s
+constexpr double kGravity = 9.81;       // m/s²
+constexpr double kTubeRadius = 1e-3;    // m, outer radius of the tube
+constexpr double kLumenRadius = 6e-4;   // m
+constexpr double kWireRadius = 4.45e-4; // m, a 0.035" wire
+constexpr double kWireDensity = 4000;   // kg/m³
+constexpr double kWireFrom = 0.02, kWireTo = 0.10;  // m along x, inside the catheter [0, 0.2]
+constexpr double kFriction = 0.2;       // μ in the lumen
+constexpr double kDamping = 1.0;        // c (1/s) of both bodies
+
+double wireMass() { return M_PI * kWireRadius * kWireRadius * (kWireTo - kWireFrom) * kWireDensity; }
+
+/// The scene: a catheter on the x axis clamped at both ends, a wire on its axis with an axial
+/// load F (N) at its distal end from time 0.5 s (after it has settled on the bottom).
+json coaxialScene(double pull) {
+  json wire_components = {
+      {{"type", "FramedChain"}, {"nodes", {{"from", {kWireFrom, 0, 0}}, {"to", {kWireTo, 0, 0}}, {"count", 17}}},
+       {"radius", kWireRadius}, {"density", kWireDensity}},
+      {{"type", "ChainElasticity"}, {"youngs_modulus", 2e9}, {"poisson_ratio", 0.3}},
+      {{"type", "ViscousDamping"}, {"coefficient", kDamping}},
+      {{"type", "SphereCollisionModel"}, {"inside", "catheter"}}};
+  if (pull > 0.0)
+    wire_components.push_back({{"type", "PointLoad"}, {"abscissa", 1.0},
+                               {"path", {{{"time", 0.5}, {"force", {0, 0, 0}}}, {{"time", 0.5 + 1e-9}, {"force", {pull, 0, 0}}},
+                                         {{"time", 10.0}, {"force", {pull, 0, 0}}}}}});
+  return {{"dt", kDt},
+          {"gravity", {0, 0, -kGravity}},
+          {"integrator", {{"type", "ImplicitEuler"}}},
+          {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}}},
+          {"collision", {{"type", "ContactPipeline"}, {"response", "unilateral"}}},
+          {"nodes",
+           {{{"name", "catheter"},
+             {"components",
+              {{{"type", "FramedChain"}, {"nodes", {{"from", {0, 0, 0}}, {"to", {0.2, 0, 0}}, {"count", 21}}},
+                {"radius", kTubeRadius}, {"density", 7900}},
+               {{"type", "ChainElasticity"}, {"youngs_modulus", 2e11}, {"poisson_ratio", 0.3}},
+               {{"type", "ViscousDamping"}, {"coefficient", kDamping}},
+               {{"type", "ClampConstraint"}, {"abscissa", 0.0}},
+               {{"type", "ClampConstraint"}, {"abscissa", 1.0}},
+               {{"type", "SphereCollisionModel"}, {"lumen_radius", kLumenRadius}, {"lumen_friction", kFriction}}}}},
+            {{"name", "wire"}, {"components", wire_components}}}}};
+}
+
+std::unique_ptr<Scene> load(const json& document) {
+  auto scene = loadScene(document, "coaxial", app::makeFactory());
+  scene->init();
+  return scene;
+}
+
+const ContactPipeline& pipelineOf(const Scene& scene) {
+  return dynamic_cast<const ContactPipeline&>(*scene.collisionPipeline());
+}
+
+/// Distance from x to the catheter's centre line: a rod's centre line is the polyline of its nodes.
+double distanceToAxis(const CurveBody& tube, const SceneState& s, const Vec3& x) {
+  const auto q = tube.block(s.q);
+  double nearest = 1.0;
+  for (int i = 0; i + 1 < tube.pointCount(); ++i) {
+    const Vec3 y0 = q.row(i).transpose(), y1 = q.row(i + 1).transpose(), e = y1 - y0;
+    const double u = std::clamp((x - y0).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    nearest = std::min(nearest, (x - y0 - u * e).norm());
+  }
+  return nearest;
+}
+
+/// Mean x velocity of the wire's nodes (m/s): the velocity of its centre of mass to O(strain).
+double meanAxialVelocity(const CurveBody& wire, const SceneState& s) {
+  return wire.block(s.v).col(0).mean();
+}
+
+double meanAxialPosition(const CurveBody& wire, const SceneState& s) {
+  return wire.block(s.q).col(0).mean();
+}
+
+TEST(Coaxial, WireRestsOnTheLumenFloorAndTheLumenCarriesItsWeight) {
+  auto scene = load(coaxialScene(0.0));
+  for (int k = 0; k < 500; ++k) ASSERT_TRUE(scene->step().ok) << "step " << k;
+  const CurveBody& tube = *scene->bodies()[0]->curve();
+  const CurveBody& wire = *scene->bodies()[1]->curve();
+  const SceneState& s = scene->state();
+  const auto& pipeline = pipelineOf(*scene);
+  // Every point of the wire inside the lumen and the wire down on its floor: its centre line
+  // R_in − r below the catheter's. The solve holds the kept contacts to its tolerance (1e-6 of
+  // the clearance is far looser than it: 1e-9 m of 1.55e-4 m would do), and the points between
+  // them lie no further out (convexity, narrow_phase.hpp).
+  const double clearance = kLumenRadius - kWireRadius;
+  double farthest = 0.0;
+  for (int k = 0; k <= 400; ++k) farthest = std::max(farthest, distanceToAxis(tube, s, wire.position(s.q, k / 400.0)));
+  EXPECT_LE(farthest, clearance * (1.0 + 1e-6)) << farthest / clearance - 1.0;
+  EXPECT_GE(farthest, clearance * (1.0 - 1e-6)) << "the wire did not come down to the lumen's floor";
+  // The lumen's contacts, and no other, hold the wire: their vertical forces sum to m g up to
+  // the wire's remaining motion (its momentum changes by M Δv̄ in a step, 1e-6 of m g here: it
+  // has been at rest for 0.45 s) — 1e-4 m g asserted.
+  int lumen = 0;
+  Vec3 carried = Vec3::Zero();
+  for (int i = 0; i < pipeline.contactCount(); ++i) {
+    const Contact& c = pipeline.contacts()[i];
+    ASSERT_TRUE(c.model_b == 0 && c.model_a == 1) << "contact " << i << " is not the wire inside the catheter";
+    ++lumen;
+    carried += pipeline.contactForce(i, s);
+  }
+  EXPECT_EQ(pipeline.statistics().lumen_contacts, lumen);
+  EXPECT_EQ(pipeline.statistics().thread_contacts, 0) << "the pair's ordinary contacts are not sought";
+  const double weight = wireMass() * kGravity;
+  EXPECT_NEAR(carried.z(), weight, 1e-4 * weight);
+  EXPECT_NEAR(carried.x(), 0.0, 1e-4 * weight);
+  EXPECT_NEAR(carried.y(), 0.0, 1e-4 * weight);
+  // Kept rows: the two ends of each run along one segment of the wire within one segment of the
+  // tube. A run ends where the wire's segment changes (15 times) or the tube's chord crosses one
+  // of the at most 9 tube nodes along the wire (in and out: 18 times): at most 2 (1 + 15 + 18)
+  // rows, against one a sphere (~180) without the runs.
+  EXPECT_LE(lumen, 2 * (1 + 15 + 18));
+  EXPECT_LT(std::abs(meanAxialVelocity(wire, s)), 1e-9);
+}
+
+/// The wire's mean axial displacement 0.5 s after the pull began (m), and its axial speed then.
+struct Slide {
+  double displacement = 0.0, speed = 0.0;
+};
+
+Slide pullFor(double pull, double seconds) {
+  auto scene = load(coaxialScene(pull));
+  const CurveBody& wire = *scene->bodies()[1]->curve();
+  for (int k = 0; k < 500; ++k) EXPECT_TRUE(scene->step().ok) << "step " << k;
+  const double start = meanAxialPosition(wire, scene->state());
+  const int steps = static_cast<int>(std::lround(seconds / kDt));
+  for (int k = 0; k < steps; ++k) EXPECT_TRUE(scene->step().ok) << "step " << 500 + k;
+  return {meanAxialPosition(wire, scene->state()) - start, meanAxialVelocity(wire, scene->state())};
+}
+
+TEST(Coaxial, WireSticksBelowTheCoulombLimitWithoutCreep) {
+  const double limit = kFriction * wireMass() * kGravity;  // μ m g: the floor's normal force is m g
+  const Slide held = pullFor(0.8 * limit, 0.5);
+  // Held: no creep, less than 0.01 mm/s (issue 27's bound for a held contact), and no more than
+  // the wire's elastic stretch under the load in displacement (F L / (E A) ≈ 1e-9 m; 1e-6 m).
+  EXPECT_LT(std::abs(held.speed), 1e-5);
+  EXPECT_LT(std::abs(held.displacement), 1e-6);
+}
+
+TEST(Coaxial, WireSlidesAboveTheCoulombLimitAsARigidBodyOnARoughFloor) {
+  const double mass = wireMass(), limit = kFriction * mass * kGravity;
+  const double pull = 1.25 * limit, seconds = 0.3;
+  const Slide slid = pullFor(pull, seconds);
+  // m (v_n − v_{n−1}) / h = F − μ m g − c m v_n, x_n = x_{n−1} + h v_n (implicit Euler, as the
+  // scene steps), from rest.
+  const double a0 = (pull - limit) / mass;
+  double v = 0.0, x = 0.0;
+  const int steps = static_cast<int>(std::lround(seconds / kDt));
+  for (int n = 0; n < steps; ++n) {
+    v = (v + kDt * a0) / (1.0 + kDt * kDamping);
+    x += kDt * v;
+  }
+  // 2 %: the rigid-body model leaves out the wire's axial wave (its stretch F L/(E A), 1e-9 m)
+  // and the first step of the pull, where the contact passes from stick to slip within one step
+  // (h a0 h ≈ 5e-7 m of 9 mm); the issue's bound for a slip against the Coulomb prediction.
+  EXPECT_NEAR(slid.displacement, x, 0.02 * x);
+  EXPECT_NEAR(slid.speed, v, 0.02 * v);
+}
+
+TEST(Coaxial, RefusesAWireInsideABodyWithoutALumen) {
+  json document = coaxialScene(0.0);
+  document["nodes"][0]["components"][5].erase("lumen_radius");
+  document["nodes"][0]["components"][5].erase("lumen_friction");
+  try {
+    load(document);
+    FAIL() << "a wire inside a catheter without a lumen was accepted";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("inside"), std::string::npos) << what;
+    EXPECT_NE(what.find("without a lumen_radius"), std::string::npos) << what;
+  }
+  document = coaxialScene(0.0);
+  document["nodes"][1]["components"][3]["inside"] = "sheath";
+  try {
+    load(document);
+    FAIL() << "a wire inside a node that does not exist was accepted";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("\"catheter\""), std::string::npos) << what;
+    EXPECT_NE(what.find("\"sheath\""), std::string::npos) << what;
+  }
+  document = coaxialScene(0.0);
+  document["nodes"][0]["components"][5]["lumen_radius"] = 2e-3;
+  EXPECT_THROW(load(document), SceneError) << "a lumen wider than the tube";
+}
+
+}  // namespace
+}  // namespace filum::collision
