@@ -366,6 +366,7 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
       chord_owner_.emplace_back(m, k);
     }
   }
+  if (depth_test && leftLumen()) return Miss::kOverlapOrSlide;
   if (chords_.size() < 2) return Miss::kNone;
   if (!broad_phase_.findPairs(chords_, pairs_)) return Miss::kTooFar;
   Miss miss = Miss::kNone;
@@ -394,6 +395,27 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
       miss = Miss::kOverlapOrSlide;
   }
   return miss;
+}
+
+bool ContactPipeline::leftLumen() const {
+  // A sphere of an instrument that ended the step further than p r beyond the lumen's wall
+  // (p = "max_penetration", r its radius), and further out than it began inside the tube: the
+  // rows of the step's start did not follow it (it came to the wall within the step, or swung
+  // across the normal a sphere on the axis was given).
+  for (int m = 0; m < static_cast<int>(models_.size()); ++m) {
+    const int t = tube_of_[m];
+    if (t < 0) continue;
+    const SphereCollisionModel& inner = *models_[m];
+    const SphereCollisionModel& tube = *models_[t];
+    const double allowed = tube.lumenRadius() - inner.radius() + settings_.max_penetration * inner.radius();
+    for (int k = 0; k < inner.sphereCount(); ++k) {
+      const AxisPoint end = nearestAxisPoint(after_centers_[t], tube.mapping(), after_centers_[m].row(k).transpose());
+      if (end.chord < 0 || end.distance <= allowed) continue;
+      const AxisPoint start = nearestAxisPoint(tube.centers(), tube.mapping(), inner.centers().row(k).transpose());
+      if (start.chord >= 0 && end.distance > start.distance) return true;
+    }
+  }
+  return false;
 }
 
 Vec3 ContactPipeline::obstacleForce(int o, const SceneState& s) const {

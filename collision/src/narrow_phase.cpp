@@ -64,37 +64,6 @@ void keepSpanEnds(ContactSet& out, std::size_t first) {
   });
 }
 
-/// The nearest point of a tube's centre line to x: chord l, parameter u, distance d; chord −1
-/// when that point lies beyond one of the tube's open ends.
-struct AxisPoint {
-  int chord = -1;
-  double u = 0.0;
-  double distance = 0.0;
-};
-
-AxisPoint nearestAxisPoint(const SphereCollisionModel& tube, const Vec3& x) {
-  AxisPoint best;
-  double nearest = std::numeric_limits<double>::infinity();
-  bool beyond_end = false;
-  for (int l = 0; l + 1 < tube.sphereCount(); ++l) {
-    if (!tube.mapping().joinsNext(l)) continue;  // a cut: no chord across it
-    const Vec3 y0 = center(tube, l), y1 = center(tube, l + 1), e = y1 - y0;
-    const double length2 = e.squaredNorm();
-    const double t = length2 > 0.0 ? (x - y0).dot(e) / length2 : 0.0;
-    const double u = std::clamp(t, 0.0, 1.0);
-    const double d = (x - (y0 + u * e)).norm();
-    if (d < nearest) {
-      nearest = d;
-      best = {l, u, d};
-      const bool first = l == 0 || !tube.mapping().joinsNext(l - 1);
-      const bool last = l + 2 >= tube.sphereCount() || !tube.mapping().joinsNext(l + 1);
-      beyond_end = (first && t < 0.0) || (last && t > 1.0);
-    }
-  }
-  if (beyond_end) best.chord = -1;
-  return best;
-}
-
 }  // namespace
 
 void findObstacleContacts(const SphereCollisionModel& model, int model_index, const Obstacle& obstacle,
@@ -169,6 +138,30 @@ bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const S
   return true;
 }
 
+AxisPoint nearestAxisPoint(const Points& axis, const SphereSamplingMapping& sampling, const Vec3& x) {
+  AxisPoint best;
+  double nearest = std::numeric_limits<double>::infinity();
+  bool beyond_end = false;
+  const int count = sampling.outputCount();
+  for (int l = 0; l + 1 < count; ++l) {
+    if (!sampling.joinsNext(l)) continue;  // a cut: no chord across it
+    const Vec3 y0 = axis.row(l).transpose(), y1 = axis.row(l + 1).transpose(), e = y1 - y0;
+    const double length2 = e.squaredNorm();
+    const double t = length2 > 0.0 ? (x - y0).dot(e) / length2 : 0.0;
+    const double u = std::clamp(t, 0.0, 1.0);
+    const double d = (x - (y0 + u * e)).norm();
+    if (d < nearest) {
+      nearest = d;
+      best = {l, u, d};
+      const bool first = l == 0 || !sampling.joinsNext(l - 1);
+      const bool last = l + 2 >= count || !sampling.joinsNext(l + 1);
+      beyond_end = (first && t < 0.0) || (last && t > 1.0);
+    }
+  }
+  if (beyond_end) best.chord = -1;
+  return best;
+}
+
 void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const SphereCollisionModel& tube,
                        int model_tube, double friction, const NarrowPhaseSettings& settings, ContactSet& out) {
   const double clearance = tube.lumenRadius() - inner.radius();  // R_in − r
@@ -177,7 +170,7 @@ void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const
   for (int l = 0; l < tube.sphereCount(); ++l) tube_speed = std::max(tube_speed, speed(tube, l));
   for (int k = 0; k < inner.sphereCount(); ++k) {
     const Vec3 x = center(inner, k);
-    const AxisPoint axis = nearestAxisPoint(tube, x);
+    const AxisPoint axis = nearestAxisPoint(tube.centers(), tube.mapping(), x);
     if (axis.chord < 0) continue;  // beyond the tube's ends
     const double reach = settings.margin + (speed(inner, k) + tube_speed) * settings.time_step;
     if (clearance - axis.distance > reach) continue;  // g = (R_in − r) − d

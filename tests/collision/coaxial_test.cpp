@@ -186,6 +186,26 @@ TEST(Coaxial, WireSlidesAboveTheCoulombLimitAsARigidBodyOnARoughFloor) {
   EXPECT_NEAR(slid.speed, v, 0.02 * v);
 }
 
+TEST(Coaxial, AStepThatTakesTheWireOutThroughTheWallIsHalved) {
+  // missedContact (contact_pipeline.hpp): from the step's start (the wire on the floor), a state
+  // with the wire's middle node moved down through the wall by 2 r is a step to redo in halves
+  // (it ends beyond the allowed p r, p = ½, past the wall and further out than it began); the
+  // state the step really reached is not; nor is a step that ends with the wire still deeper
+  // inside the lumen.
+  auto scene = load(coaxialScene(0.0));
+  for (int k = 0; k < 300; ++k) ASSERT_TRUE(scene->step().ok);
+  auto& pipeline = const_cast<ContactPipeline&>(pipelineOf(*scene));
+  pipeline.beginStep(*scene, scene->state(), kDt);
+  EXPECT_EQ(pipeline.missedContact(scene->state()), CollisionPipeline::Miss::kNone);
+  SceneState out = scene->state();
+  const CurveBody& wire = *scene->bodies()[1]->curve();
+  wire.block(out.q)(8, 2) -= 2.0 * kWireRadius;
+  EXPECT_EQ(pipeline.missedContact(out), CollisionPipeline::Miss::kOverlapOrSlide);
+  SceneState in = scene->state();
+  wire.block(in.q)(8, 2) += 0.5 * (kLumenRadius - kWireRadius);
+  EXPECT_EQ(pipeline.missedContact(in), CollisionPipeline::Miss::kNone);
+}
+
 TEST(Coaxial, RefusesAWireInsideABodyWithoutALumen) {
   json document = coaxialScene(0.0);
   document["nodes"][0]["components"][5].erase("lumen_radius");

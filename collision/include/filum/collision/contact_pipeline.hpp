@@ -129,6 +129,9 @@ class ContactPipeline final : public CollisionPipeline {
   /// the overlap it causes, is what the rows do not follow, and it jams a knot pulled fast (the
   /// rows resist the slide through the loops with their fixed normals: the end force of a 2-0
   /// silk knot pulled at 1 m/s reached 1.6-30 N at 1 ms steps, 0.07 N at 0.25 ms).
+  /// Instruments inside tubes: kOverlapOrSlide, under the same halving limit, when a sphere that
+  /// began the step inside the tube ended it more than p r (r its radius) beyond the lumen's wall
+  /// and further out than it began.
   Miss missedContact(const SceneState& after) override;
 
   const Settings& settings() const { return settings_; }
@@ -161,6 +164,9 @@ class ContactPipeline final : public CollisionPipeline {
   bool coaxial(int a, int b) const { return tube_of_[a] == b || tube_of_[b] == a; }
   /// Resolves every model's "inside" to the tube's model (SceneError naming the component).
   void findTubes();
+  /// missedContact: an instrument's sphere went out through its tube's wall within the step
+  /// (after_centers_ at the step's end).
+  bool leftLumen() const;
   UniformGridBroadPhase broad_phase_;
   std::vector<BoundingSphere> chords_;
   std::vector<std::pair<int, int>> chord_owner_;  // (model, chord) of every broad-phase entry

@@ -59,6 +59,16 @@ void findObstacleContacts(const SphereCollisionModel& model, int model_index, co
 bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const SphereCollisionModel& b, int model_b,
                       int l, const NarrowPhaseSettings& settings, ContactSet& out);
 
+/// The nearest point of a tube's centre line (the chords between the centres `axis` of its
+/// sampling) to x: chord l, parameter u in [0, 1], distance d; chord −1 when that point lies
+/// beyond one of the tube's open ends (u <= 0 on a strand's first chord, u >= 1 on its last).
+struct AxisPoint {
+  int chord = -1;
+  double u = 0.0;
+  double distance = 0.0;
+};
+AxisPoint nearestAxisPoint(const Points& axis, const SphereSamplingMapping& sampling, const Vec3& x);
+
 /// Appends to `out` the contacts holding the spheres of `inner` inside the lumen of `tube`
 /// (tube.lumenRadius() > inner.radius()), with friction μ.
 void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const SphereCollisionModel& tube,
