@@ -398,16 +398,18 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
 }
 
 bool ContactPipeline::leftLumen() const {
-  // A sphere of an instrument that ended the step further than p r beyond the lumen's wall
-  // (p = "max_penetration", r its radius), and further out than it began inside the tube: the
-  // rows of the step's start did not follow it (it came to the wall within the step, or swung
-  // across the normal a sphere on the axis was given).
+  // A sphere of an instrument that ended the step beyond the lumen's wall by more than p times
+  // the clearance R_in − r (p = "max_penetration"), and further out than it began inside the
+  // tube: the rows of the step's start did not follow it (it came to the wall within the step,
+  // or crossed the lumen). The clearance, not the radius, is the scale: a wire's clearance in
+  // its catheter is a fifth of its radius or less.
   for (int m = 0; m < static_cast<int>(models_.size()); ++m) {
     const int t = tube_of_[m];
     if (t < 0) continue;
     const SphereCollisionModel& inner = *models_[m];
     const SphereCollisionModel& tube = *models_[t];
-    const double allowed = tube.lumenRadius() - inner.radius() + settings_.max_penetration * inner.radius();
+    const double clearance = tube.lumenRadius() - inner.radius();
+    const double allowed = (1.0 + settings_.max_penetration) * clearance;
     for (int k = 0; k < inner.sphereCount(); ++k) {
       const AxisPoint end = nearestAxisPoint(after_centers_[t], tube.mapping(), after_centers_[m].row(k).transpose());
       if (end.chord < 0 || end.distance <= allowed) continue;

@@ -185,10 +185,20 @@ void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const
     c.time = settings.time;
     c.radius = -clearance;
     c.friction = friction;
-    // n = (y − x)/d, towards the axis; a sphere on the axis (d = 0: far from the wall, the
-    // contact only waits) takes any direction across the chord.
+    // n towards the axis from the wall the sphere is heading for: its offset from the axis
+    // predicted at the step's end, p = (x + h v) − (y + h w) (w the axis point's velocity),
+    // across the chord, p⊥ = p − (p·e) e, gives n = −p⊥/|p⊥|. At rest, or sliding along the
+    // wall, that is the nearest wall point, n = (y − x)/d. A sphere crossing the lumen within the
+    // step (a clearance of tens of µm is crossed in a millisecond at a few cm/s) gets the wall
+    // it would hit: the row of the wall behind it would only stop it moving back. A sphere that
+    // stays on the axis (p⊥ = 0: far from either wall, the contact only waits) takes any
+    // direction across the chord.
+    const Vec3 e = (y1 - y0).normalized();
+    const Vec3 w = (1.0 - axis.u) * tube.velocities().row(l).transpose() + axis.u * tube.velocities().row(l + 1).transpose();
+    const Vec3 predicted = (x - y) + settings.time_step * (inner.velocities().row(k).transpose() - w);
+    const Vec3 across = predicted - predicted.dot(e) * e;
     const double scale = (y1 - y0).norm() + inner.radius();
-    c.normal = axis.distance > 1e-12 * scale ? Vec3((y - x) / axis.distance) : Vec3((y1 - y0).unitOrthogonal());
+    c.normal = across.norm() > 1e-12 * scale ? Vec3(-across / across.norm()) : Vec3(e.unitOrthogonal());
     out.push_back(c);
   }
   keepRunEnds(out, first, onSamePieces);

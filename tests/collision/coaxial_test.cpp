@@ -189,7 +189,7 @@ TEST(Coaxial, WireSlidesAboveTheCoulombLimitAsARigidBodyOnARoughFloor) {
 TEST(Coaxial, AStepThatTakesTheWireOutThroughTheWallIsHalved) {
   // missedContact (contact_pipeline.hpp): from the step's start (the wire on the floor), a state
   // with the wire's middle node moved down through the wall by 2 r is a step to redo in halves
-  // (it ends beyond the allowed p r, p = ½, past the wall and further out than it began); the
+  // (it ends beyond the allowed p (R_in − r), p = ½, past the wall and further out than it began); the
   // state the step really reached is not; nor is a step that ends with the wire still deeper
   // inside the lumen.
   auto scene = load(coaxialScene(0.0));
@@ -204,6 +204,25 @@ TEST(Coaxial, AStepThatTakesTheWireOutThroughTheWallIsHalved) {
   SceneState in = scene->state();
   wire.block(in.q)(8, 2) += 0.5 * (kLumenRadius - kWireRadius);
   EXPECT_EQ(pipeline.missedContact(in), CollisionPipeline::Miss::kNone);
+}
+
+TEST(Coaxial, ASphereCrossingTheLumenIsHeldByTheWallItIsHeadingFor) {
+  // At rest on the floor, every lumen contact's normal points up (from the floor to the axis).
+  // The same wire thrown upwards at 2 (R_in − r) / h, which would carry it across the lumen
+  // within the step, gets the rows of the roof instead (normals down), where it is going: the
+  // floor's rows could only stop it moving down.
+  auto scene = load(coaxialScene(0.0));
+  for (int k = 0; k < 300; ++k) ASSERT_TRUE(scene->step().ok);
+  auto& pipeline = const_cast<ContactPipeline&>(pipelineOf(*scene));
+  pipeline.beginStep(*scene, scene->state(), kDt);
+  ASSERT_GT(pipeline.contactCount(), 0);
+  for (const Contact& c : pipeline.contacts()) EXPECT_GT(c.normal.z(), 0.99);
+  SceneState thrown = scene->state();
+  const CurveBody& wire = *scene->bodies()[1]->curve();
+  wire.block(thrown.v).col(2).setConstant(2.0 * (kLumenRadius - kWireRadius) / kDt);
+  pipeline.beginStep(*scene, thrown, kDt);
+  ASSERT_GT(pipeline.contactCount(), 0);
+  for (const Contact& c : pipeline.contacts()) EXPECT_LT(c.normal.z(), -0.99);
 }
 
 TEST(Coaxial, RefusesAWireInsideABodyWithoutALumen) {

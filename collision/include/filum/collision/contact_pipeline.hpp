@@ -130,8 +130,8 @@ class ContactPipeline final : public CollisionPipeline {
   /// rows resist the slide through the loops with their fixed normals: the end force of a 2-0
   /// silk knot pulled at 1 m/s reached 1.6-30 N at 1 ms steps, 0.07 N at 0.25 ms).
   /// Instruments inside tubes: kOverlapOrSlide, under the same halving limit, when a sphere that
-  /// began the step inside the tube ended it more than p r (r its radius) beyond the lumen's wall
-  /// and further out than it began.
+  /// began the step inside the tube ended it beyond the lumen's wall by more than p (R_in − r)
+  /// (the clearance) and further out than it began.
   Miss missedContact(const SceneState& after) override;
 
   const Settings& settings() const { return settings_; }

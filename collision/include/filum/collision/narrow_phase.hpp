@@ -26,7 +26,9 @@
 // stays inside while d <= R_in − r, so the gap is
 //   g = (R_in − r) − d = n·(x_A − x_B) − R   with   n = (y − x)/d   (towards the axis),
 //                                                    R = −(R_in − r),
-// the thread–thread contact of contact.hpp with a negative contact distance, and its rows, force
+// (n from the wall the sphere is heading for: where its offset from the axis, moved on by its
+// velocity relative to the tube's over the step, points; at rest the nearest wall point), the
+// thread–thread contact of contact.hpp with a negative contact distance, and its rows, force
 // (λ n on A, pushing it back towards the axis, −λ n on the tube's wall) and friction are those of
 // every contact. Kept while g <= margin + (|v_k| + max |w_l|) h, as above. A sphere whose nearest
 // point is beyond a strand's end of the tube (u <= 0 on its first chord, u >= 1 on its last) is
