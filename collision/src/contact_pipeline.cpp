@@ -93,9 +93,26 @@ void ContactPipeline::findTubes() {
                                   describeJson(model.radius()) + " m",
                        describeJson(model.inside()) + (tube.lumenRadius() > 0.0 ? " with lumen_radius " + describeJson(tube.lumenRadius()) + " m"
                                                                                  : std::string(" without a lumen_radius")));
-    if (tube_of_[tube_of_[m]] == m)
-      throw SceneError(where, "a tube that does not run inside this instrument", describeJson(model.inside()) + ", itself inside this one");
   }
+  // One level: an instrument inside a tube that is itself inside another (a wire in a
+  // microcatheter in a guide catheter) would also need the outer lumen where it leaves the inner
+  // tube, and no ordinary contacts with the outer tube where it is inside both: not built.
+  for (int m = 0; m < count; ++m)
+    if (tube_of_[m] >= 0 && tube_of_[tube_of_[m]] >= 0)
+      throw SceneError(models_[m]->origin() + "/inside",
+                       "a tube that does not itself run inside another (one level of coaxial instruments is built)",
+                       describeJson(models_[m]->inside()) + ", inside " + describeJson(models_[tube_of_[m]]->inside()));
+  inside_.assign(count, {});
+}
+
+bool ContactPipeline::heldInside(int a, int k, int b, int l) const {
+  const auto chordInside = [&](int model, int chord) {
+    const std::vector<char>& inside = inside_[model];
+    return chord + 1 < static_cast<int>(inside.size()) && (inside[chord] || inside[chord + 1]);
+  };
+  if (tube_of_[a] == b) return chordInside(a, k);
+  if (tube_of_[b] == a) return chordInside(b, l);
+  return false;
 }
 
 void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double h) {
@@ -134,7 +151,7 @@ void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double 
     const int t = tube_of_[m];
     if (t < 0) continue;
     const double mu = models_[t]->lumenFriction().value_or(settings_.friction);
-    findLumenContacts(*models_[m], m, *models_[t], t, mu, narrow, contacts_);
+    findLumenContacts(*models_[m], m, *models_[t], t, mu, narrow, contacts_, inside_[m]);
   }
   stats_.lumen_contacts = static_cast<int>(contacts_.size()) - stats_.obstacle_contacts;
 
@@ -163,7 +180,7 @@ void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double 
     for (const IndexPair& pair : pairs_) {
       const auto [ma, k] = chord_owner_[pair.first];
       const auto [mb, l] = chord_owner_[pair.second];
-      if (coaxial(ma, mb)) continue;  // held inside instead (2b)
+      if (heldInside(ma, k, mb, l)) continue;  // held in the lumen instead (2b)
       if (ma == mb) {
         const SphereCollisionModel& model = *models_[ma];
         if (!model.selfCollision()) continue;
@@ -341,7 +358,9 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
     for (std::size_t i = 0; i < contacts_.size(); ++i) {
       const Contact& c = contacts_[i];
       if (c.againstObstacle() || contact_force_[i].dot(c.normal) <= 0.0) continue;  // pressed thread contacts
-      if (coaxial(c.model_a, c.model_b)) continue;  // along a lumen: the wall's normal holds as it slides
+      // Along a lumen, sliding is the instrument's motion: its rows are the lumen's, and a sphere
+      // that slides around the wall or through a bend out of them is caught by leftLumen.
+      if (c.model_b >= 0 && (tube_of_[c.model_a] == c.model_b)) continue;
       const ContactKinematics k = contactKinematics(c, after);
       const Vec3 moved = (k.x_a - k.x_b) - start_offset_[i];
       if ((moved - moved.dot(c.normal) * c.normal).norm() > settings_.max_slide) return Miss::kOverlapOrSlide;
@@ -375,7 +394,7 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
     const auto [mb, l] = chord_owner_[pair.second];
     const SphereCollisionModel& a = *models_[ma];
     const SphereCollisionModel& b = *models_[mb];
-    if (coaxial(ma, mb)) continue;  // one runs inside the other: their centre lines are meant to be close
+    if (heldInside(ma, k, mb, l)) continue;  // one runs inside the other: their centre lines are meant to be close
     if (ma == mb && a.mapping().chordDistanceBound(k, l) < a.exclusion()) continue;  // as in beginStep
     MovingSegment sa{a.centers().row(k).transpose(), a.centers().row(k + 1).transpose(),
                      after_centers_[ma].row(k).transpose(), after_centers_[ma].row(k + 1).transpose()};
@@ -398,9 +417,9 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
 }
 
 bool ContactPipeline::leftLumen() const {
-  // A sphere of an instrument that ended the step beyond the lumen's wall by more than p times
-  // the clearance R_in − r (p = "max_penetration"), and further out than it began inside the
-  // tube: the rows of the step's start did not follow it (it came to the wall within the step,
+  // A sphere of an instrument held inside its tube at the step's start that ended the step
+  // beyond the lumen's wall by more than p times the clearance R_in − r (p =
+  // "max_penetration"), and further out than it began: the rows of the step's start did not follow it (it came to the wall within the step,
   // or crossed the lumen). The clearance, not the radius, is the scale: a wire's clearance in
   // its catheter is a fifth of its radius or less.
   for (int m = 0; m < static_cast<int>(models_.size()); ++m) {
@@ -410,11 +429,13 @@ bool ContactPipeline::leftLumen() const {
     const SphereCollisionModel& tube = *models_[t];
     const double clearance = tube.lumenRadius() - inner.radius();
     const double allowed = (1.0 + settings_.max_penetration) * clearance;
-    for (int k = 0; k < inner.sphereCount(); ++k) {
+    const std::vector<char>& inside = inside_[m];
+    for (int k = 0; k < inner.sphereCount() && k < static_cast<int>(inside.size()); ++k) {
+      if (!inside[k]) continue;  // not held by the lumen
       const AxisPoint end = nearestAxisPoint(after_centers_[t], tube.mapping(), after_centers_[m].row(k).transpose());
       if (end.chord < 0 || end.distance <= allowed) continue;
       const AxisPoint start = nearestAxisPoint(tube.centers(), tube.mapping(), inner.centers().row(k).transpose());
-      if (start.chord >= 0 && end.distance > start.distance) return true;
+      if (end.distance > start.distance) return true;
     }
   }
   return false;

@@ -162,16 +162,23 @@ AxisPoint nearestAxisPoint(const Points& axis, const SphereSamplingMapping& samp
   return best;
 }
 
+bool insideTube(const AxisPoint& axis, const SphereCollisionModel& tube) {
+  return axis.chord >= 0 && axis.distance < 0.5 * (tube.lumenRadius() + tube.radius());
+}
+
 void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const SphereCollisionModel& tube,
-                       int model_tube, double friction, const NarrowPhaseSettings& settings, ContactSet& out) {
+                       int model_tube, double friction, const NarrowPhaseSettings& settings, ContactSet& out,
+                       std::vector<char>& inside) {
   const double clearance = tube.lumenRadius() - inner.radius();  // R_in − r
   const std::size_t first = out.size();
   double tube_speed = 0.0;  // the largest speed of the tube's centre line
   for (int l = 0; l < tube.sphereCount(); ++l) tube_speed = std::max(tube_speed, speed(tube, l));
+  inside.assign(inner.sphereCount(), 0);  // within the capacity reserved by the first steps
   for (int k = 0; k < inner.sphereCount(); ++k) {
     const Vec3 x = center(inner, k);
     const AxisPoint axis = nearestAxisPoint(tube.centers(), tube.mapping(), x);
-    if (axis.chord < 0) continue;  // beyond the tube's ends
+    inside[k] = insideTube(axis, tube);
+    if (!inside[k]) continue;  // beyond the tube's ends, or beside it
     const double reach = settings.margin + (speed(inner, k) + tube_speed) * settings.time_step;
     if (clearance - axis.distance > reach) continue;  // g = (R_in − r) − d
     const int l = axis.chord;

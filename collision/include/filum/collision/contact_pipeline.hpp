@@ -11,10 +11,11 @@
 //      of its start and predicted end positions (x + v h), go through the uniform-grid broad
 //      phase (O(n)); candidate pairs go to the chord narrow phase (narrow_phase.hpp) with
 //      continuous detection, so that no contact a step could reach is missed;
-//   3b. coaxial instruments: the spheres of an instrument running in a tube (a guidewire in a
-//      catheter, SphereCollisionModel "inside") against the tube's centre line, held inside its
-//      lumen (narrow_phase.hpp, findLumenContacts); the pair's chord contacts of step 3, which
-//      would push the two apart, are not sought;
+//   2b. coaxial instruments: the spheres of an instrument running in a tube (a guidewire in a
+//      catheter, SphereCollisionModel "inside") against the tube's centre line, those inside the
+//      tube held in its lumen (narrow_phase.hpp, findLumenContacts); step 3 does not seek the
+//      chord contacts between the tube and the instrument's chords inside it, which would push
+//      the two apart (the parts outside, beyond the tip or beside the tube, meet it as usual);
 //   4. the contact set, in a deterministic order (models, spheres and obstacles in declaration
 //      order, chord pairs sorted).
 // Response (stage 3), "response" in the scene file:
@@ -160,8 +161,10 @@ class ContactPipeline final : public CollisionPipeline {
   std::vector<SphereCollisionModel*> models_;
   std::vector<Obstacle*> obstacles_;
   std::vector<int> tube_of_;  // per model: the model of the tube it runs in, or −1
-  /// Whether models a and b are an instrument and the tube it runs in (no chord contacts).
-  bool coaxial(int a, int b) const { return tube_of_[a] == b || tube_of_[b] == a; }
+  std::vector<std::vector<char>> inside_;  // per model in a tube: its spheres inside it (beginStep)
+  /// Whether chord k of model a and chord l of model b are an instrument's chord inside the tube
+  /// it runs in and that tube's (held by the lumen instead: no chord contact, no overlap test).
+  bool heldInside(int a, int k, int b, int l) const;
   /// Resolves every model's "inside" to the tube's model (SceneError naming the component).
   void findTubes();
   /// missedContact: an instrument's sphere went out through its tube's wall within the step

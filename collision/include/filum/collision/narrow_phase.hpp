@@ -30,14 +30,18 @@
 // velocity relative to the tube's over the step, points; at rest the nearest wall point), the
 // thread–thread contact of contact.hpp with a negative contact distance, and its rows, force
 // (λ n on A, pushing it back towards the axis, −λ n on the tube's wall) and friction are those of
-// every contact. Kept while g <= margin + (|v_k| + max |w_l|) h, as above. A sphere whose nearest
-// point is beyond a strand's end of the tube (u <= 0 on its first chord, u >= 1 on its last) is
-// outside it: past the tip, or behind the hub, where the tube holds nothing. Of consecutive
+// every contact. Kept while g <= margin + (|v_k| + max |w_l|) h, as above. Only spheres inside
+// the tube are held: a sphere whose nearest point is beyond a strand's end of the tube (t < 0 on
+// its first chord, t > 1 on its last) is past the tip or behind the hub, and one farther from
+// the axis than the middle of the wall lies beside the tube (a wire out of the tip and curled
+// back); both meet the tube as any two threads meet (insideTube). Of consecutive
 // contacts between one straight piece of A (degree 1: a rod's segment) and one straight piece of
 // B, only the first and the last are kept: the distance from a point moving along a line to
 // another line is convex in the parameter, so d is largest, and g smallest, at the ends of the
 // run, and the spheres in between cannot leave the lumen while those two are held.
 #pragma once
+
+#include <vector>
 
 #include "filum/collision/contact.hpp"
 #include "filum/collision/obstacle.hpp"
@@ -71,9 +75,17 @@ struct AxisPoint {
 };
 AxisPoint nearestAxisPoint(const Points& axis, const SphereSamplingMapping& sampling, const Vec3& x);
 
-/// Appends to `out` the contacts holding the spheres of `inner` inside the lumen of `tube`
-/// (tube.lumenRadius() > inner.radius()), with friction μ.
+/// Whether a sphere whose nearest point of the tube's axis is `axis` is inside the tube: within
+/// the tube's length and nearer the axis than the middle of its wall, ½ (R_in + R_out). A sphere
+/// beside the tube, or beyond its ends, is outside and meets the tube's outer surface as any
+/// thread does.
+bool insideTube(const AxisPoint& axis, const SphereCollisionModel& tube);
+
+/// Appends to `out` the contacts holding the spheres of `inner` that are inside `tube`
+/// (insideTube) in its lumen (tube.lumenRadius() > inner.radius()), with friction μ; inside[k]
+/// says which spheres are (resized to inner's sphere count).
 void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const SphereCollisionModel& tube,
-                       int model_tube, double friction, const NarrowPhaseSettings& settings, ContactSet& out);
+                       int model_tube, double friction, const NarrowPhaseSettings& settings, ContactSet& out,
+                       std::vector<char>& inside);
 
 }  // namespace filum::collision
