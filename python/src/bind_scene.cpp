@@ -20,12 +20,13 @@ namespace {
 /// The contacts of the last step's detection as arrays (copies): for contact i, the body index
 /// and abscissa of thread point A, its position P_A (m), the force on A (N: the penalty, or the
 /// unilateral multipliers of the last solve), the obstacle index (−1: thread–thread) and the other
-/// thread's body (−1: obstacle). Empty arrays when the scene has no collision pipeline.
+/// thread's body (−1: obstacle), and whether A is held inside the lumen of that body (coaxial
+/// instruments). Empty arrays when the scene has no collision pipeline.
 py::dict contacts(const PythonScene& owner) {
   const Scene& scene = owner.scene();
   const auto* pipeline = dynamic_cast<const collision::ContactPipeline*>(scene.collisionPipeline());
   const int k = pipeline ? static_cast<int>(pipeline->contacts().size()) : 0;
-  Eigen::VectorXi body(k), other(k), obstacle(k);
+  Eigen::VectorXi body(k), other(k), obstacle(k), lumen(k);
   VecX abscissa(k);
   Points point(k, 3), force(k, 3);
   auto bodyIndex = [&](int model) {
@@ -39,6 +40,7 @@ py::dict contacts(const PythonScene& owner) {
     body[i] = bodyIndex(c.model_a);
     other[i] = c.model_b >= 0 ? bodyIndex(c.model_b) : -1;
     obstacle[i] = c.obstacle;
+    lumen[i] = c.insideLumen() ? 1 : 0;
     abscissa[i] = c.a.abscissa();
     point.row(i) = pipeline->models()[c.model_a]->curve().position(scene.state().q, c.a.abscissa()).transpose();
     force.row(i) = pipeline->contactForce(i, scene.state()).transpose();
@@ -50,6 +52,7 @@ py::dict contacts(const PythonScene& owner) {
   out["force"] = force;
   out["obstacle"] = obstacle;
   out["other_body"] = other;
+  out["inside_lumen"] = lumen;
   return out;
 }
 
@@ -205,7 +208,8 @@ void bindScene(py::module_& m) {
           py::arg("constraint"), "where the point constraint holds its point now (m)")
       .def("contacts", [](const PythonScene& s) { return contacts(s); },
            "contacts of the last step as arrays (copies): body, abscissa, point (k×3, m), force on the\n"
-           "body (k×3, N), obstacle (−1: between threads), other_body (−1: obstacle)")
+           "body (k×3, N), obstacle (−1: between threads), other_body (−1: obstacle),\n"
+           "inside_lumen (1: the body is held inside other_body's lumen, a wire in a catheter)")
       .def("render", &renderFrame,
            "the scene drawn from its camera (or one framing it) as an H×W×3 uint8 RGB array;\n"
            "raises filum.RenderingError when this build or machine cannot render")

@@ -42,6 +42,8 @@ struct Contact {
   double friction = 0.0;        // Coulomb μ
 
   bool againstObstacle() const { return obstacle >= 0; }
+  /// A inside the lumen of tube B (the negative contact distance of that case).
+  bool insideLumen() const { return radius < 0.0; }
 };
 
 /// Positions, velocities and gap of a contact at a state.
