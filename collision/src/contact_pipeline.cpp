@@ -102,13 +102,16 @@ void ContactPipeline::findTubes() {
       throw SceneError(models_[m]->origin() + "/inside",
                        "a tube that does not itself run inside another (one level of coaxial instruments is built)",
                        describeJson(models_[m]->inside()) + ", inside " + describeJson(models_[tube_of_[m]]->inside()));
-  inside_.assign(count, {});
+  place_.assign(count, {});
+  for (int m = 0; m < count; ++m)  // room for stretching to twice the length, as the models' own
+    if (tube_of_[m] >= 0) place_[m].reserve(2 * static_cast<std::size_t>(models_[m]->sphereCount()));
 }
 
 bool ContactPipeline::heldInside(int a, int k, int b, int l) const {
   const auto chordInside = [&](int model, int chord) {
-    const std::vector<char>& inside = inside_[model];
-    return chord + 1 < static_cast<int>(inside.size()) && (inside[chord] || inside[chord + 1]);
+    const std::vector<TubePlace>& place = place_[model];
+    return chord + 1 < static_cast<int>(place.size()) &&
+           (place[chord] != TubePlace::kOutside || place[chord + 1] != TubePlace::kOutside);
   };
   if (tube_of_[a] == b) return chordInside(a, k);
   if (tube_of_[b] == a) return chordInside(b, l);
@@ -151,7 +154,7 @@ void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double 
     const int t = tube_of_[m];
     if (t < 0) continue;
     const double mu = models_[t]->lumenFriction().value_or(settings_.friction);
-    findLumenContacts(*models_[m], m, *models_[t], t, mu, narrow, contacts_, inside_[m]);
+    findLumenContacts(*models_[m], m, *models_[t], t, mu, narrow, contacts_, place_[m]);
   }
   stats_.lumen_contacts = static_cast<int>(contacts_.size()) - stats_.obstacle_contacts;
 
@@ -360,7 +363,7 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
       if (c.againstObstacle() || contact_force_[i].dot(c.normal) <= 0.0) continue;  // pressed thread contacts
       // Along a lumen, sliding is the instrument's motion: its rows are the lumen's, and a sphere
       // that slides around the wall or through a bend out of them is caught by leftLumen.
-      if (c.model_b >= 0 && (tube_of_[c.model_a] == c.model_b)) continue;
+      if (c.insideLumen()) continue;
       const ContactKinematics k = contactKinematics(c, after);
       const Vec3 moved = (k.x_a - k.x_b) - start_offset_[i];
       if ((moved - moved.dot(c.normal) * c.normal).norm() > settings_.max_slide) return Miss::kOverlapOrSlide;
@@ -429,9 +432,9 @@ bool ContactPipeline::leftLumen() const {
     const SphereCollisionModel& tube = *models_[t];
     const double clearance = tube.lumenRadius() - inner.radius();
     const double allowed = (1.0 + settings_.max_penetration) * clearance;
-    const std::vector<char>& inside = inside_[m];
-    for (int k = 0; k < inner.sphereCount() && k < static_cast<int>(inside.size()); ++k) {
-      if (!inside[k]) continue;  // not held by the lumen
+    const std::vector<TubePlace>& place = place_[m];
+    for (int k = 0; k < inner.sphereCount() && k < static_cast<int>(place.size()); ++k) {
+      if (place[k] != TubePlace::kInside) continue;  // not held by the lumen
       const AxisPoint end = nearestAxisPoint(after_centers_[t], tube.mapping(), after_centers_[m].row(k).transpose());
       if (end.chord < 0 || end.distance <= allowed) continue;
       const AxisPoint start = nearestAxisPoint(tube.centers(), tube.mapping(), inner.centers().row(k).transpose());

@@ -158,27 +158,38 @@ AxisPoint nearestAxisPoint(const Points& axis, const SphereSamplingMapping& samp
       beyond_end = (first && t < 0.0) || (last && t > 1.0);
     }
   }
-  if (beyond_end) best.chord = -1;
+  if (beyond_end) {
+    const Vec3 y0 = axis.row(best.chord).transpose(), y1 = axis.row(best.chord + 1).transpose();
+    const Vec3 offset = x - y0, e = y1 - y0;
+    const double length2 = e.squaredNorm();
+    best.radial = length2 > 0.0 ? (offset - (offset.dot(e) / length2) * e).norm() : offset.norm();
+    best.chord = -1;
+  }
   return best;
 }
 
-bool insideTube(const AxisPoint& axis, const SphereCollisionModel& tube) {
-  return axis.chord >= 0 && axis.distance < 0.5 * (tube.lumenRadius() + tube.radius());
+TubePlace placeInTube(const AxisPoint& axis, const SphereCollisionModel& tube) {
+  if (axis.chord >= 0)
+    return axis.distance < 0.5 * (tube.lumenRadius() + tube.radius()) ? TubePlace::kInside : TubePlace::kOutside;
+  // In the opening: the centre within the lumen's radius of the end chord's line (at most its
+  // own radius into the rim, which the lumen's rows then push back in); farther out, the rim and
+  // the outer surface are touched as usual.
+  return axis.radial < tube.lumenRadius() ? TubePlace::kOpening : TubePlace::kOutside;
 }
 
 void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const SphereCollisionModel& tube,
                        int model_tube, double friction, const NarrowPhaseSettings& settings, ContactSet& out,
-                       std::vector<char>& inside) {
+                       std::vector<TubePlace>& place) {
   const double clearance = tube.lumenRadius() - inner.radius();  // R_in − r
   const std::size_t first = out.size();
   double tube_speed = 0.0;  // the largest speed of the tube's centre line
   for (int l = 0; l < tube.sphereCount(); ++l) tube_speed = std::max(tube_speed, speed(tube, l));
-  inside.assign(inner.sphereCount(), 0);  // within the capacity reserved by the first steps
+  place.assign(inner.sphereCount(), TubePlace::kOutside);  // within the capacity reserved at init
   for (int k = 0; k < inner.sphereCount(); ++k) {
     const Vec3 x = center(inner, k);
     const AxisPoint axis = nearestAxisPoint(tube.centers(), tube.mapping(), x);
-    inside[k] = insideTube(axis, tube);
-    if (!inside[k]) continue;  // beyond the tube's ends, or beside it
+    place[k] = placeInTube(axis, tube);
+    if (place[k] != TubePlace::kInside) continue;  // beyond the tube's ends, or beside it
     const double reach = settings.margin + (speed(inner, k) + tube_speed) * settings.time_step;
     if (clearance - axis.distance > reach) continue;  // g = (R_in − r) − d
     const int l = axis.chord;
@@ -203,7 +214,10 @@ void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const
     const Vec3 e = (y1 - y0).normalized();
     const Vec3 w = (1.0 - axis.u) * tube.velocities().row(l).transpose() + axis.u * tube.velocities().row(l + 1).transpose();
     const Vec3 predicted = (x - y) + settings.time_step * (inner.velocities().row(k).transpose() - w);
-    const Vec3 across = predicted - predicted.dot(e) * e;
+    // At a vertex of the axis (u = 0 or 1: the nearest point is a bend's corner) the offset is not
+    // across the chord: it is taken whole.
+    const bool at_vertex = axis.u <= 0.0 || axis.u >= 1.0;
+    const Vec3 across = at_vertex ? predicted : Vec3(predicted - predicted.dot(e) * e);
     const double scale = (y1 - y0).norm() + inner.radius();
     c.normal = across.norm() > 1e-12 * scale ? Vec3(-across / across.norm()) : Vec3(e.unitOrthogonal());
     out.push_back(c);

@@ -109,14 +109,16 @@ TEST(Coaxial, WireRestsOnTheLumenFloorAndTheLumenCarriesItsWeight) {
   const SceneState& s = scene->state();
   const auto& pipeline = pipelineOf(*scene);
   // Every point of the wire inside the lumen and the wire down on its floor: its centre line
-  // R_in − r below the catheter's. The solve holds the kept contacts to its tolerance, far below
-  // the 1e-6 of the clearance asserted (1.6e-10 m), and the points between them lie no further
-  // out (convexity, narrow_phase.hpp).
+  // R_in − r below the catheter's. The solve holds the kept contacts (sphere centres) to its
+  // tolerance, and the segments between them lie no further out (convexity, narrow_phase.hpp);
+  // a point sampled off the sphere centres at a node where the wire bends with the tube's sag
+  // (κ ≈ 2e-3 1/m, θ = κ · 5 mm) lies out by up to h θ / 4 ≈ 1e-9 m, 7e-6 of the clearance:
+  // 1e-4 of it asserted.
   const double clearance = kLumenRadius - kWireRadius;
   double farthest = 0.0;
   for (int k = 0; k <= 400; ++k) farthest = std::max(farthest, distanceToAxis(tube, s, wire.position(s.q, k / 400.0)));
-  EXPECT_LE(farthest, clearance * (1.0 + 1e-6)) << farthest / clearance - 1.0;
-  EXPECT_GE(farthest, clearance * (1.0 - 1e-6)) << "the wire did not come down to the lumen's floor";
+  EXPECT_LE(farthest, clearance * (1.0 + 1e-4)) << farthest / clearance - 1.0;
+  EXPECT_GE(farthest, clearance * (1.0 - 1e-4)) << "the wire did not come down to the lumen's floor";
   // On the floor, not against a side: every node's offset from the nearest point of the tube's
   // axis points straight down. The steel tube sags ~5 µm between its clamps, w L⁴/(384 E I),
   // with slopes below w L³/(72√3 E I) ≈ 1e-4 rad: the offset is within 1e-4 rad of −z, and its
@@ -176,8 +178,9 @@ Slide pullFor(double pull, double seconds) {
 TEST(Coaxial, WireSticksBelowTheCoulombLimitWithoutCreep) {
   const double limit = kFriction * wireMass() * kGravity;  // μ m g: the floor's normal force is m g
   const Slide held = pullFor(0.8 * limit, 0.5);
-  // Held: no creep, less than 0.01 mm/s (issue 27's bound for a held contact), and no more than
-  // the wire's elastic stretch under the load in displacement (F L / (E A) ≈ 1e-9 m; 1e-6 m).
+  // Held: no creep, less than 0.01 mm/s (issue 27's bound for a held contact); in displacement,
+  // 1e-6 m, fifty times the wire's elastic stretch under the load (F L / (E A) ≈ 2e-8 m) and
+  // five times below what the creep bound would allow over the 0.5 s (5e-6 m).
   EXPECT_LT(std::abs(held.speed), 1e-5);
   EXPECT_LT(std::abs(held.displacement), 1e-6);
 }
@@ -195,7 +198,7 @@ TEST(Coaxial, WireSlidesAboveTheCoulombLimitAsARigidBodyOnARoughFloor) {
     v = (v + kDt * a0) / (1.0 + kDt * kDamping);
     x += kDt * v;
   }
-  // 2 %: the rigid-body model leaves out the wire's axial wave (its stretch F L/(E A), 1e-9 m)
+  // 2 %: the rigid-body model leaves out the wire's axial wave (its stretch F L/(E A), 3e-8 m)
   // and the first step of the pull, where the contact passes from stick to slip within one step
   // (h a0 h ≈ 5e-7 m of 20 mm); the issue's bound for a slip against the Coulomb prediction.
   EXPECT_NEAR(slid.displacement, x, 0.02 * x);
@@ -239,6 +242,40 @@ TEST(Coaxial, ASphereCrossingTheLumenIsHeldByTheWallItIsHeadingFor) {
   pipeline.beginStep(*scene, thrown, kDt);
   ASSERT_GT(pipeline.contactCount(), 0);
   for (const Contact& c : pipeline.contacts()) EXPECT_LT(c.normal.z(), -0.99);
+}
+
+TEST(Coaxial, AWirePushedInThroughTheHubAndOutOfTheTipTouchesNoEndOfTheTube) {
+  // apps/scenes/wire_in_catheter.json to 1.5 s: the wire enters the catheter at its hub (its part
+  // behind the hub is in line with the lumen: the opening), slides along the floor and leaves
+  // the tip from 0.75 s on. It never touches the tube's ends or outer surface (no thread–thread
+  // contact between the two), its part inside stays in the lumen, and its part out of the tip is
+  // free and bends down under its weight.
+  const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/wire_in_catheter.json";
+  auto scene = loadScene(readJsonFile(path), path, app::makeFactory());
+  scene->init();
+  const auto& pipeline = pipelineOf(*scene);
+  const CurveBody& tube = *scene->bodies()[0]->curve();
+  const CurveBody& wire = *scene->bodies()[1]->curve();
+  const double clearance = 5.3e-4 - 4.45e-4;
+  while (scene->state().time < 1.5 - 1e-9) {
+    ASSERT_TRUE(scene->step().ok) << "t = " << scene->state().time;
+    ASSERT_EQ(pipeline.statistics().thread_contacts, 0) << "t = " << scene->state().time;
+  }
+  const SceneState& s = scene->state();
+  const double tube_end = tube.position(s.q, 1.0).x();
+  EXPECT_GT(wire.position(s.q, 1.0).x(), tube_end + 0.01) << "the wire is out of the tip by more than 1 cm";
+  for (int k = 0; k <= 500; ++k) {
+    const Vec3 x = wire.position(s.q, k / 500.0);
+    // Inside the tube's length (away from its ends by a segment): in the lumen, within p = ½ of
+    // the clearance beyond the wall, the bound missedContact redoes steps for.
+    if (x.x() > 0.005 && x.x() < tube_end - 0.005) {
+      EXPECT_LE(distanceToAxis(tube, s, x), 1.5 * clearance) << "s = " << k / 500.0;
+    }
+  }
+  EXPECT_LT(wire.position(s.q, 1.0).y(), -1e-4) << "the free end bends down under its weight";
+  // Nor is a step redone for the ends: the parts of the wire in line with the openings are not
+  // compared with the tube's end chords (a wire entering a hub would otherwise halve every step).
+  EXPECT_EQ(scene->contactHalvings(), 0);
 }
 
 TEST(Coaxial, RefusesTubesThatCannotHoldTheWire) {
@@ -303,9 +340,10 @@ TEST(Coaxial, AWireBesideTheTubeIsNotPulledInButRestsOnItsOuterSurface) {
   EXPECT_EQ(pipeline.statistics().lumen_contacts, 0);
   EXPECT_GT(pipeline.statistics().thread_contacts, 0);
   const CurveBody& wire = *scene->bodies()[1]->curve();
-  // Resting contacts are held to the solve's tolerance and Baumgarte's correction; the chords
-  // between sphere centres cut the round surfaces by at most spacing²/(8 r) ≈ 5.6e-5 m of the
-  // wire's sampling (r spacing): 1e-4 m of the 1.4 mm asserted.
+  // Resting contacts hold the centre lines R_out + r apart to the solve's tolerance; 1e-4 m (7 %
+  // of R_out + r) only tells resting on the outer surface from being inside (z < 0) or still
+  // falling. (Resting on top of a frictionless cylinder is an unstable balance, kept here by the
+  // exact symmetry about y = 0.)
   const auto nodes = wire.block(scene->state().q);
   for (int i = 0; i < wire.pointCount(); ++i) EXPECT_NEAR(nodes(i, 2), kTubeRadius + kWireRadius, 1e-4) << "node " << i;
 }

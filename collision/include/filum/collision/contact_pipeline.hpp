@@ -161,9 +161,10 @@ class ContactPipeline final : public CollisionPipeline {
   std::vector<SphereCollisionModel*> models_;
   std::vector<Obstacle*> obstacles_;
   std::vector<int> tube_of_;  // per model: the model of the tube it runs in, or −1
-  std::vector<std::vector<char>> inside_;  // per model in a tube: its spheres inside it (beginStep)
-  /// Whether chord k of model a and chord l of model b are an instrument's chord inside the tube
-  /// it runs in and that tube's (held by the lumen instead: no chord contact, no overlap test).
+  std::vector<std::vector<TubePlace>> place_;  // per model in a tube: its spheres' places (beginStep)
+  /// Whether chord k of model a and chord l of model b are a chord of an instrument inside the
+  /// tube it runs in, or in its opening, and that tube's: held by the lumen instead, or open
+  /// there (no chord contact, no overlap test).
   bool heldInside(int a, int k, int b, int l) const;
   /// Resolves every model's "inside" to the tube's model (SceneError naming the component).
   void findTubes();

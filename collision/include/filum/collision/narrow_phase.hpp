@@ -34,7 +34,9 @@
 // the tube are held: a sphere whose nearest point is beyond a strand's end of the tube (t < 0 on
 // its first chord, t > 1 on its last) is past the tip or behind the hub, and one farther from
 // the axis than the middle of the wall lies beside the tube (a wire out of the tip and curled
-// back); both meet the tube as any two threads meet (insideTube). Of consecutive
+// back); both meet the tube as any two threads meet (placeInTube), except that a sphere beyond
+// an end in line with the lumen is going in or out through the opening and touches nothing of
+// the tube. Of consecutive
 // contacts between one straight piece of A (degree 1: a rod's segment) and one straight piece of
 // B, only the first and the last are kept: the distance from a point moving along a line to
 // another line is convex in the parameter, so d is largest, and g smallest, at the ends of the
@@ -67,25 +69,32 @@ bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const S
 
 /// The nearest point of a tube's centre line (the chords between the centres `axis` of its
 /// sampling) to x: chord l, parameter u in [0, 1], distance d; chord −1 when that point lies
-/// beyond one of the tube's open ends (u <= 0 on a strand's first chord, u >= 1 on its last).
+/// beyond one of the tube's open ends (t < 0 on a strand's first chord, t > 1 on its last), and
+/// then `radial`, the distance of x from that end chord's line extended.
 struct AxisPoint {
   int chord = -1;
   double u = 0.0;
   double distance = 0.0;
+  double radial = 0.0;
 };
 AxisPoint nearestAxisPoint(const Points& axis, const SphereSamplingMapping& sampling, const Vec3& x);
 
-/// Whether a sphere whose nearest point of the tube's axis is `axis` is inside the tube: within
-/// the tube's length and nearer the axis than the middle of its wall, ½ (R_in + R_out). A sphere
-/// beside the tube, or beyond its ends, is outside and meets the tube's outer surface as any
-/// thread does.
-bool insideTube(const AxisPoint& axis, const SphereCollisionModel& tube);
+/// Where a sphere is with respect to a tube.
+enum class TubePlace : char {
+  kOutside,  // beside the tube, or away from its ends: meets the tube as any thread does
+  kInside,   // within its length, nearer its axis than the middle of its wall: held by the lumen
+  kOpening,  // beyond an end, within the lumen's radius of its axis extended (going in or out
+             // through the opening): neither held nor touching the tube's end, open there
+};
+/// The place of a sphere whose nearest point of the tube's axis is `axis`: ½ (R_in + R_out), the
+/// middle of the wall, separates in from out along the tube, R_in beyond its ends.
+TubePlace placeInTube(const AxisPoint& axis, const SphereCollisionModel& tube);
 
-/// Appends to `out` the contacts holding the spheres of `inner` that are inside `tube`
-/// (insideTube) in its lumen (tube.lumenRadius() > inner.radius()), with friction μ; inside[k]
-/// says which spheres are (resized to inner's sphere count).
+/// Appends to `out` the contacts holding the spheres of `inner` that are inside `tube` in its
+/// lumen (tube.lumenRadius() > inner.radius()), with friction μ; place[k] is each sphere's
+/// place (resized to inner's sphere count).
 void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const SphereCollisionModel& tube,
                        int model_tube, double friction, const NarrowPhaseSettings& settings, ContactSet& out,
-                       std::vector<char>& inside);
+                       std::vector<TubePlace>& place);
 
 }  // namespace filum::collision
