@@ -9,8 +9,8 @@
 // what grows faster is the contact solve (dense in the contact rows, contact_newton.hpp).
 // And coaxial instruments: a 100-node guidewire pushed through a 100-node catheter (both 30 cm,
 // 3 mm segments, held at both ends and sagging under gravity): the wire lies on the lumen's
-// floor along its whole length, the worst case for the contact rows: measured 1050 ms per
-// simulated ms with ~430 lumen contacts (1300 rows), where the issue asks 1; three quarters of it
+// floor along its whole length, the worst case for the contact rows: measured 1140 ms per
+// simulated ms (median of 3) with ~430 lumen contacts (1300 rows), where the issue asks 1; three quarters of it
 // the dense factor and products of contact_newton.hpp (perf), which the structured solve of
 // docs/contact-solver.md ("Still open") would replace.
 //   build/apps/bench/bench_applications --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
