@@ -421,10 +421,10 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
 
 bool ContactPipeline::leftLumen() const {
   // A sphere of an instrument held inside its tube at the step's start that ended the step
-  // beyond the lumen's wall by more than p times the clearance R_in − r (p =
-  // "max_penetration"), and further out than it began: the rows of the step's start did not follow it (it came to the wall within the step,
-  // or crossed the lumen). The clearance, not the radius, is the scale: a wire's clearance in
-  // its catheter is a fifth of its radius or less.
+  // beyond the lumen's wall by more than p times the clearance R_in − r (p = "max_penetration"),
+  // and further out than it began: the rows of the step's start did not follow it (it came to
+  // the wall within the step, or crossed the lumen). The clearance, not the radius, is the
+  // scale: a wire's clearance in its catheter is a fifth of its radius or less.
   for (int m = 0; m < static_cast<int>(models_.size()); ++m) {
     const int t = tube_of_[m];
     if (t < 0) continue;
