@@ -211,15 +211,16 @@ void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const
     // it would hit: the row of the wall behind it would only stop it moving back. A sphere that
     // stays on the axis (p⊥ = 0: far from either wall, the contact only waits) takes any
     // direction across the chord.
-    const Vec3 e = (y1 - y0).normalized();
+    const Vec3 e = (y1 - y0).normalized();  // Eigen: zero for a zero chord (then at_vertex below)
     const Vec3 w = (1.0 - axis.u) * tube.velocities().row(l).transpose() + axis.u * tube.velocities().row(l + 1).transpose();
     const Vec3 predicted = (x - y) + settings.time_step * (inner.velocities().row(k).transpose() - w);
     // At a vertex of the axis (u = 0 or 1: the nearest point is a bend's corner) the offset is not
     // across the chord: it is taken whole.
-    const bool at_vertex = axis.u <= 0.0 || axis.u >= 1.0;
+    const bool at_vertex = axis.u <= 0.0 || axis.u >= 1.0 || e.squaredNorm() == 0.0;
     const Vec3 across = at_vertex ? predicted : Vec3(predicted - predicted.dot(e) * e);
     const double scale = (y1 - y0).norm() + inner.radius();
-    c.normal = across.norm() > 1e-12 * scale ? Vec3(-across / across.norm()) : Vec3(e.unitOrthogonal());
+    c.normal = across.norm() > 1e-12 * scale ? Vec3(-across / across.norm())
+                                              : Vec3(e.squaredNorm() > 0.0 ? e.unitOrthogonal() : Vec3::UnitZ());
     out.push_back(c);
   }
   keepRunEnds(out, first, onSamePieces);
