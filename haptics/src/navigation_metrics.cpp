@@ -52,7 +52,8 @@ std::unique_ptr<NavigationMetrics> NavigationMetrics::fromScene(const nlohmann::
       names.push_back(name.get<std::string>());
     }
   }
-  if (names.empty()) p.fail("instruments", "the instruments to score: \"instruments\": [node paths] or \"instrument\"");
+  if (names.empty() && !p.has("aneurysm"))
+    p.fail("instruments", "the instruments to score: \"instruments\": [node paths] or \"instrument\" (or an \"aneurysm\")");
   for (std::size_t i = 0; i < names.size(); ++i) {
     const std::string& name = names[i];
     const std::string key = i == 0 && p.has("instrument") ? "instrument" : "instruments";
@@ -89,8 +90,57 @@ std::unique_ptr<NavigationMetrics> NavigationMetrics::fromScene(const nlohmann::
     }
   }
   metrics->force_limit_ = p.positive({"force_limit", "N"}, 0.5);
+  if (p.has("aneurysm")) metrics->readAneurysm(scene, p.object("aneurysm").withOwner("navigation/aneurysm"));
   p.finish();
   return metrics;
+}
+
+void NavigationMetrics::readAneurysm(const Scene& scene, const Params& a) {
+  const geometry::VesselTree& tree = lumen_->tree();
+  std::vector<int> branches;
+  const auto names = [&](const std::string& key, const std::string& what) {
+    const nlohmann::json& list = a.raw(key);
+    if (!list.is_array() || list.empty() || list.size() > 64) a.fail(key, "a list of 1 to 64 " + what);
+    std::vector<std::string> out;
+    for (const nlohmann::json& name : list) {
+      if (!name.is_string()) a.fail(key, what, describeJson(name));
+      out.push_back(name.get<std::string>());
+    }
+    return out;
+  };
+  for (const std::string& name : names("branches", "names of the vessel tree's branches (the sac, its neck)")) {
+    const int b = tree.branchIndex(name);
+    if (b < 0) {
+      std::string known;
+      for (int k = 0; k < tree.branchCount(); ++k) known += (k ? ", " : "") + tree.branch(k).name;
+      a.fail("branches", "branches of the vessel tree (" + known + ")", "\"" + name + "\"");
+    }
+    branches.push_back(b);
+  }
+  for (const std::string& name : names("coils", "node paths of the coils (curve bodies)")) {
+    const MechanicalState* body = nodeAt(scene, a, "coils", name)->mechanicalState();
+    if (!body || !body->curve()) a.fail("coils", "coils that are curve bodies (a rod, a spline)", "\"" + name + "\" (no curve body)");
+    coils_.push_back({name, body->curve(), 0.0});
+  }
+  const double spacing = a.has("spacing") ? a.positive({"spacing", "m"}) : 0.0;
+  try {
+    packing_ = std::make_unique<CoilPacking>(tree, branches, spacing);
+  } catch (const std::invalid_argument& e) {
+    a.fail("spacing", "a volume grid that fits the cell limit", e.what());
+  }
+  if (packing_->volume() <= 0.0)
+    a.fail("branches", "branches that hold a volume of the lumen (none of the grid's cells lies in them)");
+  a.finish();
+}
+
+void NavigationMetrics::measurePacking(const Scene& scene) {
+  if (!packing_) return;
+  packing_density_ = 0.0;
+  for (Coil& c : coils_) {
+    c.length_inside = packing_->lengthInside(*c.body, scene.state().q);
+    packing_density_ += packing_->density(c.body->radius(), c.length_inside);
+  }
+  max_packing_density_ = std::max(max_packing_density_, packing_density_);
 }
 
 void NavigationMetrics::measure(const Scene& scene, Instrument& m) const {
@@ -125,6 +175,7 @@ void NavigationMetrics::start(const Scene& scene) {
     m.min_target_distance = m.target_distance;
     m.max_inserted = m.inserted;
   }
+  measurePacking(scene);
   time_ = scene.state().time;
   writeRow(time_);
 }
@@ -141,6 +192,7 @@ void NavigationMetrics::afterStep(const Scene& scene, double h) {
     if (target_) m.min_target_distance = std::min(m.min_target_distance, m.target_distance);
     if (target_branch_ >= 0 && m.reached_time < 0.0 && m.branch == target_branch_) m.reached_time = time_;
   }
+  measurePacking(scene);
   writeRow(time_);
 }
 
@@ -152,6 +204,10 @@ void NavigationMetrics::openCsv(const std::string& path) {
     for (const char* column : {"inserted", "roll", "tip_x", "tip_y", "tip_z", "branch", "target_distance", "wall_force",
                                "max_contact_force"})
       csv_ << ',' << m.name << '_' << column;
+  if (packing_) {
+    for (const Coil& c : coils_) csv_ << ',' << c.name << "_in_aneurysm";
+    csv_ << ",packing_density";
+  }
   csv_ << '\n';
 }
 
@@ -164,6 +220,10 @@ void NavigationMetrics::writeRow(double t) {
     const std::string& branch = m.branch >= 0 ? tree.branch(m.branch).name : outside;  // no copy in a step
     csv_ << ',' << m.inserted << ',' << m.roll << ',' << m.tip.x() << ',' << m.tip.y() << ',' << m.tip.z() << ','
          << branch << ',' << m.target_distance << ',' << m.wall_force << ',' << m.max_contact_force;
+  }
+  if (packing_) {
+    for (const Coil& c : coils_) csv_ << ',' << c.length_inside;
+    csv_ << ',' << packing_density_;
   }
   csv_ << '\n';
   if (!csv_) csv_failed_ = true;
@@ -194,6 +254,14 @@ nlohmann::json NavigationMetrics::summary() const {
     }
     out["instruments"][m.name] = i;
   }
+  if (packing_) {
+    nlohmann::json a = {{"volume", packing_->volume()},
+                        {"packing_density", packing_density_},
+                        {"max_packing_density", max_packing_density_}};
+    for (const int b : packing_->branches()) a["branches"].push_back(tree.branch(b).name);
+    for (const Coil& c : coils_) a["coil_length_inside"][c.name] = c.length_inside;
+    out["aneurysm"] = a;
+  }
   return out;
 }
 
@@ -222,6 +290,12 @@ std::string NavigationMetrics::text() const {
       << " N; tip path " << 1e3 * m.tip_path << " mm\n";
   }
   if (pedal_) s << "  fluoroscopy time " << pedal_->time(time_) << " s of " << time_ << " s\n";
+  if (packing_) {
+    double inside = 0.0;
+    for (const Coil& c : coils_) inside += c.length_inside;
+    s << "  aneurysm " << 1e9 * packing_->volume() << " mm³: coil inside " << 1e3 * inside << " mm, packing density "
+      << 100.0 * packing_density_ << " % (largest " << 100.0 * max_packing_density_ << " %)\n";
+  }
   return s.str();
 }
 

@@ -11,13 +11,19 @@
 //                    hard against the wall risks a dissection;
 //   tip path length  Σ |x_tip(t_k+1) − x_tip(t_k)| (m);
 //   fluoroscopy time how long the X-ray pedal was pressed (s; fluoroscopy_pedal.hpp), when the
-//                    scene has a "fluoroscopy" block: the dose a trainer scores.
+//                    scene has a "fluoroscopy" block: the dose a trainer scores;
+//   packing density  Σ π r² L / V of the coils in the aneurysm (coil_packing.hpp), when the scene
+//                    names one: its value at every step and its largest.
 // Scene:
 //   "navigation": {"instruments": ["guidewire"] (or "instrument": "guidewire": node paths of
 //                  curve bodies, the hub at s = 0 and the tip at s = 1),
 //                  "vessels": node path of the node holding the VesselLumenObstacle,
 //                  "target": [x, y, z] (m, optional), "target_branch": name (optional),
-//                  "force_limit": N (default 0.5)}
+//                  "force_limit": N (default 0.5),
+//                  "aneurysm": {"branches": [names of the vessel tree's branches: the sac, its
+//                               neck], "coils": [node paths of curve bodies],
+//                               "spacing": m (the volume grid's; default: coil_packing.hpp)}}
+//   "instruments" may be left out when an "aneurysm" is scored.
 // Outputs (filum run): metrics.csv (one row per step) and metrics.json (the summary).
 #pragma once
 
@@ -30,6 +36,7 @@
 #include <nlohmann/json.hpp>
 
 #include "filum/core/scene.hpp"
+#include "filum/haptics/coil_packing.hpp"
 #include "filum/haptics/fluoroscopy_pedal.hpp"
 
 namespace filum::collision {
@@ -80,12 +87,27 @@ class NavigationMetrics {
   const Instrument& instrument(int i) const { return instruments_[i]; }
   const collision::VesselLumenObstacle& lumen() const { return *lumen_; }
   int targetBranch() const { return target_branch_; }
+  /// The aneurysm scored, nullptr without an "aneurysm" block.
+  const CoilPacking* packing() const { return packing_.get(); }
+  /// This step's packing density and its largest over the run (0 without an aneurysm).
+  double packingDensity() const { return packing_density_; }
+  double maxPackingDensity() const { return max_packing_density_; }
 
  private:
   NavigationMetrics() = default;
   /// The instrument's values at the scene's current state.
   void measure(const Scene& scene, Instrument& m) const;
   void writeRow(double t);
+  /// The coils' lengths in the aneurysm and the packing density at the scene's state.
+  void measurePacking(const Scene& scene);
+  /// Reads the "aneurysm" block of p.
+  void readAneurysm(const Scene& scene, const Params& p);
+
+  struct Coil {
+    std::string name;
+    const CurveBody* body = nullptr;
+    double length_inside = 0.0;  // m, this step
+  };
 
   std::vector<Instrument> instruments_;
   const collision::VesselLumenObstacle* lumen_ = nullptr;
@@ -94,6 +116,9 @@ class NavigationMetrics {
   std::optional<Vec3> target_;
   int target_branch_ = -1;
   double force_limit_ = 0.5;
+  std::unique_ptr<CoilPacking> packing_;  // nullptr: no "aneurysm" block
+  std::vector<Coil> coils_;
+  double packing_density_ = 0.0, max_packing_density_ = 0.0;
   double time_ = 0.0;
   std::ofstream csv_;
   bool csv_failed_ = false;

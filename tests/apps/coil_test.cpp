@@ -1,0 +1,131 @@
+// apps/scenes/coil.json as a trainer and a physicist would check it: the coil stays in the sac
+// (every point of its centre line in the aneurysm, never deeper in the wall than a tenth of its
+// radius), the wall carries its weight once it has settled (statics: the contact forces on the
+// lumen add up to m g), and the packing density the run reports is π r² L / V with the coil's
+// own length. The coil's length inside an aneurysm is checked on a straight rod across the dome.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "filum/all_components.hpp"
+#include "filum/collision/contact_pipeline.hpp"
+#include "filum/collision/vessel_lumen_obstacle.hpp"
+#include "filum/core/curve_body.hpp"
+#include "filum/core/scene_error.hpp"
+#include "filum/core/scene_loader.hpp"
+#include "filum/haptics/navigation_metrics.hpp"
+
+namespace filum {
+namespace {
+
+const std::string kCoilScene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/coil.json";
+
+/// The polyline's length through `samples` + 1 points of the centre line (m).
+double polylineLength(const CurveBody& body, const VecX& q, int samples) {
+  double length = 0.0;
+  for (int i = 0; i < samples; ++i)
+    length += (body.position(q, static_cast<double>(i + 1) / samples) - body.position(q, static_cast<double>(i) / samples)).norm();
+  return length;
+}
+
+TEST(CoilScene, StaysInTheSacWithItsWeightOnTheWall) {
+  const nlohmann::json document = readJsonFile(kCoilScene);
+  auto scene = loadScene(document, kCoilScene, app::makeFactory());
+  auto metrics = haptics::NavigationMetrics::fromScene(document, kCoilScene, *scene);
+  ASSERT_NE(metrics, nullptr);
+  ASSERT_NE(metrics->packing(), nullptr);
+  scene->init();
+  metrics->start(*scene);
+  const CurveBody& coil = *scene->bodies()[0]->curve();
+  const geometry::VesselTree& tree = metrics->lumen().tree();
+  const haptics::CoilPacking& aneurysm = *metrics->packing();
+  const double r = coil.radius();
+  const double dt = scene->settings().dt;
+  // Settled: its velocities decay at the damping's 5/s and the contacts' Baumgarte rate; 0.4 s
+  // is two damping times.
+  const long steps = std::lround(0.4 / dt);
+  double deepest = 0.0;
+  int outside = 0;
+  constexpr int kSamples = 480;  // every 0.125 mm, half a sphere spacing
+  for (long k = 0; k < steps; ++k) {
+    const StepReport report = scene->step();
+    ASSERT_TRUE(report.ok) << report.message;
+    metrics->afterStep(*scene, dt);
+    for (int i = 0; i <= kSamples; ++i) {
+      const Vec3 x = coil.position(scene->state().q, static_cast<double>(i) / kSamples);
+      if (!aneurysm.contains(x)) ++outside;
+      const geometry::VesselTree::Sample s = tree.sample(x, tree.maxRadius());
+      deepest = std::max(deepest, (r - s.value / s.gradient.norm()) / r);
+    }
+  }
+  std::printf("  deepest %.3f r, %d samples outside the aneurysm\n", deepest, outside);
+  EXPECT_EQ(outside, 0);
+  EXPECT_LT(deepest, 0.1);  // the bound: penetration below a tenth of the radius
+
+  // Statics: Σ F on the lumen = m g (self-contacts act on the coil from both sides and cancel).
+  const auto& pipeline = dynamic_cast<const collision::ContactPipeline&>(*scene->collisionPipeline());
+  int lumen = -1;
+  for (std::size_t o = 0; o < pipeline.obstacles().size(); ++o)
+    if (pipeline.obstacles()[o] == &metrics->lumen()) lumen = static_cast<int>(o);
+  ASSERT_GE(lumen, 0);
+  const Vec3 weight = coil.mass() * scene->settings().gravity;
+  const Vec3 on_wall = pipeline.obstacleForce(lumen, scene->state());
+  // What is left of the motion: the drag −γ M v, and M dv/dt, against the weight.
+  const double kinetic = scene->energy(scene->state()).kinetic;
+  const double speed = std::sqrt(2.0 * kinetic / coil.mass());
+  std::printf("  on the wall %.4e %.4e %.4e N, weight %.4e %.4e %.4e N; rms speed %.2e m/s\n", on_wall.x(), on_wall.y(),
+              on_wall.z(), weight.x(), weight.y(), weight.z(), speed);
+  // Tolerance: the drag of the motion left, γ m v_rms / (m g) = 5 v_rms / g (below 1e-6 for the
+  // ~1e-7 m/s a settled coil keeps), and the contact solve's residual, 1e-6 relative
+  // (LagrangeMultiplierSolver's contact_tolerance) per row over ~100 rows: 1e-4.
+  EXPECT_LT(5.0 * speed / weight.norm() * coil.mass(), 1e-6);
+  EXPECT_LT((on_wall - weight).norm(), 1e-4 * weight.norm());
+
+  // The packing density reported is π r² L / V with the whole coil in the sac.
+  const double length = polylineLength(coil, scene->state().q, 4000);
+  const double expected = M_PI * r * r * length / aneurysm.volume();
+  // The metric's 512 chords against 4000: the chord of a 0.5 mm segment bent by 1/3 mm⁻¹ loses
+  // θ²/24 of its length, θ = l κ: below 1e-3 at the metric's 0.12 mm pieces.
+  EXPECT_NEAR(metrics->packingDensity(), expected, 1e-3 * expected);
+  const nlohmann::json summary = metrics->summary();
+  EXPECT_DOUBLE_EQ(summary["aneurysm"]["packing_density"].get<double>(), metrics->packingDensity());
+  EXPECT_EQ(summary["aneurysm"]["branches"], nlohmann::json({"neck", "sac"}));
+}
+
+nlohmann::json straightRodAcrossTheDome() {
+  // A rod along x through the dome's centre (0, 0, 15 mm), 20 mm long; the dome's radius 4 mm.
+  nlohmann::json document = readJsonFile(kCoilScene);
+  auto& coil = document["nodes"][1]["components"][0];
+  coil["nodes"] = {{"from", {-0.01, 0, 0.015}}, {"to", {0.01, 0, 0.015}}, {"count", 41}};
+  return document;
+}
+
+TEST(CoilScene, LengthInsideTheAneurysmIsTheChordThroughTheDome) {
+  const nlohmann::json document = straightRodAcrossTheDome();
+  auto scene = loadScene(document, kCoilScene, app::makeFactory());
+  auto metrics = haptics::NavigationMetrics::fromScene(document, kCoilScene, *scene);
+  scene->init();
+  const CurveBody& rod = *scene->bodies()[0]->curve();
+  // The dome is a capsule of radius 4 mm whose axis (z from 14.8 to 15.2 mm) crosses z = 15 mm:
+  // the chord along x there is 2 R = 8 mm. Error: at most one 20/512 mm piece at each crossing.
+  const double inside = metrics->packing()->lengthInside(rod, scene->state().q);
+  EXPECT_NEAR(inside, 8e-3, 2.0 * 0.02 / 512);
+}
+
+TEST(CoilScene, UnknownAneurysmBranchIsRefusedWithItsPlace) {
+  nlohmann::json document = readJsonFile(kCoilScene);
+  document["navigation"]["aneurysm"]["branches"] = {"neck", "dome"};
+  auto scene = loadScene(document, kCoilScene, app::makeFactory());
+  try {
+    haptics::NavigationMetrics::fromScene(document, kCoilScene, *scene);
+    FAIL() << "an unknown branch was accepted";
+  } catch (const SceneError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("aneurysm/branches"), std::string::npos) << message;
+    EXPECT_NE(message.find("\"dome\""), std::string::npos) << message;
+    EXPECT_NE(message.find("sac"), std::string::npos) << message;  // the known branches are listed
+  }
+}
+
+}  // namespace
+}  // namespace filum
