@@ -111,8 +111,10 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
     }
     instruments = haptics::InstrumentSet::fromScene(document, options.scene, *scene, 1.0);
     if (instruments) instruments->start();  // devices on their own thread (a Phantom) start sampling
-    // A catheter or guidewire ("navigation"): its hub to the arrow keys.
-    if (const auto navigation = haptics::NavigationMetrics::fromScene(document, options.scene, *scene))
+    // A catheter or guidewire ("navigation"): its hub to the arrow keys (a block that only
+    // scores an aneurysm's coils has no instrument).
+    if (const auto navigation = haptics::NavigationMetrics::fromScene(document, options.scene, *scene);
+        navigation && navigation->instrumentCount() > 0)
       hub = haptics::HubControl::find(*scene, navigation->instrument(0).name);
     pedal = haptics::FluoroscopyPedal::fromScene(document, options.scene);
     fluoroscopy = visual::FluoroscopyView::fromScene(document, options.scene);

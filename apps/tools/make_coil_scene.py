@@ -2,16 +2,17 @@
 """Writes apps/scenes/coil.json: a detachable platinum coil in the sac of the cerebral aneurysm of
 apps/scenes/data/cerebral_aneurysm.json, laid in its helical rest shape (docs/vessels.md, "The coil").
 
-The coil is a "10 system" coil: a platinum-tungsten wire of diameter d = 50 um wound into a primary
+The coil is a "10 system" coil: a platinum wire (coils are often of a platinum-tungsten
+alloy, which is stiffer; pure platinum's constants are used here) of diameter d = 50 um wound into a primary
 coil of outer diameter 0.254 mm (0.010"), mean winding diameter D = 0.204 mm, close wound (pitch d).
 As a rod (r = 0.127 mm) it has the stiffness of the winding, not of solid platinum. A bending moment
 M on the primary coil bends and twists the wire: per turn (length d) the wire stores
 M^2 pi D / 4 (1/(E I_w) + 1/(G J_w)), I_w = pi d^4 / 64, J_w = 2 I_w, so
     E I = d^5 / (32 D (1/E + 1/(2G)))  = 3.4e-9 N m^2   (E = 168 GPa, G = 61 GPa: platinum),
-an effective Young's modulus E I / (pi r^4 / 4) = 16.5 MPa over the rod's section; a twisting
+an effective Young's modulus E I / (pi r^4 / 4) = 16.6 MPa over the rod's section; a twisting
 moment bends the wire only, G J = E d^5 / (64 D), 1.2 E I: Poisson's ratio 0 (G J = E I) is the
 nearest the rod takes. Density: the wire's volume per length, pi^2 D d / 4, over pi r^2, times
-21450 kg/m^3: 10440 kg/m^3.
+21450 kg/m^3: 10654 kg/m^3.
 The secondary shape, the one the coil takes once out of the microcatheter: a helix of radius 3 mm
 (a 6 mm coil) and pitch 0.4 mm, 6 cm long, laid in the sac around an axis along y (the patient's
 front-back axis; gravity points to the back, +y).
@@ -55,7 +56,7 @@ HEADER = """// A detachable platinum coil in a cerebral aneurysm's sac: the fram
 // The vessel (data/cerebral_aneurysm.json): a cerebral artery's C-bend (radius 2 mm) with a
 // saccular aneurysm on its outer side, neck 4 mm, dome 8 mm across, touched from inside.
 // The coil (apps/tools/make_coil_scene.py writes this file and derives the numbers): a "10
-// system" coil, a 50 um platinum-tungsten wire wound into a 0.254 mm primary coil, as a rod of
+// system" coil, a 50 um platinum wire wound into a 0.254 mm primary coil, as a rod of
 // r = 0.127 mm with the winding's bending stiffness E I = %.2e N m^2 (an effective E of %.3g MPa
 // over the rod's section, Poisson's ratio 0) and density %.0f kg/m^3; its secondary shape a helix
 // 6 mm across with a 0.4 mm pitch, 6 cm long: a discrete Cosserat rod of %d nodes (0.5 mm), rest

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 namespace filum::haptics {
@@ -28,11 +29,12 @@ CoilPacking::CoilPacking(const geometry::VesselTree& tree, std::vector<int> bran
   spacing_ = spacing > 0.0 ? spacing : smallest / 25.0;
   const Vec3 size = box.sizes();
   const Eigen::Array3d cells_per_axis = (size / spacing_).array().ceil();
-  if ((cells_per_axis > 1e6).any() || cells_per_axis.prod() > static_cast<double>(kMaxCells))
-    throw std::invalid_argument("the aneurysm's volume grid of spacing " + std::to_string(spacing_) + " m over a box of " +
-                                std::to_string(size.x()) + " x " + std::to_string(size.y()) + " x " +
-                                std::to_string(size.z()) + " m would have more than " + std::to_string(kMaxCells) +
-                                " cells");
+  if ((cells_per_axis > 1e6).any() || cells_per_axis.prod() > static_cast<double>(kMaxCells)) {
+    std::ostringstream message;
+    message << "the aneurysm's volume grid of spacing " << spacing_ << " m over a box of " << size.x() << " x "
+            << size.y() << " x " << size.z() << " m would have more than " << kMaxCells << " cells";
+    throw std::invalid_argument(message.str());
+  }
   const Eigen::Array3i n = cells_per_axis.cast<int>();
   // Midpoint rule: V = h³ · #{cell centres in the aneurysm} (header).
   long inside = 0;
@@ -41,6 +43,8 @@ CoilPacking::CoilPacking(const geometry::VesselTree& tree, std::vector<int> bran
       for (int k = 0; k < n.z(); ++k)
         if (contains(box.min() + spacing_ * Vec3(i + 0.5, j + 0.5, k + 0.5))) ++inside;
   volume_ = static_cast<double>(inside) * spacing_ * spacing_ * spacing_;
+  if (inside == 0)
+    throw std::invalid_argument("no cell of the volume grid lies in the aneurysm (its branches lie under the others')");
 }
 
 bool CoilPacking::contains(const Vec3& x) const {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <iomanip>
 #include <sstream>
 
@@ -90,7 +91,7 @@ std::unique_ptr<NavigationMetrics> NavigationMetrics::fromScene(const nlohmann::
     }
   }
   metrics->force_limit_ = p.positive({"force_limit", "N"}, 0.5);
-  if (p.has("aneurysm")) metrics->readAneurysm(scene, p.object("aneurysm").withOwner("navigation/aneurysm"));
+  if (p.has("aneurysm")) metrics->readAneurysm(scene, p.object("aneurysm"));
   p.finish();
   return metrics;
 }
@@ -104,6 +105,8 @@ void NavigationMetrics::readAneurysm(const Scene& scene, const Params& a) {
     std::vector<std::string> out;
     for (const nlohmann::json& name : list) {
       if (!name.is_string()) a.fail(key, what, describeJson(name));
+      if (std::find(out.begin(), out.end(), name.get<std::string>()) != out.end())
+        a.fail(key, what + ", each once", "\"" + name.get<std::string>() + "\" twice");
       out.push_back(name.get<std::string>());
     }
     return out;
@@ -115,6 +118,9 @@ void NavigationMetrics::readAneurysm(const Scene& scene, const Params& a) {
       for (int k = 0; k < tree.branchCount(); ++k) known += (k ? ", " : "") + tree.branch(k).name;
       a.fail("branches", "branches of the vessel tree (" + known + ")", "\"" + name + "\"");
     }
+    if (tree.branch(b).open_start || tree.branch(b).open_end)
+      a.fail("branches", "closed branches (a sac, its neck): an open end goes on without end",
+             "\"" + name + "\", open at an end");
     branches.push_back(b);
   }
   for (const std::string& name : names("coils", "node paths of the coils (curve bodies)")) {
@@ -122,14 +128,18 @@ void NavigationMetrics::readAneurysm(const Scene& scene, const Params& a) {
     if (!body || !body->curve()) a.fail("coils", "coils that are curve bodies (a rod, a spline)", "\"" + name + "\" (no curve body)");
     coils_.push_back({name, body->curve(), 0.0});
   }
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const int b : branches) smallest = std::min(smallest, tree.branch(b).radii.minCoeff());
   const double spacing = a.has("spacing") ? a.positive({"spacing", "m"}) : 0.0;
+  if (spacing > 0.25 * smallest)
+    a.fail("spacing", "a grid spacing of at most a quarter of the aneurysm's smallest radius (" +
+                          std::to_string(0.25 * smallest) + " m)", std::to_string(spacing) + " m");
   try {
     packing_ = std::make_unique<CoilPacking>(tree, branches, spacing);
   } catch (const std::invalid_argument& e) {
-    a.fail("spacing", "a volume grid that fits the cell limit", e.what());
+    // The grid's cell limit, or no cell in the aneurysm (its branches lie under the others').
+    a.fail(a.has("spacing") ? "spacing" : "branches", "an aneurysm the volume grid can measure", e.what());
   }
-  if (packing_->volume() <= 0.0)
-    a.fail("branches", "branches that hold a volume of the lumen (none of the grid's cells lies in them)");
   a.finish();
 }
 

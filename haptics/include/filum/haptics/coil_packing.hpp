@@ -8,13 +8,18 @@
 // Sample::branch), so it ends where the parent artery's field takes over, along the parent's wall.
 //
 // V: the midpoint rule on a cubic grid of spacing h over the branches' box — a cell counts when
-// its centre is in the aneurysm. For a region with a smooth boundary the count's error is the
-// lattice-point discrepancy, O((R/h)^{3/2}) cells for a ball of R/h cells (Gauss's sphere problem;
-// the exponent is smaller, Chamizo & Iwaniec 1995), a relative error O((h/R)^{3/2}): h = R/25
-// gives a few parts per thousand. The default h is the aneurysm's smallest branch radius over 25.
-// L_c: the centre line sampled at N + 1 abscissas; a piece between two samples counts (with its
-// chord length) when its midpoint is in the aneurysm: an error below one piece per crossing of
-// the boundary (N = 512 by default) and the chord's sagitta κ l²/8 per piece.
+// its centre is in the aneurysm. Its error is the lattice-point discrepancy of the region: for a
+// ball, relative O((h/R)^{3/2}) (Gauss's sphere problem); where the boundary has flat directions
+// (a cylinder along a grid axis: the slices' errors add up) O((h/R)^{4/3}); where it has a flat
+// face or an edge (the cut across the neck where the parent artery's field takes over) first
+// order, up to half a layer of cells over that face. These are orders with constants of order
+// one, not bounds: measured 3.3e-3 for a capsule at h = R/25 (tests/haptics/coil_packing_test.cpp).
+// The default h is the aneurysm's smallest branch radius over 25.
+// L_c: the centre line sampled at N + 1 abscissas (N = 512 by default); a piece between two
+// samples counts (with its chord length) when its midpoint is in the aneurysm. Errors: below one
+// piece per crossing of the boundary; a chord over a node of a polyline (a rod) cuts the node's
+// corner and loses at most l θ²/8 (θ the turn at the node, l the piece); a chord of a smooth
+// curve loses its sagitta's share, l³κ²/24.
 #pragma once
 
 #include <string>
@@ -33,7 +38,7 @@ class CoilPacking {
 
   /// The aneurysm made of `branches` (indices into `tree`, at least one) with grid spacing h (m;
   /// <= 0: the branches' smallest radius / 25). Throws std::invalid_argument for no branches, an
-  /// index out of range, or a grid above kMaxCells.
+  /// index out of range, a grid above kMaxCells, or no cell in the aneurysm (so V > 0).
   CoilPacking(const geometry::VesselTree& tree, std::vector<int> branches, double spacing = 0.0);
 
   /// Whether x lies in the aneurysm: inside the lumen, in one of its branches.
