@@ -192,6 +192,29 @@ TEST(ViewCommand, KeysGiveAnInstrumentToTheMouseAndCloseItsJaws) {
   EXPECT_EQ(jaw, 0.0);
 }
 
+TEST(ViewCommand, ACoilSceneWithoutAHubPlaysAndIgnoresTheArrows) {
+  // apps/scenes/coil.json: a "navigation" block that scores an aneurysm's coil and has no
+  // instrument to push. The view plays it; Up and Left have no hub to move (the coil keeps
+  // settling), and x shows the fluoroscope.
+  FILUM_REQUIRE_RENDERING();
+  ViewOptions options;
+  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/coil.json";
+  options.frames = 4;
+  options.fixed_step = 0.002;
+  int frames = 0;
+  options.on_frame = [&](const ViewFrame& f) {
+    frames = f.index + 1;
+    if (f.index == 1) {
+      f.window.sendToSelf({WindowEvent::Type::kKey, 0, 0, 0, false, "Up"});
+      f.window.sendToSelf({WindowEvent::Type::kKey, 0, 0, 0, false, "Left"});
+      f.window.sendToSelf({WindowEvent::Type::kKey, 0, 0, 0, false, "x"});
+    }
+  };
+  std::ostringstream log;
+  ASSERT_EQ(viewScene(options, log), kRunOk) << log.str();
+  EXPECT_EQ(frames, 4);
+}
+
 TEST(ViewCommand, QuitKeyClosesTheWindow) {
   FILUM_REQUIRE_RENDERING();
   ViewOptions options;
