@@ -194,8 +194,8 @@ TEST(ViewCommand, KeysGiveAnInstrumentToTheMouseAndCloseItsJaws) {
 
 TEST(ViewCommand, ACoilSceneWithoutAHubPlaysAndIgnoresTheArrows) {
   // apps/scenes/coil.json: a "navigation" block that scores an aneurysm's coil and has no
-  // instrument to push. The view plays it; Up and Left have no hub to move (the coil keeps
-  // settling), and x shows the fluoroscope.
+  // instrument to push. A smoke test of that case (the view once took instrument 0 of none):
+  // with Up, Left and x pressed, it plays its frames and ends normally.
   FILUM_REQUIRE_RENDERING();
   ViewOptions options;
   options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/coil.json";

@@ -323,30 +323,38 @@ json wireIntoACurve(double friction_rate) {
 
 TEST(Coaxial, AStiffWireGoesRoundATightCurveWithSlowFrictionRows) {
   // The case docs/vessels.md records: with the friction rows' default rate ω_f = 0.5/dt the wire's
-  // tip rattles across the lumen once it enters the curve, gains energy at each bounce and the
-  // run diverges at t ≈ 1.78 s (also at 200/s, at 2.0 s). At ω_f = 100/s (ω_f dt = 0.1) the tip
-  // goes round: pushed 6 cm, it reaches the catheter's tip at 2.5 s, and every point of the wire
-  // inside the catheter stays within (1 + p) of the clearance of its axis (p = ½, the bound
-  // missedContact redoes steps for).
+  // tip's motion across the lumen grows once it enters the curve and the run diverges at
+  // t ≈ 1.78 s (at 200/s, at 2.0 s: wireIntoACurve(200)). At ω_f = 100/s (ω_f dt = 0.1) the tip
+  // goes round: pushed 6 cm, it reaches the catheter's tip at 2.5 s. Every point of the wire
+  // inside the catheter, away from its tip by 5 mm (the nearest-point distance clamps at the
+  // last node), is checked at every step against (1 + p) of the clearance, p = ½: the level at
+  // which missedContact redoes a step in halves — not an invariant (at the finest sub-step a
+  // deeper point is kept), so the measured figure is printed with the halvings.
   auto scene = load(wireIntoACurve(100.0));
   const CurveBody& tube = *scene->bodies()[0]->curve();
   const CurveBody& wire = *scene->bodies()[1]->curve();
   const double clearance = 5.3e-4 - kWireRadius;
-  double worst = 0.0;
+  double worst = 0.0, worst_time = 0.0;
   while (scene->state().time < 2.6 - 1e-9) {
     const StepReport report = scene->step();
     ASSERT_TRUE(report.ok) << report.message;
-    if (scene->state().steps % 50 != 0) continue;
+    const SceneState& s = scene->state();
+    const Vec3 tube_tip = tube.position(s.q, 1.0);
     for (int k = 0; k <= 200; ++k) {
-      const Vec3 x = wire.position(scene->state().q, k / 200.0);
-      if (x.x() > 0.005) worst = std::max(worst, distanceToAxis(tube, scene->state(), x) / clearance);
+      const Vec3 x = wire.position(s.q, k / 200.0);
+      if (x.x() <= 0.005 || (x - tube_tip).norm() < 0.005) continue;  // behind the hub, at the tip
+      const double d = distanceToAxis(tube, s, x) / clearance;
+      if (d > worst) worst = d, worst_time = s.time;
     }
   }
   const SceneState& s = scene->state();
-  std::printf("  tip %.2f mm from the catheter's tip; farthest from the axis %.2f clearances\n",
-              1e3 * (wire.position(s.q, 1.0) - tube.position(s.q, 1.0)).norm(), worst);
-  // The hub pushed 6 cm along the catheter's 12 cm: the tip at the catheter's tip, to the wire's
-  // stretch and the lumen's clearance (a 3 mm tolerance: one wire segment, 2.5 mm, and more).
+  std::printf("  tip %.2f mm from the catheter's tip; farthest from the axis %.2f clearances (t = %.3f s); %ld "
+              "contact halvings\n",
+              1e3 * (wire.position(s.q, 1.0) - tube.position(s.q, 1.0)).norm(), worst, worst_time,
+              scene->contactHalvings());
+  // The hub pushed 6 cm along the catheter's 12 cm: the tip ends at the catheter's tip (to the
+  // clearance and the inner or outer track round the curve, ~0.2 mm); 3 mm tells "went round"
+  // from the failure, stuck or diverged at the curve's entry 30 mm short.
   EXPECT_LT((wire.position(s.q, 1.0) - tube.position(s.q, 1.0)).norm(), 3e-3);
   EXPECT_LE(worst, 1.5);
 }
