@@ -26,6 +26,12 @@ CoilPacking::CoilPacking(const geometry::VesselTree& tree, std::vector<int> bran
     }
     smallest = std::min(smallest, branch.radii.minCoeff());
   }
+  if (spacing > 0.25 * smallest) {
+    std::ostringstream message;
+    message << "a grid spacing of " << spacing << " m, above a quarter of the aneurysm's smallest radius ("
+            << 0.25 * smallest << " m): the grid would not see its shape";
+    throw std::invalid_argument(message.str());
+  }
   spacing_ = spacing > 0.0 ? spacing : smallest / 25.0;
   const Vec3 size = box.sizes();
   const Eigen::Array3d cells_per_axis = (size / spacing_).array().ceil();

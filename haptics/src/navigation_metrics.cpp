@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <iomanip>
 #include <sstream>
 
@@ -24,6 +23,13 @@ Node* nodeAt(const Scene& scene, const Params& p, const std::string& key, const 
   Node* node = const_cast<Scene&>(scene).root().find(path);
   if (!node) p.fail(key, "the path of a node of the scene", "\"" + path + "\"");
   return node;
+}
+
+/// The names of the tree's branches, for an error that lists them.
+std::string branchNames(const geometry::VesselTree& tree) {
+  std::string known;
+  for (int b = 0; b < tree.branchCount(); ++b) known += (b ? ", " : "") + tree.branch(b).name;
+  return known;
 }
 
 template <class T>
@@ -84,10 +90,8 @@ std::unique_ptr<NavigationMetrics> NavigationMetrics::fromScene(const nlohmann::
     const std::string branch = p.string("target_branch");
     metrics->target_branch_ = metrics->lumen_->tree().branchIndex(branch);
     if (metrics->target_branch_ < 0) {
-      std::string known;
-      for (int b = 0; b < metrics->lumen_->tree().branchCount(); ++b)
-        known += (b ? ", " : "") + metrics->lumen_->tree().branch(b).name;
-      p.fail("target_branch", "a branch of the vessel tree (" + known + ")", "\"" + branch + "\"");
+      p.fail("target_branch", "a branch of the vessel tree (" + branchNames(metrics->lumen_->tree()) + ")",
+             "\"" + branch + "\"");
     }
   }
   metrics->force_limit_ = p.positive({"force_limit", "N"}, 0.5);
@@ -113,11 +117,7 @@ void NavigationMetrics::readAneurysm(const Scene& scene, const Params& a) {
   };
   for (const std::string& name : names("branches", "names of the vessel tree's branches (the sac, its neck)")) {
     const int b = tree.branchIndex(name);
-    if (b < 0) {
-      std::string known;
-      for (int k = 0; k < tree.branchCount(); ++k) known += (k ? ", " : "") + tree.branch(k).name;
-      a.fail("branches", "branches of the vessel tree (" + known + ")", "\"" + name + "\"");
-    }
+    if (b < 0) a.fail("branches", "branches of the vessel tree (" + branchNames(tree) + ")", "\"" + name + "\"");
     if (tree.branch(b).open_start || tree.branch(b).open_end)
       a.fail("branches", "closed branches (a sac, its neck): an open end goes on without end",
              "\"" + name + "\", open at an end");
@@ -128,16 +128,12 @@ void NavigationMetrics::readAneurysm(const Scene& scene, const Params& a) {
     if (!body || !body->curve()) a.fail("coils", "coils that are curve bodies (a rod, a spline)", "\"" + name + "\" (no curve body)");
     coils_.push_back({name, body->curve(), 0.0});
   }
-  double smallest = std::numeric_limits<double>::infinity();
-  for (const int b : branches) smallest = std::min(smallest, tree.branch(b).radii.minCoeff());
   const double spacing = a.has("spacing") ? a.positive({"spacing", "m"}) : 0.0;
-  if (spacing > 0.25 * smallest)
-    a.fail("spacing", "a grid spacing of at most a quarter of the aneurysm's smallest radius (" +
-                          std::to_string(0.25 * smallest) + " m)", std::to_string(spacing) + " m");
   try {
     packing_ = std::make_unique<CoilPacking>(tree, branches, spacing);
   } catch (const std::invalid_argument& e) {
-    // The grid's cell limit, or no cell in the aneurysm (its branches lie under the others').
+    // A spacing too coarse or too fine for the grid, or no cell in the aneurysm (its branches lie
+    // under the others').
     a.fail(a.has("spacing") ? "spacing" : "branches", "an aneurysm the volume grid can measure", e.what());
   }
   a.finish();

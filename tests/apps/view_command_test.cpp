@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <sstream>
+#include <vector>
 
 #include "filum/constraints/projected_point_constraint.hpp"
 #include "filum/core/node.hpp"
@@ -192,43 +193,36 @@ TEST(ViewCommand, KeysGiveAnInstrumentToTheMouseAndCloseItsJaws) {
   EXPECT_EQ(jaw, 0.0);
 }
 
+/// Plays apps/scenes/`scene_file` in the view for at most `frames` frames of `fixed_step`,
+/// sending the `keys` at frame `at`; the view must end normally. Returns the frames played.
+int framesPlayedWithKeys(const std::string& scene_file, int frames, double fixed_step, int at,
+                         const std::vector<std::string>& keys) {
+  ViewOptions options;
+  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/" + scene_file;
+  options.frames = frames;
+  options.fixed_step = fixed_step;
+  int played = 0;
+  options.on_frame = [&](const ViewFrame& f) {
+    played = f.index + 1;
+    if (f.index == at)
+      for (const std::string& key : keys) f.window.sendToSelf({WindowEvent::Type::kKey, 0, 0, 0, false, key});
+  };
+  std::ostringstream log;
+  EXPECT_EQ(viewScene(options, log), kRunOk) << scene_file << ": " << log.str();
+  return played;
+}
+
 TEST(ViewCommand, ACoilSceneWithoutAHubPlaysAndIgnoresTheArrows) {
   // apps/scenes/coil.json: a "navigation" block that scores an aneurysm's coil and has no
   // instrument to push. A smoke test of that case (the view once took instrument 0 of none):
   // with Up, Left and x pressed, it plays its frames and ends normally.
   FILUM_REQUIRE_RENDERING();
-  ViewOptions options;
-  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/coil.json";
-  options.frames = 4;
-  options.fixed_step = 0.002;
-  int frames = 0;
-  options.on_frame = [&](const ViewFrame& f) {
-    frames = f.index + 1;
-    if (f.index == 1) {
-      f.window.sendToSelf({WindowEvent::Type::kKey, 0, 0, 0, false, "Up"});
-      f.window.sendToSelf({WindowEvent::Type::kKey, 0, 0, 0, false, "Left"});
-      f.window.sendToSelf({WindowEvent::Type::kKey, 0, 0, 0, false, "x"});
-    }
-  };
-  std::ostringstream log;
-  ASSERT_EQ(viewScene(options, log), kRunOk) << log.str();
-  EXPECT_EQ(frames, 4);
+  EXPECT_EQ(framesPlayedWithKeys("coil.json", 4, 0.002, 1, {"Up", "Left", "x"}), 4);
 }
 
 TEST(ViewCommand, QuitKeyClosesTheWindow) {
   FILUM_REQUIRE_RENDERING();
-  ViewOptions options;
-  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/hanging_thread.json";
-  options.frames = 1000;
-  options.fixed_step = 0.001;
-  int frames = 0;
-  options.on_frame = [&](const ViewFrame& f) {
-    frames = f.index + 1;
-    if (f.index == 2) f.window.sendToSelf({WindowEvent::Type::kKey, 0, 0, 0, false, "q"});
-  };
-  std::ostringstream log;
-  ASSERT_EQ(viewScene(options, log), kRunOk) << log.str();
-  EXPECT_LE(frames, 5);
+  EXPECT_LE(framesPlayedWithKeys("hanging_thread.json", 1000, 0.001, 2, {"q"}), 5);
 }
 
 }  // namespace

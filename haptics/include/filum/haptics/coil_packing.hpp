@@ -38,7 +38,8 @@ class CoilPacking {
 
   /// The aneurysm made of `branches` (indices into `tree`, at least one) with grid spacing h (m;
   /// <= 0: the branches' smallest radius / 25). Throws std::invalid_argument for no branches, an
-  /// index out of range, a grid above kMaxCells, or no cell in the aneurysm (so V > 0).
+  /// index out of range, a spacing above a quarter of the smallest radius, a grid above
+  /// kMaxCells, or no cell in the aneurysm (so V > 0).
   CoilPacking(const geometry::VesselTree& tree, std::vector<int> branches, double spacing = 0.0);
 
   /// Whether x lies in the aneurysm: inside the lumen, in one of its branches.
