@@ -238,7 +238,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     out.writeFrame(*scene);
     if (visuals) {
       visuals->writeMeshes(*scene);
-      visuals->render(*scene, -1.0);
+      visuals->render(*scene, -1.0, out.knotText());
     }
     auto last_progress = start;
     if (haptic) haptic->start();
@@ -275,7 +275,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
       }
       if (visuals && (k % render_every == 0 || k == steps)) {
         const long since = k % render_every == 0 ? render_every : k % render_every;
-        visuals->render(*scene, render_wall / (since * dt));  // wall ms per simulated ms
+        visuals->render(*scene, render_wall / (since * dt), out.knotText());  // wall ms per simulated ms
         render_wall = 0.0;
       }
       if (options.progress && seconds(after - start) > 3.0 && seconds(after - last_progress) >= 1.0) {

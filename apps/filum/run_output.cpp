@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "filum/collision/contact_pipeline.hpp"
 #include "filum/collision/knot_determinant.hpp"
 #include "filum/collision/knot_type.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
@@ -36,7 +37,9 @@ RunOutput::RunOutput(const std::string& directory, int curve_samples, bool knots
   control_points_ = openCsv(directory_ + "/control_points.csv", "time,body,index,x,y,z");
   curve_ = openCsv(directory_ + "/curve.csv", "time,body,sample,s,x,y,z");
   energy_ = openCsv(directory_ + "/energy.csv", "time,kinetic,potential,total,max_violation");
-  if (knots) knots_ = openCsv(directory_ + "/knot.csv", "time,body,strand,type,crossings,jones");
+  if (knots)
+    knots_ = openCsv(directory_ + "/knot.csv",
+                     "time,body,strand,type,crossings,jones,loop_length,contacts,contact_force,slip_speed");
 }
 
 void RunOutput::writeFrame(const Scene& scene) {
@@ -103,12 +106,21 @@ void RunOutput::writeFrame(const Scene& scene) {
     // Each strand closed far away; diagrams of more than 16 crossings are left "unknown" (the
     // state sum costs 2ⁿ: 16 keeps a frame within milliseconds).
     constexpr int kFrameCrossings = 16;
+    const auto* pipeline = dynamic_cast<const collision::ContactPipeline*>(scene.collisionPipeline());
+    knot_summary_.clear();
     for (std::size_t i = 0; i < lines.size(); ++i) {
       const int strand = i > 0 && line_body[i - 1] == line_body[i] ? strand_counter_ + 1 : 0;
       strand_counter_ = strand;
-      const collision::KnotType k = collision::knotType(collision::closeFarAway(lines[i].points), kFrameCrossings);
-      knots_ << t << ',' << lines[i].name << ',' << strand << ',' << k.name << (k.mirrored ? " (mirror)" : "") << ','
-             << k.crossings << ',' << collision::toString(k.jones) << '\n';
+      const visual::PolyLine& line = lines[i];
+      const collision::KnotType k = collision::knotType(collision::closeFarAway(line.points), kFrameCrossings);
+      const collision::KnotTightness tight = collision::knotTightness(
+          pipeline, *line_body[i]->curve(), line.points, line.scalars,
+          collision::knotSpan(k, static_cast<int>(line.points.rows())), s);
+      const std::string type = k.name + (k.mirrored ? " (mirror)" : "");
+      knots_ << t << ',' << line.name << ',' << strand << ',' << type << ',' << k.crossings << ','
+             << collision::toString(k.jones) << ',' << exact(tight.loop_length) << ',' << tight.contacts << ','
+             << exact(tight.contact_force) << ',' << exact(tight.slip_speed) << '\n';
+      if (k.name != "unknot") knot_summary_.push_back({line.name, type, tight});
     }
     flushOrThrow(knots_, "knot.csv");
   }
@@ -126,6 +138,19 @@ void RunOutput::writeFrame(const Scene& scene) {
 void RunOutput::flushOrThrow(std::ofstream& out, const char* name) const {
   out.flush();
   if (!out) throw std::runtime_error(directory_ + "/" + name + ": write failed (disk full or file size limit?)");
+}
+
+std::string RunOutput::knotText() const {
+  // "knot: square, 2.9 cm held, 24 contacts 0.31 N, slip 0.4 mm/s" per knotted strand.
+  std::string text;
+  for (const KnotSummary& k : knot_summary_) {
+    char line[160];
+    std::snprintf(line, sizeof line, "%s%s: %s, %.1f cm held, %d contacts %.2f N, slip %.1f mm/s", text.empty() ? "" : "; ",
+                  k.body.c_str(), k.type.c_str(), 100.0 * k.tightness.loop_length, k.tightness.contacts,
+                  k.tightness.contact_force, 1000.0 * k.tightness.slip_speed);
+    text += line;
+  }
+  return text;
 }
 
 }  // namespace filum::app

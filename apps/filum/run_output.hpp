@@ -10,7 +10,9 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "filum/collision/knot_tightness.hpp"
 #include "filum/core/scene.hpp"
 #include "filum/visual/vtp_writer.hpp"
 
@@ -25,8 +27,10 @@ class NonFiniteFrame : public std::runtime_error {
 class RunOutput {
  public:
   /// Creates `directory` (and vtk/ inside). curve_samples >= 2.
-  /// knots: also knot.csv (time, body, strand, type, crossings, jones): each strand of each
-  /// thread closed far away and classified (collision/knot_type.hpp) at every frame.
+  /// knots: also knot.csv (time, body, strand, type, crossings, jones, loop_length, contacts,
+  /// contact_force, slip_speed): each strand of each thread closed far away and classified
+  /// (collision/knot_type.hpp), its knot's tightness and slip (collision/knot_tightness.hpp), at
+  /// every frame.
   RunOutput(const std::string& directory, int curve_samples, bool knots = true);
 
   /// Writes one frame of the scene's current state (and, when the scene changes its points as it
@@ -35,6 +39,9 @@ class RunOutput {
   /// if a value is not finite, std::runtime_error naming the file if a write fails.
   void writeFrame(const Scene& scene);
   int frames() const { return frame_; }
+  /// The knotted strands of the last frame for a heads-up display ("" when none is knotted or
+  /// knots are off): body, type, thread held, contacts and their force, slip speed.
+  std::string knotText() const;
   const std::string& directory() const { return directory_; }
 
  private:
@@ -44,6 +51,11 @@ class RunOutput {
   int curve_samples_;
   int frame_ = 0;
   int strand_counter_ = 0;  // knot.csv: the strand number within its body
+  struct KnotSummary {
+    std::string body, type;
+    collision::KnotTightness tightness;
+  };
+  std::vector<KnotSummary> knot_summary_;  // the last frame's knotted strands
   std::ofstream control_points_, curve_, energy_, knots_, layout_;
   visual::PvdSeries series_;
 };

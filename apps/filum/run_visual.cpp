@@ -87,7 +87,7 @@ void RunVisual::writeMeshes(const Scene& scene) {
   ++mesh_frames_;
 }
 
-void RunVisual::render(const Scene& scene, double wall_per_simulated_ms) {
+void RunVisual::render(const Scene& scene, double wall_per_simulated_ms, const std::string& footer) {
   if (!options_.render) return;
   visuals_.update(scene.state());
   frame_models_.assign(visuals_.models().begin(), visuals_.models().end());  // (capacity kept between frames)
@@ -100,6 +100,7 @@ void RunVisual::render(const Scene& scene, double wall_per_simulated_ms) {
     visual::drawHeadsUp(frame, scene_name_ + " | " +
                                    visual::headsUpText(scene.state().time, wall_per_simulated_ms,
                                                        scene.energy(scene.state()).total()));
+  if (camera_.heads_up && !footer.empty()) visual::drawFooter(frame, footer);
   recorder_->add(frame, scene.state().time);
   if (fluoroscopy_) renderFluoroscopy(scene);
 }

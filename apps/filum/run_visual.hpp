@@ -49,8 +49,9 @@ class RunVisual {
 
   /// Writes the meshes of the scene's current state (an output frame).
   void writeMeshes(const Scene& scene);
-  /// Renders the current state; wall_per_simulated_ms < 0 when unknown (first frame).
-  void render(const Scene& scene, double wall_per_simulated_ms);
+  /// Renders the current state; wall_per_simulated_ms < 0 when unknown (first frame). A non-empty
+  /// `footer` is drawn on a band at the bottom (the knots of the last output frame).
+  void render(const Scene& scene, double wall_per_simulated_ms, const std::string& footer = {});
   /// Draws `model` too in the pictures (not in the meshes): a model that is not a scene
   /// component, such as the haptic tool's sphere. It must outlive this object.
   void addOverlay(visual::VisualModel& model) { overlays_.push_back(&model); }

@@ -200,6 +200,11 @@ KnotType knotType(const Points& closed, int max_crossings) {
   }
   if (!found || !jonesOfDiagram(fewest, best.jones)) return best;
   best.crossings = static_cast<int>(fewest.size());
+  for (const DiagramCrossing& c : fewest) {
+    best.passages.push_back(c.over);
+    best.passages.push_back(c.under);
+  }
+  std::sort(best.passages.begin(), best.passages.end());
   const LaurentPolynomial& t = trefoil();
   const std::pair<const char*, LaurentPolynomial> table[] = {
       {"unknot", {{0, 1}}},
@@ -220,6 +225,20 @@ KnotType knotType(const Points& closed, int max_crossings) {
     }
   }
   return best;
+}
+
+KnotSpan knotSpan(const KnotType& type, int open_points) {
+  KnotSpan span;
+  if (type.name == "unknot" || type.name == "unknown") return span;
+  const double end = open_points - 1;  // the thread's last vertex: the closing arc starts there
+  for (double p : type.passages) {
+    if (p >= end) continue;
+    if (!span.found) span.first = p;
+    span.last = p;
+    span.found = true;
+  }
+  span.found = span.found && span.last > span.first;
+  return span;
 }
 
 }  // namespace filum::collision

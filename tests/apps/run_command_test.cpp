@@ -2,9 +2,12 @@
 // rolled back, reported with its step and component, with every file already written intact.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "filum/run_command.hpp"
 #include "support/run_scene.hpp"
@@ -31,6 +34,45 @@ TEST(RunCommand, TwoRunsOfTheSameSceneAreBitIdentical) {
     EXPECT_TRUE(first == readAll(b / file)) << file << " differs between two runs";
   }
   EXPECT_TRUE(fs::exists(a / "timing.json"));
+}
+
+TEST(RunCommand, KnotCsvFollowsTheKnotOfKnotJsonAsItIsTightened) {
+  // knot.json: a loose overhand knot in silk, its ends drawn 8 mm apart each from 0.02 to 0.19 s,
+  // at rest until 0.35 s. knot.csv says trefoil at every frame, the thread the knot holds falls as
+  // it is drawn tight, the knot rests on contacts, and its contacts slide while it is tightened,
+  // far less once it rests (sticking rows damp the tangential speed by the friction rate, a
+  // factor 2 per step at its default 0.5/dt: 150 steps of rest leave no trace of the 7 cm/s pull).
+  const std::string scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/knot.json";
+  const fs::path dir = freshDirectory("knot_csv");
+  std::string log;
+  ASSERT_EQ(runQuietly(scene, dir, 0.34, log), kRunOk) << log;
+  std::istringstream csv(readAll(dir / "knot.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "time,body,strand,type,crossings,jones,loop_length,contacts,contact_force,slip_speed");
+  double first_held = -1.0, last_held = 0.0, tightening_slip = 0.0, resting_slip = 0.0;
+  int resting_contacts = 0, rows = 0;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> f;
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) f.push_back(cell);
+    ASSERT_EQ(f.size(), 10u) << line;
+    ++rows;
+    EXPECT_EQ(f[3].substr(0, 7), "trefoil") << line;
+    const double t = std::stod(f[0]), held = std::stod(f[6]), slip = std::stod(f[9]);
+    ASSERT_TRUE(std::isfinite(held) && std::isfinite(slip) && std::isfinite(std::stod(f[8]))) << line;
+    if (first_held < 0) first_held = held;
+    last_held = held;
+    if (t > 0.05 && t < 0.18) tightening_slip = std::max(tightening_slip, slip);
+    if (t > 0.3) {
+      resting_slip = std::max(resting_slip, slip);
+      resting_contacts = std::stoi(f[7]);
+    }
+  }
+  EXPECT_GT(rows, 30);
+  EXPECT_LT(last_held, first_held) << "drawn tight, the knot holds less thread";
+  EXPECT_GT(resting_contacts, 0) << "a tied knot rests on its contacts";
+  EXPECT_LT(resting_slip, 0.01 * tightening_slip);
 }
 
 TEST(RunCommand, ADivergingSceneIsRolledBackReportedAndItsFilesKept) {
