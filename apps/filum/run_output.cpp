@@ -77,6 +77,8 @@ void RunOutput::writeFrame(const Scene& scene) {
                          " s (kinetic " + exact(e.kinetic) + " J, potential " + exact(e.potential) + " J, violation " +
                          exact(violation) + ")");
 
+  if (knots_.is_open()) classifyKnots(scene, lines, line_body, t);
+
   std::size_t line_index = 0;
   for (const MechanicalState* body : scene.bodies()) {
     const std::string name = body->node()->path();
@@ -103,25 +105,10 @@ void RunOutput::writeFrame(const Scene& scene) {
     flushOrThrow(layout_, "layout.csv");
   }
   if (knots_.is_open()) {
-    // Each strand closed far away; diagrams of more than 16 crossings are left "unknown" (the
-    // state sum costs 2ⁿ: 16 keeps a frame within milliseconds).
-    constexpr int kFrameCrossings = 16;
-    const auto* pipeline = dynamic_cast<const collision::ContactPipeline*>(scene.collisionPipeline());
-    knot_summary_.clear();
-    for (std::size_t i = 0; i < lines.size(); ++i) {
-      const int strand = i > 0 && line_body[i - 1] == line_body[i] ? strand_counter_ + 1 : 0;
-      strand_counter_ = strand;
-      const visual::PolyLine& line = lines[i];
-      const collision::KnotType k = collision::knotType(collision::closeFarAway(line.points), kFrameCrossings);
-      const collision::KnotTightness tight = collision::knotTightness(
-          pipeline, *line_body[i]->curve(), line.points, line.scalars,
-          collision::knotSpan(k, static_cast<int>(line.points.rows())), s);
-      const std::string type = k.name + (k.mirrored ? " (mirror)" : "");
-      knots_ << t << ',' << line.name << ',' << strand << ',' << type << ',' << k.crossings << ','
-             << collision::toString(k.jones) << ',' << exact(tight.loop_length) << ',' << tight.contacts << ','
-             << exact(tight.contact_force) << ',' << exact(tight.slip_speed) << '\n';
-      if (k.name != "unknot") knot_summary_.push_back({line.name, type, tight});
-    }
+    for (const KnotRow& k : knot_rows_)
+      knots_ << t << ',' << k.body << ',' << k.strand << ',' << k.type << ',' << k.crossings << ',' << k.jones << ','
+             << exact(k.tightness.loop_length) << ',' << k.tightness.contacts << ',' << exact(k.tightness.contact_force)
+             << ',' << exact(k.tightness.slip_speed) << '\n';
     flushOrThrow(knots_, "knot.csv");
   }
 
@@ -135,6 +122,31 @@ void RunOutput::writeFrame(const Scene& scene) {
   ++frame_;
 }
 
+void RunOutput::classifyKnots(const Scene& scene, const std::vector<visual::PolyLine>& lines,
+                              const std::vector<const MechanicalState*>& line_body, const std::string& t) {
+  // Each strand closed far away; diagrams of more than 16 crossings are left "unknown" (the
+  // state sum costs 2ⁿ: 16 keeps a frame within milliseconds).
+  constexpr int kFrameCrossings = 16;
+  const auto* pipeline = dynamic_cast<const collision::ContactPipeline*>(scene.collisionPipeline());
+  knot_rows_.clear();
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    KnotRow row;
+    row.body = lines[i].name;
+    row.strand = i > 0 && line_body[i - 1] == line_body[i] ? knot_rows_.back().strand + 1 : 0;
+    const collision::KnotType k = collision::knotType(collision::closeFarAway(lines[i].points), kFrameCrossings);
+    row.name = k.name;
+    row.type = k.name + (k.mirrored ? " (mirror)" : "");
+    row.crossings = k.crossings;
+    row.jones = collision::toString(k.jones);
+    row.tightness = collision::knotTightness(pipeline, *line_body[i]->curve(), lines[i].scalars,
+                                             collision::knotSpan(k, static_cast<int>(lines[i].points.rows())), scene.state());
+    if (!row.tightness.allFinite())
+      throw NonFiniteFrame("refusing to write the non-finite knot tightness of " + line_body[i]->describe() + " at t = " +
+                           t + " s");
+    knot_rows_.push_back(std::move(row));
+  }
+}
+
 void RunOutput::flushOrThrow(std::ofstream& out, const char* name) const {
   out.flush();
   if (!out) throw std::runtime_error(directory_ + "/" + name + ": write failed (disk full or file size limit?)");
@@ -143,10 +155,13 @@ void RunOutput::flushOrThrow(std::ofstream& out, const char* name) const {
 std::string RunOutput::knotText() const {
   // "knot: square, 2.9 cm held, 24 contacts 0.31 N, slip 0.4 mm/s" per knotted strand.
   std::string text;
-  for (const KnotSummary& k : knot_summary_) {
-    char line[160];
-    std::snprintf(line, sizeof line, "%s%s: %s, %.1f cm held, %d contacts %.2f N, slip %.1f mm/s", text.empty() ? "" : "; ",
-                  k.body.c_str(), k.type.c_str(), 100.0 * k.tightness.loop_length, k.tightness.contacts,
+  for (const KnotRow& k : knot_rows_) {
+    if (k.name == "unknot" || k.name == "unknown") continue;
+    char strand[32] = "";
+    if (k.strand > 0) std::snprintf(strand, sizeof strand, " (strand %d)", k.strand);
+    char line[200];
+    std::snprintf(line, sizeof line, "%s%s%s: %s, %.1f cm held, %d contacts %.2f N, slip %.1f mm/s", text.empty() ? "" : "; ",
+                  k.body.c_str(), strand, k.type.c_str(), 100.0 * k.tightness.loop_length, k.tightness.contacts,
                   k.tightness.contact_force, 1000.0 * k.tightness.slip_speed);
     text += line;
   }

@@ -50,12 +50,19 @@ class RunOutput {
   std::string directory_;
   int curve_samples_;
   int frame_ = 0;
-  int strand_counter_ = 0;  // knot.csv: the strand number within its body
-  struct KnotSummary {
-    std::string body, type;
+  /// One row of knot.csv.
+  struct KnotRow {
+    std::string body;
+    int strand = 0;
+    std::string name, type;  // the table's name; with " (mirror)" when it matched the mirror image
+    int crossings = -1;
+    std::string jones;
     collision::KnotTightness tightness;
   };
-  std::vector<KnotSummary> knot_summary_;  // the last frame's knotted strands
+  /// The knot rows of a frame (thrown NonFiniteFrame when a value is not finite).
+  void classifyKnots(const Scene& scene, const std::vector<visual::PolyLine>& lines,
+                     const std::vector<const MechanicalState*>& line_body, const std::string& t);
+  std::vector<KnotRow> knot_rows_;  // the last frame's strands
   std::ofstream control_points_, curve_, energy_, knots_, layout_;
   visual::PvdSeries series_;
 };

@@ -200,11 +200,7 @@ KnotType knotType(const Points& closed, int max_crossings) {
   }
   if (!found || !jonesOfDiagram(fewest, best.jones)) return best;
   best.crossings = static_cast<int>(fewest.size());
-  for (const DiagramCrossing& c : fewest) {
-    best.passages.push_back(c.over);
-    best.passages.push_back(c.under);
-  }
-  std::sort(best.passages.begin(), best.passages.end());
+  for (const DiagramCrossing& c : fewest) best.crossing_passages.emplace_back(c.over, c.under);
   const LaurentPolynomial& t = trefoil();
   const std::pair<const char*, LaurentPolynomial> table[] = {
       {"unknot", {{0, 1}}},
@@ -231,13 +227,13 @@ KnotSpan knotSpan(const KnotType& type, int open_points) {
   KnotSpan span;
   if (type.name == "unknot" || type.name == "unknown") return span;
   const double end = open_points - 1;  // the thread's last vertex: the closing arc starts there
-  for (double p : type.passages) {
-    if (p >= end) continue;
-    if (!span.found) span.first = p;
-    span.last = p;
+  for (const auto& [over, under] : type.crossing_passages) {
+    if (over >= end || under >= end) continue;  // the thread under or over the closing arc
+    const double lo = std::min(over, under), hi = std::max(over, under);
+    span.first = span.found ? std::min(span.first, lo) : lo;
+    span.last = span.found ? std::max(span.last, hi) : hi;
     span.found = true;
   }
-  span.found = span.found && span.last > span.first;
   return span;
 }
 

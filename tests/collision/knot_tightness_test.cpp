@@ -1,13 +1,14 @@
 // Knot tightness (collision/knot_tightness.hpp): the thread a knot holds, the contacts inside it
 // and their slip.
-//   - Polyline lengths against a regular polygon's chords, 2 R sin(π/m) each (exact geometry).
 //   - The span of an open overhand knot: it lies on the knotted part, not on the arms; it is the
 //     same thread whatever the arms' length (the closing arc moves, the knot does not), and it
 //     scales with the curve (crossing positions along the edges are invariant under scaling).
-//   - Slip on a hairpin whose legs touch: one leg moving along itself at u, the other at rest:
-//     the slip speed is u (the legs' points move with the partition of unity Σ N_j = 1 of the
-//     spline basis: exactly u where a point's support is on the moving leg); the whole thread
-//     translated: zero (Galilean invariance). Both to round-off.
+//   - Slip on a hairpin whose legs touch: one leg moving sideways at u (along z, out of the plane
+//     z = 0 the legs and every contact normal lie in), the other at rest: the slip speed is u (the
+//     legs' points move with the partition of unity Σ N_j = 1 of the spline basis: exactly u
+//     where a point's support is on the moving leg); the whole thread translated: zero (Galilean
+//     invariance). Both to round-off. A span that leaves out the bend and part of
+//     the legs counts only the contacts with both points inside it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,19 +23,24 @@ namespace {
 
 constexpr double kRoundOff = 1e-12;  // relative: sums of a few hundred terms of unit size
 
-TEST(KnotTightness, PolylineLengthIsTheSumOfChords) {
-  const int m = 36;
-  const double radius = 0.02;
-  Points circle(m + 1, 3);
-  for (int i = 0; i <= m; ++i) circle.row(i) << radius * std::cos(2 * M_PI * i / m), radius * std::sin(2 * M_PI * i / m), 0.0;
-  const double chord = 2 * radius * std::sin(M_PI / m);
-  EXPECT_NEAR(polylineLength(circle, 0.0, m), m * chord, kRoundOff * radius);
-  EXPECT_NEAR(polylineLength(circle, 2.5, 7.25), 4.75 * chord, kRoundOff * radius);  // partial edges: their fraction
-  EXPECT_NEAR(polylineLength(circle, 7.25, 2.5), 4.75 * chord, kRoundOff * radius);
-  EXPECT_NEAR(polylineLength(circle, 3.2, 3.7), 0.5 * chord, kRoundOff * radius);
+/// Arc length of a polyline between two positions (vertex index + fraction of the next edge).
+double polylineLength(const Points& line, double from, double to) {
+  auto at = [&](double position) {
+    const int i = std::min(static_cast<int>(position), static_cast<int>(line.rows()) - 2);
+    const double f = position - i;
+    return Vec3(((1.0 - f) * line.row(i) + f * line.row(i + 1)).transpose());
+  };
+  const int a = static_cast<int>(std::ceil(from)), b = static_cast<int>(std::floor(to));
+  double length = (line.row(a).transpose() - at(from)).norm() + (at(to) - line.row(b).transpose()).norm();
+  for (int i = a; i < b; ++i) length += (line.row(i + 1) - line.row(i)).norm();
+  return length;
+}
+
+TEST(KnotTightness, PositionsMapToAbscissasAlongEachEdge) {
   const std::vector<double> abscissas = {0.0, 0.5, 2.0};
   EXPECT_DOUBLE_EQ(atPosition(abscissas, 0.5), 0.25);
   EXPECT_DOUBLE_EQ(atPosition(abscissas, 1.5), 1.25);
+  EXPECT_DOUBLE_EQ(atPosition(abscissas, 2.0), 2.0);
 }
 
 Vec3 trefoil(double t) { return Vec3(std::sin(t) + 2 * std::sin(2 * t), std::cos(t) - 2 * std::cos(2 * t), -std::sin(3 * t)); }
@@ -83,50 +89,75 @@ TEST(KnotTightness, TheKnotsSpanIsOnTheKnotNotOnItsArms) {
 TEST(KnotTightness, TheUnknotHoldsNoThread) {
   Points helix(200, 3);
   for (int k = 0; k < 200; ++k) helix.row(k) << std::cos(0.3 * k), std::sin(0.3 * k), 0.02 * k;
-  EXPECT_FALSE(knotSpan(knotType(closeFarAway(helix)), 200).found);
+  const KnotType type = knotType(closeFarAway(helix));
+  ASSERT_EQ(type.name, "unknot");
+  EXPECT_FALSE(knotSpan(type, 200).found);
 }
 
 /// A thread folded into a hairpin: two straight legs of 21 control points 2 mm apart along x,
-/// 1.9 mm apart in y (radius 1 mm: they overlap by 0.1 mm), joined by one point at the bend.
+/// joined by one point at the bend; the first leg held by five fixed points, the second lying on
+/// it under gravity along −y (radius 1 mm: they start 0.05 mm apart and it falls onto it).
 struct Hairpin {
   static constexpr int kLeg = 21;
   std::unique_ptr<Scene> scene;
   Hairpin() {
     nlohmann::json points = nlohmann::json::array();
     for (int i = 0; i < kLeg; ++i) points.push_back({0.002 * i, 0.0, 0.0});
-    points.push_back({0.002 * kLeg, 0.00095, 0.0});
-    for (int i = kLeg - 1; i >= 0; --i) points.push_back({0.002 * i, 0.0019, 0.0});
+    points.push_back({0.002 * kLeg, 0.001025, 0.0});
+    for (int i = kLeg - 1; i >= 0; --i) points.push_back({0.002 * i, 0.00205, 0.0});
     test::CollisionThread thread;
     thread.control_points = points;
-    thread.viscous_damping = 0.0;
+    thread.viscous_damping = 50.0;  // 1/s: at rest within the 50 ms run
+    for (double s : {0.05, 0.15, 0.25, 0.35, 0.45})
+      thread.constraints.push_back({{"type", "FixedPointConstraint"}, {"abscissa", s}});
     scene = test::loadCollisionScene(test::collisionScene(
         {thread}, {{"type", "ContactPipeline"}, {"response", "unilateral"}, {"friction", 0.3}}, 1e-4, nlohmann::json::array(),
-        {0.0, 0.0, 0.0}));
+        {0.0, -9.81, 0.0}));
     scene->init();
-    EXPECT_TRUE(scene->step().ok);  // detects the legs' contacts
+    for (int k = 0; k < 500; ++k) EXPECT_TRUE(scene->step().ok);  // 50 ms: fallen and resting
   }
-  KnotTightness tightnessWith(const VecX& v) {
+  /// The tightness over abscissas [s0, s1] (a two-vertex polyline, span from vertex 0 to 1).
+  KnotTightness tightnessWith(const VecX& v, double s0 = 0.0, double s1 = 1.0) {
     SceneState s = scene->state();
     s.v.head(v.size()) = v;
     const CurveBody& body = *scene->bodies()[0]->curve();
-    const Points line = Points::Zero(2, 3);
-    KnotSpan whole;
-    whole.found = true;
-    whole.first = 0.0;
-    whole.last = 1.0;
-    return knotTightness(&test::pipelineOf(*scene), body, line, {0.0, 1.0}, whole, s);
+    KnotSpan span;
+    span.found = true;
+    span.first = 0.0;
+    span.last = 1.0;
+    return knotTightness(&test::pipelineOf(*scene), body, {s0, s1}, span, s);
+  }
+  /// The pressed self-contacts with both abscissas in [s0, s1], counted here.
+  int pressedContactsWithin(double s0, double s1) const {
+    const collision::ContactPipeline& pipeline = test::pipelineOf(*scene);
+    int count = 0;
+    for (std::size_t i = 0; i < pipeline.contacts().size(); ++i) {
+      const Contact& c = pipeline.contacts()[i];
+      if (c.model_b < 0 || pipeline.contactForce(static_cast<int>(i), scene->state()).dot(c.normal) <= 0.0) continue;
+      if (c.a.abscissa() >= s0 && c.a.abscissa() <= s1 && c.b.abscissa() >= s0 && c.b.abscissa() <= s1) ++count;
+    }
+    return count;
   }
 };
 
-TEST(KnotTightness, SlipIsTheSpeedOfOneLegAlongTheOther) {
+TEST(KnotTightness, SlipIsTheSpeedOfOneLegAcrossTheOther) {
   Hairpin hairpin;
   const int points = 2 * Hairpin::kLeg + 1;
   const double u = 0.37;  // m/s
   VecX v = VecX::Zero(3 * points);
-  for (int i = 0; i < Hairpin::kLeg; ++i) v[3 * i] = u;  // the first leg slides along x
+  // The first leg slides along z, out of the plane z = 0 in which both legs lie (and every
+  // normal: n_z = 0 to round-off, so (I − n nᵀ) u ẑ = u ẑ at every contact whose first point's
+  // support is on that leg).
+  for (int i = 0; i < Hairpin::kLeg; ++i) v[3 * i + 2] = u;
   const KnotTightness sliding = hairpin.tightnessWith(v);
   ASSERT_GT(sliding.contacts, 10) << "the legs touch along their length";
   EXPECT_NEAR(sliding.slip_speed, u, kRoundOff * u);
+  EXPECT_EQ(sliding.contacts, hairpin.pressedContactsWithin(0.0, 1.0));
+  // A span from s = 0.2 to 0.9: the contacts near the first leg's start (s < 0.2) left out.
+  const KnotTightness part = hairpin.tightnessWith(v, 0.2, 0.9);
+  EXPECT_EQ(part.contacts, hairpin.pressedContactsWithin(0.2, 0.9));
+  EXPECT_LT(part.contacts, sliding.contacts);
+  EXPECT_GT(part.contacts, 0);
   // The whole thread carried along at (u, −u, 2u): nothing slides.
   for (int i = 0; i < points; ++i) v.segment<3>(3 * i) = Vec3(u, -u, 2 * u);
   EXPECT_NEAR(hairpin.tightnessWith(v).slip_speed, 0.0, kRoundOff * u);

@@ -26,6 +26,7 @@
 
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "filum/core/types.hpp"
@@ -40,16 +41,16 @@ struct KnotType {
   int crossings = -1;            // of the diagram used (after removing kinks)
   LaurentPolynomial jones;       // V(t) (empty when unknown)
   bool mirrored = false;         // matched the table's mirror image (a left-handed trefoil, granny)
-  /// Where the crossings of the diagram used lie along the polygon, sorted: each crossing's over
-  /// and under passage, as vertex index + fraction of the edge from it (knotSpan reads them).
-  std::vector<double> passages;
+  /// Where the crossings of the diagram used lie along the polygon: each crossing's over and
+  /// under passage, as vertex index + fraction of the edge from it (knotSpan reads them).
+  std::vector<std::pair<double, double>> crossing_passages;
 };
 
-/// The part of an open thread a knot holds: from the first to the last crossing passage of the
-/// diagram knotType used that lies on the thread, as positions on the thread's polyline (vertex
-/// index + fraction). The closing arc's passages (positions from open_points − 1 on) are left
-/// out. Not found for the unknot, an unknown type, or a diagram with fewer than two passages on
-/// the thread.
+/// The part of an open thread a knot holds: from the first to the last passage of the crossings
+/// of the diagram knotType used that are crossings of the thread with itself (both passages
+/// before position open_points − 1, where the closing arc starts), as positions on the thread's
+/// polyline (vertex index + fraction). Not found for the unknot, an unknown type, or a diagram
+/// without such a crossing.
 struct KnotSpan {
   bool found = false;
   double first = 0.0, last = 0.0;
