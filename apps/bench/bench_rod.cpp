@@ -4,7 +4,9 @@
 //   free:  built in at s = 0 (FixedPointConstraint + RodEndFrame), swinging under gravity from
 //          horizontal (no contact);
 //   plane: lying on a table (PlaneObstacle, unilateral contact rows, Coulomb friction 0.3), its
-//          s = 0 end dragged sideways along the table at 5 cm/s by a FixedPointConstraint path.
+//          s = 0 end dragged sideways along the table at 5 cm/s by a FixedPointConstraint path;
+//          the _dense variants solve the contact Newton's steps by a dense LU instead of through
+//          the step matrix's band (newton_linear_solve, contact_newton.hpp).
 // One iteration = 10 steps (10 simulated ms), after 100 ms untimed. Counters: wall_ms_per_sim_ms
 // (the real-time figure: <= 1 runs in real time) and us_per_step. Run:
 //   build/apps/bench/bench_rod --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
@@ -19,7 +21,7 @@ namespace {
 
 using nlohmann::json;
 
-json rodScene(int nodes, bool plane) {
+json rodScene(int nodes, bool plane, const char* newton_linear_solve = "auto") {
   const double height = plane ? 1.2e-3 : 0.05;  // just above the table (it settles on it in the warm-up)
   json rod = {{"name", "rod"},
               {"components",
@@ -43,7 +45,7 @@ json rodScene(int nodes, bool plane) {
                    {"duration", 100.0},
                    {"gravity", {0, 0, -9.81}},
                    {"integrator", {{"type", "ImplicitEuler"}}},
-                   {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}}},
+                   {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}, {"newton_linear_solve", newton_linear_solve}}},
                    {"nodes", {rod}}};
   if (plane) {
     document["collision"] = {{"type", "ContactPipeline"}, {"response", "unilateral"}, {"friction", 0.3}};
@@ -54,8 +56,8 @@ json rodScene(int nodes, bool plane) {
   return document;
 }
 
-void rod(benchmark::State& state, int nodes, bool plane) {
-  auto scene = filum::bench::loadOrSkip(rodScene(nodes, plane), "bench_rod", state);
+void rod(benchmark::State& state, int nodes, bool plane, const char* newton_linear_solve = "auto") {
+  auto scene = filum::bench::loadOrSkip(rodScene(nodes, plane, newton_linear_solve), "bench_rod", state);
   if (!scene) return;
   if (!filum::bench::stepOrSkip(*scene, 100, state, "warm-up: ")) return;
   for (auto _ : state)
@@ -75,3 +77,6 @@ BENCHMARK_CAPTURE(rod, plane_n21, 21, true)->UseRealTime()->Unit(benchmark::kMil
 BENCHMARK_CAPTURE(rod, plane_n50, 50, true)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(rod, plane_n100, 100, true)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(rod, plane_n400, 400, true)->UseRealTime()->Unit(benchmark::kMillisecond);
+// The contact Newton's steps by a dense LU always (the structured solve's reference).
+BENCHMARK_CAPTURE(rod, plane_n50_dense, 50, true, "dense")->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(rod, plane_n100_dense, 100, true, "dense")->UseRealTime()->Unit(benchmark::kMillisecond);

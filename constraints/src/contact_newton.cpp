@@ -26,6 +26,8 @@ void ContactNewton::grow(int c) {
   free_.reserve(capacity_);
   pivot_.resize(capacity_);
   is_free_.resize(capacity_);
+  forms_.resize(capacity_);
+  row_position_.resize(capacity_);
 }
 
 void ContactNewton::scale(const Eigen::Ref<const VecX>& diagonal, const ConstraintRows& rows) {
@@ -58,6 +60,9 @@ double ContactNewton::evaluate(const MatX* w_matrix, const ConstraintRows& rows,
     is_free_[r] = 0;
     jac_.row(r).head(c) = rho_[r] * w(r);
     jac_(r, r) += rho_[r] * compliance_[r];
+    forms_[r] = NewtonRowForm();
+    forms_[r].addW(r, rho_[r]);
+    forms_[r].addUnit(r, rho_[r] * compliance_[r]);
   };
   for (int r = 0; r < c; ++r) {
     const Kind kind = rows.kind(r);
@@ -115,6 +120,16 @@ double ContactNewton::evaluate(const MatX* w_matrix, const ConstraintRows& rows,
       row[t1] -= s(i, 0);
       row[t2] -= s(i, 1);
       row[n] -= mu * hat[i];
+      // The same row as a form: Σ b_k W_k + Σ c_m e_m.
+      NewtonRowForm& form = forms_[t[i]];
+      form = NewtonRowForm();
+      form.addW(t1, s(i, 0) * rho_[t1]);
+      form.addW(t2, s(i, 1) * rho_[t2]);
+      form.addW(n, mu * hat[i] * rho_[n]);
+      form.addUnit(t1, s(i, 0) * rho_[t1] * compliance_[t1] - s(i, 0));
+      form.addUnit(t2, s(i, 1) * rho_[t2] * compliance_[t2] - s(i, 1));
+      form.addUnit(n, mu * hat[i] * rho_[n] * compliance_[n] - mu * hat[i]);
+      form.addUnit(t[i], 1.0);
     }
   }
   double merit = 0.0;
@@ -155,7 +170,22 @@ void ContactNewton::substitute(int s, Eigen::Ref<VecX> x) const {
   lu_.topLeftCorner(s, s).triangularView<Eigen::Upper>().solveInPlace(x.head(s));
 }
 
-bool ContactNewton::step(double damping) {
+bool ContactNewton::structuredStep(double damping, const ConstraintRows& rows) {
+  if (!structured_ || !structure_ || !structure_->inverse) return false;
+  const int c = c_;
+  for (int r = 0; r < c; ++r) row_position_[r] = -1;
+  for (std::size_t i = 0; i < solved_.size(); ++i) row_position_[solved_[i]] = static_cast<int>(i);
+  if (!augmented_.build(rows, solved_, row_position_, forms_, damping, *structure_->inverse, *structure_->problem,
+                        *structure_->point_body))
+    return false;
+  const double s = static_cast<double>(solved_.size());
+  if (augmented_.cost() >= s * s * s / 3.0) return false;  // the dense LU's multiply-adds
+  if (!augmented_.factor()) return false;
+  augmented_.solve(rhs_.head(solved_.size()));
+  return true;
+}
+
+bool ContactNewton::step(double damping, const ConstraintRows& rows, int& structured) {
   const int c = c_;
   solved_.clear();
   free_.clear();
@@ -164,27 +194,34 @@ bool ContactNewton::step(double damping) {
   for (int r : free_) delta_[r] = -f_[r];
   const int s = static_cast<int>(solved_.size());
   if (s == 0) return true;
-  // J_SS + δ I and −F_S − J_SI Δ_I.
-  for (int j = 0; j < s; ++j)
-    for (int i = 0; i < s; ++i) lu_(i, j) = jac_(solved_[i], solved_[j]);
+  // −F_S − J_SI Δ_I, then (J_SS + δ I) Δ_S = that: through A's band, or by a dense LU.
   for (int i = 0; i < s; ++i) {
     const int r = solved_[i];
-    lu_(i, i) += damping;
     double sum = -f_[r];
     for (int k : free_) sum -= jac_(r, k) * delta_[k];
     rhs_[i] = sum;
   }
-  if (!factor(s)) return false;
-  substitute(s, rhs_.head(s));
+  if (structuredStep(damping, rows)) {
+    ++structured;
+  } else {
+    for (int j = 0; j < s; ++j)
+      for (int i = 0; i < s; ++i) lu_(i, j) = jac_(solved_[i], solved_[j]);
+    for (int i = 0; i < s; ++i) lu_(i, i) += damping;
+    if (!factor(s)) return false;
+    substitute(s, rhs_.head(s));
+  }
   for (int i = 0; i < s; ++i) delta_[solved_[i]] = rhs_[i];
   return delta_.head(c).allFinite();
 }
 
 ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const VecX>& beta,
                                            const Eigen::Ref<const VecX>& compliance, const ConstraintRows& rows,
-                                           const Settings& settings, double tolerance, Eigen::Ref<VecX> lambda) {
+                                           const Settings& settings, double tolerance, Eigen::Ref<VecX> lambda,
+                                           const Structure* structure) {
   const int c = static_cast<int>(beta.size());
   c_ = c;
+  structure_ = structure;
+  structured_ = settings.structured;
   grow(c);
   compliance_.head(c) = compliance;
   diagonal_.head(c) = w.diagonal().head(c) + compliance;
@@ -221,7 +258,7 @@ ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const
     // the near-null directions of redundant rows, near it the step is Newton's own.
     const double relative = max_abs_residual_ / std::max({beta_scale, force_scale_, 1e-300});
     const double shift = std::clamp(relative, settings.damping, settings.max_damping);
-    if (!step(shift)) break;
+    if (!step(shift, rows, result.structured_steps)) break;
     // Armijo: θ(λ + αΔ) <= (1 − 2σα) θ(λ) (θ = |F|², its slope along a Newton step is −2θ).
     double alpha = 1.0;
     bool accepted = false;

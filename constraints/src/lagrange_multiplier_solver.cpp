@@ -153,6 +153,11 @@ std::unique_ptr<LagrangeMultiplierSolver> LagrangeMultiplierSolver::fromParams(c
     p.fail("newton_damping", "a proximal shift in [0, 1e-3] (relative to J's unit diagonal; larger ones slow Newton to "
                              "Gauss-Seidel's pace)");
   o.newton_rows = p.integer("newton_rows", 0, o.newton_rows);
+  const std::string linear = p.string("newton_linear_solve", "auto");
+  if (linear == "dense")
+    o.newton_structured = false;
+  else if (linear != "auto")
+    p.fail("newton_linear_solve", "\"auto\" or \"dense\"", "\"" + linear + "\"");
   o.contact_compliance = p.nonNegative({"contact_compliance", "1"}, o.contact_compliance);
   o.friction_compliance = p.nonNegative({"friction_compliance", "1"}, o.friction_compliance);
   if (o.contact_compliance > 1.0 || o.friction_compliance > 1.0)
@@ -720,7 +725,8 @@ void LagrangeMultiplierSolver::projectedGaussSeidel(const ConstraintRows& rows, 
 
 /// Newton on W dense (both triangles mirrored by DenseDelassus::begin), Gauss–Seidel from its
 /// best iterate when it does not converge.
-void LagrangeMultiplierSolver::solveWithNewton(const ConstraintRows& rows) {
+void LagrangeMultiplierSolver::solveWithNewton(const ConstraintProblem& problem, const ConstraintRows& rows,
+                                               const BlockInverse& inverse) {
   const int c = rows.rows();
   warmStart(rows);
   setCompliance(rows);
@@ -729,14 +735,18 @@ void LagrangeMultiplierSolver::solveWithNewton(const ConstraintRows& rows) {
   factorEqualityBlock(rows, w);
   ContactNewton::Settings settings;
   settings.damping = options_.newton_damping;
+  settings.structured = options_.newton_structured;
+  const ContactNewton::Structure structure{&inverse, &problem, &point_body_};
   // Newton, and where it stalls (its active set still moving) a few Gauss–Seidel sweeps to
   // smooth λ before the next Newton round, within newton_iterations Newton iterations in all.
   constexpr int kSmoothingSweeps = 8;
   while (true) {
     settings.iterations = options_.newton_iterations - stats_.newton_iterations;
     const ContactNewton::Result result =
-        newton_.solve(w_, rhs_.head(c), compliance_.head(c), rows, settings, options_.contact_tolerance, lambda_.head(c));
+        newton_.solve(w_, rhs_.head(c), compliance_.head(c), rows, settings, options_.contact_tolerance, lambda_.head(c),
+                      &structure);
     stats_.newton_iterations += result.iterations;
+    stats_.structured_steps += result.structured_steps;
     stats_.residual = result.residual;
     stats_.threshold = result.threshold;
     stats_.converged = result.converged;
@@ -939,7 +949,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
 
   // 4. λ = W⁻¹ (E − L A_t), or with contact rows the projected Gauss–Seidel solution.
   if (newton) {
-    solveWithNewton(rows);
+    solveWithNewton(problem, rows, inverse);
     factored_last_call_ = false;
   } else if (factored_form) {
     FactoredDelassus w{*this, problem, rows, u_};

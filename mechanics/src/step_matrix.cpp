@@ -303,6 +303,10 @@ std::string StepMatrix::factorBlocks(const Scene& scene) {
   for (Block& block : blocks_) {
     std::string failure;
     if (block.band) {
+      // Kept for bandBlocks (a structured constraint solve factors A with the rows): O(n r) copies.
+      if (block.band_matrix.points() != block.band_factor.points() || block.band_matrix.range() != block.band_factor.range())
+        block.band_matrix.resize(block.band_factor.points(), block.band_factor.range());
+      block.band_matrix.assign(block.band_factor);
       failure = block.band_factor.factor();
       if (failure.empty() && block.rank > 0) failure = factorLowRank(block);
     } else {
@@ -463,6 +467,17 @@ std::string StepMatrix::method() const {
     if (out.find(one) == std::string::npos) out += (out.empty() ? "" : ", ") + one;
   }
   return coupled_ ? "coupled bodies, " + out : out;
+}
+
+bool StepMatrix::bandBlocks(int body, BandBlocks& out) const {
+  if (coupled_ || body < 0 || body >= static_cast<int>(body_block_.size())) return false;
+  const Block& block = blocks_[body_block_[body]];
+  if (!block.band || block.rank > 0 || block.band_matrix.points() != block.points) return false;
+  out.groups = block.band_matrix.points();
+  out.range = block.band_matrix.range();
+  out.lower = block.band_matrix.blocks();
+  out.point_group = group_slot_.data() + body_first_[body];
+  return true;
 }
 
 }  // namespace filum::mechanics

@@ -36,13 +36,21 @@
 // Stop. The residual is max_r |F_r|/ρ_r (m/s²): the largest violation of complementarity, of the
 // disc or of stick, as an acceleration; the solve stops when it is below tolerance times the
 // largest term it balances, max(|β|∞, max_r |λ_r|(W_rr + R_r)) — the round-off of (W + R)λ − β is
-// of that size, and in a tight knot the contact forces exceed the right-hand side by orders. Cost per iteration: W λ (c²), J (c²), one LU of the |S| rows that are not free (|S|³/3).
+// of that size, and in a tight knot the contact forces exceed the right-hand side by orders.
+//
+// Cost per iteration: W λ (c²), J (c²), and the step's linear system J_SS Δ_S = r on the |S| rows
+// that are not free: by a dense LU (|S|³/3), or — given the matrix A that W was formed with
+// (Structure) — through A's band and the rows' sparsity without W (AugmentedNewtonSystem:
+// Σ envelope² multiply-adds, a few hundred per row against an obstacle), whichever is cheaper.
 // The workspace only grows: a steady step allocates nothing.
 #pragma once
 
 #include <algorithm>
 #include <vector>
 
+#include "filum/constraints/augmented_newton_system.hpp"
+#include "filum/core/block_inverse.hpp"
+#include "filum/core/constraint_problem.hpp"
 #include "filum/core/constraint_rows.hpp"
 #include "filum/core/types.hpp"
 
@@ -55,6 +63,14 @@ class ContactNewton {
     double damping = 1e-9;      // δ's floor, the proximal shift of J_SS (its rows have a unit diagonal)
     double max_damping = 1.0;   // δ's ceiling (δ follows the relative residual in between)
     double stall_step = 1.0 / 64;  // a line search that had to cut the step below this stops the solve
+    bool structured = true;  // the step's system through A's band when it is cheaper (false: dense LU always)
+  };
+  /// What a structured step needs besides W: the matrix A that W = L A⁻¹ Lᵀ was formed with, the
+  /// bodies, and the body of each point.
+  struct Structure {
+    const BlockInverse* inverse = nullptr;
+    const ConstraintProblem* problem = nullptr;
+    const std::vector<int>* point_body = nullptr;
   };
   struct Result {
     int iterations = 0;
@@ -62,14 +78,17 @@ class ContactNewton {
     bool converged = false;  // residual <= threshold
     bool stalled = false;    // stopped on a short step (stall_step)
     double threshold = 0.0;  // tolerance · max(|β|∞, max_r |λ_r| (W_rr + R_r)) at the returned λ
+    int structured_steps = 0;  // Newton steps solved through A's band (the rest: dense LU)
   };
 
   /// Solves for λ (in: the warm start; out: the last iterate, or the best one when it did not
   /// converge). `w` is W with both triangles (c × c leading block), `beta` β, `rows` the kinds.
   /// W is the leading c × c block of `w` (c = β's size), with both triangles; `compliance` R
   /// (one per row, >= 0) makes the problem that of W + diag(R).
+  /// With `structure` (not null) the steps may be solved through A's band (Settings::structured).
   Result solve(const MatX& w, const Eigen::Ref<const VecX>& beta, const Eigen::Ref<const VecX>& compliance,
-               const ConstraintRows& rows, const Settings& settings, double tolerance, Eigen::Ref<VecX> lambda);
+               const ConstraintRows& rows, const Settings& settings, double tolerance, Eigen::Ref<VecX> lambda,
+               const Structure* structure = nullptr);
 
   /// max_r |F_r|/ρ_r (m/s²) of λ, given the diagonal of W + R and (W + R)λ − β: the residual by which any
   /// contact solve (projected Gauss–Seidel too) is measured.
@@ -83,8 +102,11 @@ class ContactNewton {
   void scale(const Eigen::Ref<const VecX>& diagonal, const ConstraintRows& rows);
   /// F and the merit θ at λ, given wl_ = Wλ − β; with W (not null), J's rows and the free set.
   double evaluate(const MatX* w, const ConstraintRows& rows, const Eigen::Ref<const VecX>& lambda);
-  /// Δ from J Δ = −F (the reduced system).
-  bool step(double damping);
+  /// Δ from J Δ = −F (the reduced system); `structured` counts a step solved through A's band.
+  bool step(double damping, const ConstraintRows& rows, int& structured);
+  /// J_SS Δ_S = rhs_ through A's band (AugmentedNewtonSystem), when structure_ allows it and it
+  /// costs less than the dense LU; false: not taken (or refused), the dense LU is used.
+  bool structuredStep(double damping, const ConstraintRows& rows);
   /// In-place LU with partial pivoting of lu_'s leading s × s block; false if singular.
   bool factor(int s);
   void substitute(int s, Eigen::Ref<VecX> x) const;
@@ -96,6 +118,11 @@ class ContactNewton {
   MatX lu_;    // J_SS factored in place
   std::vector<int> solved_, free_, pivot_;
   std::vector<char> is_free_;
+  std::vector<NewtonRowForm> forms_;  // J's rows in terms of W's rows (evaluate, with the Jacobian)
+  std::vector<int> row_position_;     // row → its index in solved_ (−1: free)
+  const Structure* structure_ = nullptr;
+  bool structured_ = true;
+  AugmentedNewtonSystem augmented_;
   double max_abs_residual_ = 0.0;
   double force_scale_ = 0.0;  // max_r |λ_r|/ρ_r of the last evaluation (m/s²)
 

@@ -104,6 +104,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     int newton_iterations = 50;     // Newton iterations at most (contact rows)
     double newton_damping = 1e-9;   // floor of ContactNewton's shift δ (its rows have a unit diagonal)
     int newton_rows = 2000;         // Newton on W kept dense up to this many rows; above, Gauss–Seidel
+    bool newton_structured = true;  // Newton's steps through A's band when cheaper (ContactNewton::Structure)
     double contact_compliance = 1e-6;   // ε_n: R = ε_n W_rr on normal rows
     double friction_compliance = 1e-6;  // ε_t: R = ε_t W_rr on friction rows
     int contact_iterations = 200;   // projected Gauss–Seidel sweeps at most (contact rows)
@@ -130,6 +131,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     double threshold = 0.0;  // the residual asked for: contact_tolerance · max(|β|∞, max_r |λ_r|(W_rr + R_r)) (m/s²)
     bool converged = true;   // residual <= threshold (always true without contact rows)
     bool fell_back = false;  // Newton did not converge and projected Gauss–Seidel took over
+    int structured_steps = 0;  // Newton steps solved through A's band (the others by a dense LU)
   };
 
   LagrangeMultiplierSolver();
@@ -140,7 +142,9 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// (default 1e-14), "reuse": bool (default true), "sparse_solver": "cholmod" (default when
   /// built with FILUM_WITH_SUITESPARSE) or "simplicial_ldlt"; with contacts "contact_method"
   /// ("newton", default, or "gauss_seidel"), "newton_iterations" (default 50), "newton_damping"
-  /// (the floor of Newton's shift δ, in [0, 1e-3], default 1e-9), "contact_compliance" and
+  /// (the floor of Newton's shift δ, in [0, 1e-3], default 1e-9), "newton_linear_solve" ("auto",
+  /// default: each step's system through the step matrix's band when that is cheaper, or "dense":
+  /// always a dense LU; the same steps up to round-off), "contact_compliance" and
   /// "friction_compliance" (ε in [0, 1], default 1e-6), "newton_rows" (default 2000),
   /// "contact_iterations" (Gauss–Seidel sweeps, default 200), "contact_tolerance" (relative,
   /// default 1e-6) and
@@ -194,7 +198,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   struct FactoredDelassus;
   template <class Delassus>
   void solveWithContacts(const ConstraintRows& rows, Delassus& w);
-  void solveWithNewton(const ConstraintRows& rows);
+  void solveWithNewton(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse);
   /// The equality rows solved exactly for the current contact forces (after an iterative solve).
   template <class Delassus>
   void polishEqualities(const ConstraintRows& rows, Delassus& w);

@@ -50,6 +50,10 @@ class BlockBandLdlt {
   MatX reconstruct() const;
 
   int size() const { return 3 * n_; }
+  int points() const { return n_; }
+  int range() const { return r_; }
+  /// The blocks, row I holding (I, I − r .. I) (before factor(): A's; after: the factors).
+  const Eigen::Matrix3d* blocks() const { return blocks_.data(); }
   /// Scalar half bandwidth 3 r + 2.
   int halfBandwidth() const { return 3 * r_ + 2; }
 

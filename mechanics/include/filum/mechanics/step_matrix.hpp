@@ -82,6 +82,8 @@ class StepMatrix final : public BlockInverse, public JacobianAccumulator {
   void addInternalResponse(Eigen::Ref<const VecX> point_forces, VecX& a) const override;
   /// Changes at every assembly (a constraint solver may keep A⁻¹Lᵀ while it does not).
   long revision() const override { return revision_; }
+  /// A band block without rank-one terms, bodies not coupled: its band as assembled.
+  bool bandBlocks(int body, BandBlocks& out) const override;
 
   // JacobianAccumulator (called by the bodies and force fields during assemble()).
   void addBlock(int i, int j, const Eigen::Matrix3d& block) override;
@@ -113,6 +115,7 @@ class StepMatrix final : public BlockInverse, public JacobianAccumulator {
     bool band = true;
     int range = 0;  // band blocks: largest |i − j| of coupled points; half bandwidth 3 range + 2
     BlockBandLdlt band_factor;
+    BlockBandLdlt band_matrix;  // A's band as assembled (band_factor is factored in place)
     BlockBandLdlt constant;  // band blocks: M + constant Jacobians at constant_key_ (never factored)
     // Rank-one terms σ_k u_k u_kᵀ of this assembly (band blocks; Sherman–Morrison–Woodbury).
     MatX low_rank;        // 3 points × capacity: the u_k as columns

@@ -10,6 +10,18 @@
 
 namespace filum {
 
+/// One body's block of a BlockInverse's matrix A as a band of 3 × 3 blocks: a view into the
+/// matrix's own storage, for a solver that factors A together with constraint rows instead of
+/// forming W = L A⁻¹ Lᵀ (ContactNewton's structured step).
+struct BandBlocks {
+  int groups = 0;  // block rows: the body's points and internal triples, in the band's order
+  int range = 0;   // block (I, J) may be non-zero for |I − J| <= range
+  const Eigen::Matrix3d* lower = nullptr;  // blocks (I, I − range .. I), row by row
+  const int* point_group = nullptr;        // the block row of each of the body's points
+  /// Block (I, J), I >= J >= I − range (A is symmetric: (J, I) is its transpose).
+  const Eigen::Matrix3d& block(int I, int J) const { return lower[I * (range + 1) + (J - I + range)]; }
+};
+
 class BlockInverse {
  public:
   virtual ~BlockInverse() = default;
@@ -41,6 +53,10 @@ class BlockInverse {
   /// one call to the next for rows that did not change; −1 (the default): it may change at
   /// any call, keep nothing. The mass matrix never changes: 0.
   virtual long revision() const { return -1; }
+
+  /// Body b's block of A as a band (A itself, not its factors), valid until A changes; false when
+  /// A is not held so: the mass operator, sparse or coupled blocks, rank-one terms (the default).
+  virtual bool bandBlocks(int /*body*/, BandBlocks& /*out*/) const { return false; }
 };
 
 }  // namespace filum

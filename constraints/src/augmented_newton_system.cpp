@@ -1,0 +1,151 @@
+#include "filum/constraints/augmented_newton_system.hpp"
+
+#include <algorithm>
+
+namespace filum::constraints {
+
+namespace {
+
+/// Grows a buffer geometrically (a steady sequence of sizes allocates once), then sizes it.
+template <class T>
+void sizeTo(std::vector<T>& v, std::size_t n) {
+  if (v.capacity() < n) v.reserve(2 * n);
+  v.resize(n);
+}
+
+}  // namespace
+
+int AugmentedNewtonSystem::groupOfPoint(int p) const {
+  const int body = (*point_body_)[p];
+  const int base = body_base_[body];
+  if (base < 0) return -1;
+  return base + bands_[body].point_group[p - problem_->bodies[body].offset()];
+}
+
+int AugmentedNewtonSystem::groupPosition(int g) const { return 3 * g + rows_before_[g]; }
+
+bool AugmentedNewtonSystem::build(const ConstraintRows& rows, const std::vector<int>& solved,
+                                  const std::vector<int>& row_position, const std::vector<NewtonRowForm>& forms,
+                                  double damping, const BlockInverse& inverse, const ConstraintProblem& problem,
+                                  const std::vector<int>& point_body) {
+  rows_ = &rows;
+  solved_ = &solved;
+  row_position_ = &row_position;
+  forms_ = &forms;
+  problem_ = &problem;
+  point_body_ = &point_body;
+  damping_ = damping;
+  const int bodies = static_cast<int>(problem.bodies.size());
+  const int s = static_cast<int>(solved.size());
+  // The bodies the rows act on, each with its band.
+  sizeTo(body_base_, bodies);
+  sizeTo(bands_, bodies);
+  std::fill(body_base_.begin(), body_base_.end(), -1);
+  for (int r : solved)
+    for (int t = rows.begin(r); t < rows.end(r); ++t) body_base_[point_body[rows.point(t)]] = 0;
+  groups_ = 0;
+  for (int b = 0; b < bodies; ++b) {
+    if (body_base_[b] < 0) continue;
+    if (!inverse.bandBlocks(b, bands_[b])) return false;
+    body_base_[b] = groups_;
+    groups_ += bands_[b].groups;
+  }
+  // Each row after the last group it acts on (through its own terms and those of the rows its
+  // form combines, which share its points for contact rows).
+  sizeTo(by_anchor_, s);
+  for (int i = 0; i < s; ++i) {
+    const int r = solved[i];
+    const NewtonRowForm& form = forms[r];
+    int anchor = -1;
+    auto reach = [&](int row) {
+      for (int t = rows.begin(row); t < rows.end(row); ++t) anchor = std::max(anchor, groupOfPoint(rows.point(t)));
+    };
+    reach(r);
+    for (int j = 0; j < form.nb; ++j) {
+      if (row_position[form.bk[j]] < 0) return false;
+      reach(form.bk[j]);
+    }
+    for (int j = 0; j < form.nc; ++j)
+      if (row_position[form.ck[j]] < 0) return false;
+    if (anchor < 0) return false;  // a row on no point (cannot be solved: ρ = 0 rows are free)
+    by_anchor_[i] = {anchor, i};
+  }
+  std::sort(by_anchor_.begin(), by_anchor_.end());
+  sizeTo(rows_before_, groups_ + 1);
+  sizeTo(row_unknown_, s);
+  int k = 0;
+  for (int g = 0; g <= groups_; ++g) {
+    rows_before_[g] = k;
+    for (int rank = 0; k < s && by_anchor_[k].first == g; ++k, ++rank) row_unknown_[by_anchor_[k].second] = 3 * (g + 1) + rows_before_[g] + rank;
+  }
+  const int n = 3 * groups_ + s;
+  // The envelope: A's bands, each row's points and the rows its form names.
+  lu_.reset(n);
+  for (int b = 0; b < bodies; ++b) {
+    if (body_base_[b] < 0) continue;
+    const BandBlocks& band = bands_[b];
+    for (int I = 0; I < band.groups; ++I)
+      for (int a = 0; a < 3; ++a) lu_.widen(groupPosition(body_base_[b] + I) + a, groupPosition(body_base_[b] + std::max(0, I - band.range)));
+  }
+  for (int i = 0; i < s; ++i) {
+    const int r = solved[i], position = row_unknown_[i];
+    const NewtonRowForm& form = forms[r];
+    for (int t = rows.begin(r); t < rows.end(r); ++t) lu_.widen(position, groupPosition(groupOfPoint(rows.point(t))));
+    for (int j = 0; j < form.nb; ++j)
+      for (int t = rows.begin(form.bk[j]); t < rows.end(form.bk[j]); ++t)
+        lu_.widen(position, groupPosition(groupOfPoint(rows.point(t))));
+    for (int j = 0; j < form.nc; ++j) lu_.widen(position, row_unknown_[row_position[form.ck[j]]]);
+  }
+  lu_.allocate();
+  if (x_.size() < n) x_.resize(2 * n);  // grows only
+  return true;
+}
+
+bool AugmentedNewtonSystem::factor() {
+  const ConstraintRows& rows = *rows_;
+  // A, both triangles (the band holds the lower one; a diagonal block only its lower triangle).
+  for (std::size_t b = 0; b < body_base_.size(); ++b) {
+    if (body_base_[b] < 0) continue;
+    const BandBlocks& band = bands_[b];
+    for (int I = 0; I < band.groups; ++I) {
+      const int pi = groupPosition(body_base_[b] + I);
+      for (int J = std::max(0, I - band.range); J <= I; ++J) {
+        const int pj = groupPosition(body_base_[b] + J);
+        const Eigen::Matrix3d& block = band.block(I, J);
+        for (int a = 0; a < 3; ++a)
+          for (int c = 0; c < 3; ++c) {
+            if (I == J && c > a) continue;
+            lu_.at(pi + a, pj + c) = block(a, c);
+            if (I != J || a != c) lu_.at(pj + c, pi + a) = block(a, c);
+          }
+      }
+    }
+  }
+  // The rows: −L_rᵀ in A's rows, Σ b_k L_k and C (and δ) in the row's own.
+  for (std::size_t i = 0; i < solved_->size(); ++i) {
+    const int r = (*solved_)[i], position = row_unknown_[i];
+    const NewtonRowForm& form = (*forms_)[r];
+    for (int t = rows.begin(r); t < rows.end(r); ++t) {
+      const int pg = groupPosition(groupOfPoint(rows.point(t)));
+      for (int a = 0; a < 3; ++a) lu_.at(pg + a, position) -= rows.coeff(t)[a];
+    }
+    for (int j = 0; j < form.nb; ++j)
+      for (int t = rows.begin(form.bk[j]); t < rows.end(form.bk[j]); ++t) {
+        const int pg = groupPosition(groupOfPoint(rows.point(t)));
+        for (int a = 0; a < 3; ++a) lu_.at(position, pg + a) += form.b[j] * rows.coeff(t)[a];
+      }
+    for (int j = 0; j < form.nc; ++j) lu_.at(position, row_unknown_[(*row_position_)[form.ck[j]]]) += form.c[j];
+    lu_.at(position, position) += damping_;
+  }
+  return lu_.factor();
+}
+
+void AugmentedNewtonSystem::solve(Eigen::Ref<VecX> rhs) {
+  const int s = static_cast<int>(solved_->size());
+  x_.head(lu_.size()).setZero();
+  for (int i = 0; i < s; ++i) x_[row_unknown_[i]] = rhs[i];
+  lu_.solve(x_.head(lu_.size()));
+  for (int i = 0; i < s; ++i) rhs[i] = x_[row_unknown_[i]];
+}
+
+}  // namespace filum::constraints
