@@ -96,13 +96,13 @@ bool AugmentedNewtonSystem::build(const ConstraintRows& rows, const std::vector<
         lu_.widen(position, groupPosition(groupOfPoint(rows.point(t))));
     for (int j = 0; j < form.nc; ++j) lu_.widen(position, row_unknown_[row_position[form.ck[j]]]);
   }
-  lu_.allocate();
   if (x_.size() < n) x_.resize(2 * n);  // grows only
   return true;
 }
 
 bool AugmentedNewtonSystem::factor() {
   const ConstraintRows& rows = *rows_;
+  lu_.allocate();
   // A, both triangles (the band holds the lower one; a diagonal block only its lower triangle).
   for (std::size_t b = 0; b < body_base_.size(); ++b) {
     if (body_base_[b] < 0) continue;

@@ -98,14 +98,21 @@ TEST(RodOnPlane, NewtonStepsThroughTheBandMoveTheRodAsDenseOnes) {
   // Checked at 1e-6 m (0.1 % of the rod's radius).
   auto dense = draggedRod("dense"), banded = draggedRod("auto");
   const auto* solver = dynamic_cast<const constraints::LagrangeMultiplierSolver*>(banded->constraintSolver());
+  const auto* reference = dynamic_cast<const constraints::LagrangeMultiplierSolver*>(dense->constraintSolver());
   ASSERT_NE(solver, nullptr);
-  int structured = 0;
+  ASSERT_NE(reference, nullptr);
+  int structured = 0, dense_structured = 0;
   for (int k = 0; k < 300; ++k) {
     ASSERT_TRUE(dense->step().ok);
     ASSERT_TRUE(banded->step().ok);
     structured += solver->statistics().structured_steps;
+    dense_structured += reference->statistics().structured_steps;
+    // The same Newton iterates: the same count, the same outcome (of each step's last solve).
+    EXPECT_EQ(solver->statistics().newton_iterations, reference->statistics().newton_iterations) << "step " << k;
+    EXPECT_EQ(solver->statistics().fell_back, reference->statistics().fell_back) << "step " << k;
   }
   EXPECT_GT(structured, 300) << "the band was taken";
+  EXPECT_EQ(dense_structured, 0);
   const VecX& a = dense->state().q;
   const VecX& b = banded->state().q;
   const int points = dense->bodies()[0]->pointCount();

@@ -20,8 +20,13 @@
 // points before it): the size of J's diagonal (unit, by ρ), not the small compliance alone; a
 // row redundant with earlier ones (spheres every 0.3 mm on a thread of 1 mm spans) has a pivot
 // of the size of the Levenberg shift δ — as it has in J_SS itself. A's pivots are its own (M
-// dominates an implicit step's matrix). No pivoting is needed for these quasi-definite systems
-// (Vanderbei 1995); a zero or non-finite pivot is refused and the dense LU takes over.
+// dominates an implicit step's matrix). Tied rows scaled by 1/ρ make the system quasi-definite
+// (Vanderbei 1995: no pivoting needed); sliding pairs (non-symmetric rows) and an indefinite A (a
+// compressed thread) are not covered by that argument: a zero or non-finite pivot is refused,
+// and ContactNewton takes the dense LU when the solution is not finite.
+//
+// build() lays out the order and the envelope (enough for cost()); factor() allocates the
+// envelope's storage and fills it, so a system the caller does not take costs no memory.
 #pragma once
 
 #include <utility>
@@ -67,7 +72,8 @@ class AugmentedNewtonSystem {
              const ConstraintProblem& problem, const std::vector<int>& point_body);
   /// The envelope LU's multiply-adds (after build).
   double cost() const { return lu_.cost(); }
-  /// Fills the values and factors; false on a zero or non-finite pivot.
+  /// Lays the envelope's storage out, fills the values and factors; false on a zero or non-finite
+  /// pivot.
   bool factor();
   /// rhs (in solved order) := Δ_S.
   void solve(Eigen::Ref<VecX> rhs);

@@ -12,14 +12,15 @@
 //   U_ii = K_ii − Σ_{k = first(i)}^{i−1} L_ik U_ki.
 // Both sums run over contiguous memory (a row of L, a column of U).
 //
-// Without pivoting the factorization is stable for the matrices it is used on when every
-// pivot is bounded away from zero relative to its row (quasi-definite and block-dominant
-// systems: Vanderbei, SIAM J. Optim. 5 (1995) 100): the caller orders the unknowns so (contact
-// Newton: a constraint row after the points it acts on) and factor() refuses a zero or
-// non-finite pivot. Storage grows only: refactoring a matrix of a size and envelope seen before
-// allocates nothing.
+// Without pivoting the factorization needs pivots bounded away from zero relative to their rows:
+// true of symmetric quasi-definite matrices in any order (Vanderbei, SIAM J. Optim. 5 (1995)
+// 100), and the caller orders its unknowns so that its pivots are of that kind (contact Newton:
+// a constraint row after the points it acts on). factor() refuses a zero or non-finite pivot; a
+// small one shows as a non-finite or huge solution, which the caller checks. Storage grows only:
+// refactoring a matrix of a size and envelope seen before allocates nothing.
 #pragma once
 
+#include <cassert>
 #include <vector>
 
 #include "filum/core/types.hpp"
@@ -39,6 +40,7 @@ class ProfileLu {
   void allocate();
   /// Entry (i, j), which must lie in the envelope (after allocate(), before factor()).
   double& at(int i, int j) {
+    assert((i < j ? i >= first_[j] : j >= first_[i]) && "ProfileLu::at outside the envelope");
     if (i == j) return diagonal_[i];
     if (i > j) return lower_[start_[i] + (j - first_[i])];
     return upper_[start_[j] + (i - first_[j])];
