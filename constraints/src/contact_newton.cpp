@@ -19,8 +19,8 @@ bool startsFrictionPair(const ConstraintRows& rows, int r) {
 void ContactNewton::grow(int c) {
   if (capacity_ >= c) return;  // grows only: a steady step allocates nothing
   capacity_ = 2 * c;
-  for (VecX* v : {&rho_, &wl_, &f_, &delta_, &trial_, &best_, &rhs_, &compliance_, &diagonal_}) v->resize(capacity_);
-  jac_.resize(capacity_, capacity_);
+  for (VecX* v : {&rho_, &wl_, &f_, &delta_, &trial_, &best_, &rhs_, &compliance_, &diagonal_, &w_free_})
+    v->resize(capacity_);
   lu_.resize(capacity_, capacity_);
   solved_.reserve(capacity_);
   free_.reserve(capacity_);
@@ -47,7 +47,6 @@ void ContactNewton::scale(const Eigen::Ref<const VecX>& diagonal, const Constrai
 double ContactNewton::evaluate(const MatX* w_matrix, const ConstraintRows& rows, const Eigen::Ref<const VecX>& lambda) {
   const int c = c_;
   const bool jacobian = w_matrix != nullptr;
-  const auto w = [&](int r) { return w_matrix->row(r).head(c); };
   // A row whose F is λ_r itself (D = 0): its step is −λ_r, no W in its Jacobian row.
   auto freeRow = [&](int r) {
     f_[r] = lambda[r];
@@ -58,8 +57,6 @@ double ContactNewton::evaluate(const MatX* w_matrix, const ConstraintRows& rows,
     f_[r] = rho_[r] * wl_[r];
     if (!jacobian) return;
     is_free_[r] = 0;
-    jac_.row(r).head(c) = rho_[r] * w(r);
-    jac_(r, r) += rho_[r] * compliance_[r];
     forms_[r] = NewtonRowForm();
     forms_[r].addW(r, rho_[r]);
     forms_[r].addUnit(r, rho_[r] * compliance_[r]);
@@ -110,17 +107,9 @@ double ContactNewton::evaluate(const MatX* w_matrix, const ConstraintRows& rows,
     is_free_[t1] = is_free_[t2] = 0;
     const Eigen::Matrix2d s = (radius / norm) * (Eigen::Matrix2d::Identity() - hat * hat.transpose());
     const int t[2] = {t1, t2};
+    // Row t_i as a form Σ b_k W_k + Σ c_m e_m: W's rows of t1, t2 and n (with the compliance R
+    // of each: J holds W + R) and the unit terms e_ti − S_i· E_t − μ ẑ_i e_n.
     for (int i = 0; i < 2; ++i) {
-      auto row = jac_.row(t[i]).head(c);
-      row = (s(i, 0) * rho_[t1]) * w(t1) + (s(i, 1) * rho_[t2]) * w(t2) + (mu * hat[i] * rho_[n]) * w(n);
-      row[t1] += s(i, 0) * rho_[t1] * compliance_[t1];
-      row[t2] += s(i, 1) * rho_[t2] * compliance_[t2];
-      row[n] += mu * hat[i] * rho_[n] * compliance_[n];
-      row[t[i]] += 1.0;
-      row[t1] -= s(i, 0);
-      row[t2] -= s(i, 1);
-      row[n] -= mu * hat[i];
-      // The same row as a form: Σ b_k W_k + Σ c_m e_m.
       NewtonRowForm& form = forms_[t[i]];
       form = NewtonRowForm();
       form.addW(t1, s(i, 0) * rho_[t1]);
@@ -178,9 +167,6 @@ bool ContactNewton::structuredStep(double damping, const ConstraintRows& rows) {
   if (!structured_ || !structure_ || !structure_->inverse || !structure_->problem || !structure_->point_body ||
       static_cast<int>(solved_.size()) < kSmallestStructured)
     return false;
-  const int c = c_;
-  for (int r = 0; r < c; ++r) row_position_[r] = -1;
-  for (std::size_t i = 0; i < solved_.size(); ++i) row_position_[solved_[i]] = static_cast<int>(i);
   if (!augmented_.build(rows, solved_, row_position_, forms_, damping, *structure_->inverse, *structure_->problem,
                         *structure_->point_body))
     return false;
@@ -201,6 +187,22 @@ bool ContactNewton::structuredStep(double damping, const ConstraintRows& rows) {
   return false;
 }
 
+void ContactNewton::denseSystem(int s, double damping) {
+  // J_SS + δ I from the forms: lu_(i, j) = Σ_k b_k W(k, S_j) + c(r, S_j) + δ_ij.
+  const MatX& w = *w_matrix_;
+  for (int i = 0; i < s; ++i) {
+    const NewtonRowForm& form = forms_[solved_[i]];
+    for (int j = 0; j < s; ++j) {
+      double sum = 0.0;
+      for (int k = 0; k < form.nb; ++k) sum += form.b[k] * w(form.bk[k], solved_[j]);
+      lu_(i, j) = sum;
+    }
+    for (int k = 0; k < form.nc; ++k)
+      if (row_position_[form.ck[k]] >= 0) lu_(i, row_position_[form.ck[k]]) += form.c[k];
+    lu_(i, i) += damping;
+  }
+}
+
 bool ContactNewton::step(double damping, const ConstraintRows& rows, int& structured) {
   const int c = c_;
   solved_.clear();
@@ -210,19 +212,26 @@ bool ContactNewton::step(double damping, const ConstraintRows& rows, int& struct
   for (int r : free_) delta_[r] = -f_[r];
   const int s = static_cast<int>(solved_.size());
   if (s == 0) return true;
-  // −F_S − J_SI Δ_I, then (J_SS + δ I) Δ_S = that: through A's band, or by a dense LU.
+  for (int r = 0; r < c; ++r) row_position_[r] = -1;
+  for (int i = 0; i < s; ++i) row_position_[solved_[i]] = i;
+  // −F_S − J_SI Δ_I: J_SI Δ_I = Σ_k b_k (W Δ_I)_k + the unit terms on free rows; W Δ_I over the
+  // free rows that move (most have λ = 0 and Δ = 0), a column of W each (W is symmetric).
+  w_free_.head(c).setZero();
+  for (int k : free_)
+    if (delta_[k] != 0.0) w_free_.head(c).noalias() += delta_[k] * w_matrix_->col(k).head(c);
   for (int i = 0; i < s; ++i) {
-    const int r = solved_[i];
-    double sum = -f_[r];
-    for (int k : free_) sum -= jac_(r, k) * delta_[k];
+    const NewtonRowForm& form = forms_[solved_[i]];
+    double sum = -f_[solved_[i]];
+    for (int k = 0; k < form.nb; ++k) sum -= form.b[k] * w_free_[form.bk[k]];
+    for (int k = 0; k < form.nc; ++k)
+      if (row_position_[form.ck[k]] < 0) sum -= form.c[k] * delta_[form.ck[k]];
     rhs_[i] = sum;
   }
+  // (J_SS + δ I) Δ_S = that: through A's band, or by a dense LU.
   if (structuredStep(damping, rows)) {
     ++structured;
   } else {
-    for (int j = 0; j < s; ++j)
-      for (int i = 0; i < s; ++i) lu_(i, j) = jac_(solved_[i], solved_[j]);
-    for (int i = 0; i < s; ++i) lu_(i, i) += damping;
+    denseSystem(s, damping);
     if (!factor(s)) return false;
     substitute(s, rhs_.head(s));
   }
@@ -236,6 +245,7 @@ ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const
                                            const Structure* structure) {
   const int c = static_cast<int>(beta.size());
   c_ = c;
+  w_matrix_ = &w;
   structure_ = structure;
   structured_ = settings.structured;
   grow(c);
@@ -302,6 +312,7 @@ ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const
     }
   }
   structure_ = nullptr;  // (the caller's, valid during this call only)
+  w_matrix_ = nullptr;
   // The last evaluation may have been a rejected trial: measure the iterate itself.
   at(lambda, false);
   result.converged = max_abs_residual_ <= threshold();

@@ -38,10 +38,13 @@
 // largest term it balances, max(|β|∞, max_r |λ_r|(W_rr + R_r)) — the round-off of (W + R)λ − β is
 // of that size, and in a tight knot the contact forces exceed the right-hand side by orders.
 //
-// Cost per iteration: W λ (c²), J (c²), and the step's linear system J_SS Δ_S = r on the |S| rows
-// that are not free: by a dense LU (|S|³/3), or — given the matrix A that W was formed with
-// (Structure) — through A's band and the rows' sparsity without W (AugmentedNewtonSystem:
-// Σ envelope² multiply-adds, a few hundred per row against an obstacle), whichever is cheaper.
+// Cost per iteration: W λ (c²); J's rows as forms in terms of W's rows (O(c): at most three W
+// rows and three unit terms each, not c² entries); the right-hand side's W Δ_I (a column of W per
+// free row that moves); and the step's linear system J_SS Δ_S = r on the |S| rows that are not
+// free: by a dense LU (3 |S|² to form it from the forms, |S|³/3 to factor it), or — given the
+// matrix A that W was formed with (Structure) — through A's band and the rows' sparsity without
+// W (AugmentedNewtonSystem: Σ envelope² multiply-adds, a few hundred per row against an
+// obstacle), whichever is cheaper.
 // The workspace only grows: a steady step allocates nothing.
 #pragma once
 
@@ -100,13 +103,16 @@ class ContactNewton {
   void grow(int c);
   /// ρ per row (from W's diagonal).
   void scale(const Eigen::Ref<const VecX>& diagonal, const ConstraintRows& rows);
-  /// F and the merit θ at λ, given wl_ = Wλ − β; with W (not null), J's rows and the free set.
+  /// F and the merit θ at λ, given wl_ = Wλ − β; with W (not null), J's rows as forms (forms_:
+  /// Σ b_k W_k + Σ c_m e_m, three of each at most) and the free set.
   double evaluate(const MatX* w, const ConstraintRows& rows, const Eigen::Ref<const VecX>& lambda);
   /// Δ from J Δ = −F (the reduced system); `structured` counts a step solved through A's band.
   bool step(double damping, const ConstraintRows& rows, int& structured);
   /// J_SS Δ_S = rhs_ through A's band (AugmentedNewtonSystem), when structure_ allows it and it
   /// costs less than the dense LU; false: not taken (or refused), the dense LU is used.
   bool structuredStep(double damping, const ConstraintRows& rows);
+  /// J_SS + δ I into lu_ from the forms (the dense step).
+  void denseSystem(int s, double damping);
   /// In-place LU with partial pivoting of lu_'s leading s × s block; false if singular.
   bool factor(int s);
   void substitute(int s, Eigen::Ref<VecX> x) const;
@@ -114,8 +120,9 @@ class ContactNewton {
   int c_ = 0;
   VecX rho_, wl_, f_, delta_, trial_, best_, rhs_, compliance_, diagonal_;
   int capacity_ = 0;
-  MatX jac_;   // J, c × c (rows of the reduced system read from it)
-  MatX lu_;    // J_SS factored in place
+  MatX lu_;    // J_SS + δ I (dense step), factored in place
+  VecX w_free_;  // W Δ_I: the free rows' steps seen by W's rows
+  const MatX* w_matrix_ = nullptr;  // W of the current solve
   std::vector<int> solved_, free_, pivot_;
   std::vector<char> is_free_;
   std::vector<NewtonRowForm> forms_;  // J's rows in terms of W's rows (evaluate, with the Jacobian)
