@@ -409,7 +409,40 @@ double LagrangeMultiplierSolver::generalEntry(const ConstraintProblem& problem, 
   return sum;
 }
 
+bool LagrangeMultiplierSolver::assembleGeneralByColumns(const ConstraintProblem& problem, const ConstraintRows& rows) {
+  // Dense W with every column on the same bodies (one thread, a wire in a catheter): every pair
+  // of rows couples, so W = L Y is formed as column axpys — W_{k,r} = L_r · y_k for k >= r is
+  //   W_{r:c, r} = Σ_{t ∈ r} Σ_a c_t,a Y^T_{r:c, 3 p_t + a},   Y^T (c × 3N) the columns y_k as rows,
+  // contiguous runs of length c − r instead of a lookup per (row, column, term) (generalEntry).
+  const int c = rows.rows();
+  if (stats_.sparse || c == 0) return false;
+  const std::vector<int>& bodies = current_[0].bodies;
+  for (int k = 1; k < c; ++k)
+    if (current_[k].bodies != bodies) return false;
+  const int width = 3 * problem.dof_points;
+  if (yt_.rows() < c || yt_.cols() < width) yt_.resize(std::max<Eigen::Index>(2 * c, yt_.rows()), width);  // grows only
+  for (int b : bodies) {  // Yᵀ on the columns' bodies (the other coordinates are never read)
+    const BodyBlock& body = problem.bodies[b];
+    for (int k = 0; k < c; ++k) {
+      const Column& col = current_[k];
+      const int seg = static_cast<int>(std::find(col.bodies.begin(), col.bodies.end(), b) - col.bodies.begin());
+      for (int i = 0; i < 3 * body.pointCount(); ++i) yt_(k, 3 * body.offset() + i) = col.y[col.starts[seg] + i];
+    }
+  }
+  for (int r = 0; r < c; ++r) {
+    auto column = w_.col(r).segment(r, c - r);
+    column.setZero();
+    for (int t = rows.begin(r); t < rows.end(r); ++t)
+      for (int a = 0; a < 3; ++a)
+        if (rows.coeff(t)[a] != 0.0) column.noalias() += rows.coeff(t)[a] * yt_.col(3 * rows.point(t) + a).segment(r, c - r);
+    diagonal_[r] = w_(r, r);
+  }
+  stats_.nonzeros += static_cast<long>(c) * (c + 1) / 2;
+  return true;
+}
+
 void LagrangeMultiplierSolver::assembleGeneral(const ConstraintProblem& problem, const ConstraintRows& rows) {
+  if (assembleGeneralByColumns(problem, rows)) return;
   const int c = rows.rows();
   auto entry = [&](int r, int k) { return generalEntry(problem, rows, r, k); };
   // Rows on disjoint sets of bodies do not couple (W_rk = 0: column k lives on its rows' bodies,

@@ -183,6 +183,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   void layoutColumn(const ConstraintProblem& problem, Column& column, int width) const;
   void assembleSeparable(const ConstraintProblem& problem, const ConstraintRows& rows);
   void assembleGeneral(const ConstraintProblem& problem, const ConstraintRows& rows);
+  /// W dense by column axpys when every column lives on the same bodies; false: not taken.
+  bool assembleGeneralByColumns(const ConstraintProblem& problem, const ConstraintRows& rows);
   void storeEntry(int r, int k, double value);
   /// a += A⁻¹ Lᵀ λ by scattering Lᵀ λ and one solve per touched body.
   void scatterForces(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a);
@@ -259,6 +261,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
 
   MatX g_;  // G_ab = w_aᵀ M⁻¹ w_b for anchors a, b (mass operator)
   MatX w_;  // W (dense path: the lower triangle, mirrored into the upper one for contact sweeps)
+  MatX yt_;  // Yᵀ: the columns y_k = A⁻¹ l_k as rows (assembleGeneralByColumns; grows only)
   VecX diagonal_;
   std::vector<int> bucket_, bucket_start_, cursor_;  // columns to solve, grouped by body
   std::vector<char> body_touched_;
