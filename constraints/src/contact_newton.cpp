@@ -194,7 +194,7 @@ void ContactNewton::denseSystem(int s, double damping) {
     const NewtonRowForm& form = forms_[solved_[i]];
     for (int j = 0; j < s; ++j) {
       double sum = 0.0;
-      for (int k = 0; k < form.nb; ++k) sum += form.b[k] * w(form.bk[k], solved_[j]);
+      for (int k = 0; k < form.nb; ++k) sum += form.b[k] * w(solved_[j], form.bk[k]);  // (W symmetric: down a column)
       lu_(i, j) = sum;
     }
     for (int k = 0; k < form.nc; ++k)

@@ -420,7 +420,8 @@ bool LagrangeMultiplierSolver::assembleGeneralByColumns(const ConstraintProblem&
   for (int k = 1; k < c; ++k)
     if (current_[k].bodies != bodies) return false;
   const int width = 3 * problem.dof_points;
-  if (yt_.rows() < c || yt_.cols() < width) yt_.resize(std::max<Eigen::Index>(2 * c, yt_.rows()), width);  // grows only
+  if (yt_.rows() < c || yt_.cols() < width)  // grows only, in both dimensions
+    yt_.resize(std::max<Eigen::Index>(2 * c, yt_.rows()), std::max<Eigen::Index>(width, yt_.cols()));
   for (int b : bodies) {  // Yᵀ on the columns' bodies (the other coordinates are never read)
     const BodyBlock& body = problem.bodies[b];
     for (int k = 0; k < c; ++k) {
