@@ -10,9 +10,9 @@
 // And coaxial instruments: a 100-node guidewire pushed through a 100-node catheter (both 30 cm,
 // 3 mm segments, held at both ends and sagging under gravity): the wire lies on the lumen's
 // floor along its whole length, the worst case for the contact rows: measured 1140 ms per
-// simulated ms (median of 3) with ~430 lumen contacts (1300 rows), where the issue asks 1; three quarters of it
-// the dense factor and products of contact_newton.hpp (perf), which the structured solve of
-// docs/contact-solver.md ("Still open") would replace.
+// simulated ms (median of 3) with ~430 lumen contacts (1300 rows), where the issue asks 1; 735
+// (one run) after W's column assembly (2026-11-27). Its rows couple two bodies, which the
+// Newton step through the step matrix's band cannot order narrowly: docs/vessels.md.
 //   build/apps/bench/bench_applications --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 

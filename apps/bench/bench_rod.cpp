@@ -6,7 +6,7 @@
 //   plane: lying on a table (PlaneObstacle, unilateral contact rows, Coulomb friction 0.3), its
 //          s = 0 end dragged sideways along the table at 5 cm/s by a FixedPointConstraint path;
 //          the _dense variants solve the contact Newton's steps by a dense LU instead of through
-//          the step matrix's band (newton_linear_solve, contact_newton.hpp).
+//          the step matrix's band (newton_linear_solve, lagrange_multiplier_solver.hpp).
 // One iteration = 10 steps (10 simulated ms), after 100 ms untimed. Counters: wall_ms_per_sim_ms
 // (the real-time figure: <= 1 runs in real time) and us_per_step. Run:
 //   build/apps/bench/bench_rod --benchmark_repetitions=5 --benchmark_report_aggregates_only=true

@@ -153,7 +153,7 @@ void RunOutput::flushOrThrow(std::ofstream& out, const char* name) const {
 }
 
 std::string RunOutput::knotText() const {
-  // "knot: square, 2.9 cm held, 24 contacts 0.31 N, slip 0.4 mm/s" per knotted strand.
+  // "thread: square, 2.9 cm held, 5 contacts 0.05 N, slip 0.4 mm/s" per knotted strand.
   std::string text;
   for (const KnotRow& k : knot_rows_) {
     if (k.name == "unknot" || k.name == "unknown") continue;

@@ -82,6 +82,7 @@ TEST(ConstraintParams, BadSolverSettingsAreRefused) {
       {{{"type", "LagrangeMultiplierSolver"}, {"sparse_solver", "magic"}}, "/constraint_solver/sparse_solver"},
       {{{"type", "LagrangeMultiplierSolver"}, {"sparse_above", -1}}, "/constraint_solver/sparse_above"},
       {{{"type", "LagrangeMultiplierSolver"}, {"contact_form", "sparse"}}, "/constraint_solver/contact_form"},
+      {{{"type", "LagrangeMultiplierSolver"}, {"newton_linear_solve", "band"}}, "/constraint_solver/newton_linear_solve"},
   };
   for (const auto& [solver, where] : cases) {
     const std::string message = errorOf(fixed, solver);

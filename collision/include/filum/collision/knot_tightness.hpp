@@ -16,8 +16,8 @@
 //                     |(I − n nᵀ)(v_A − v_B)|   (m/s),
 //                   zero for sticking contacts (the friction rows hold v_A − v_B along the
 //                   tangents) and for any rigid translation of the knot; a knot turning as a
-//                   whole at ω shows ω times the distance between the centre lines (2 r), as
-//                   the friction rows see it. A slipping knot: the speed thread runs through it.
+//                   whole at ω shows at most ω times the distance between the centre lines
+//                   (2 r), as the friction rows see it. A slipping knot: the speed thread runs through it.
 // Every quantity is measured on the contact set of the last step (detected at its start, forces
 // of its solve) and the state after it.
 #pragma once

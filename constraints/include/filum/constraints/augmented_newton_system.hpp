@@ -21,7 +21,7 @@
 // row redundant with earlier ones (spheres every 0.3 mm on a thread of 1 mm spans) has a pivot
 // of the size of the Levenberg shift δ — as it has in J_SS itself. A's pivots are its own (M
 // dominates an implicit step's matrix). Tied rows scaled by 1/ρ make the system quasi-definite
-// (Vanderbei 1995: no pivoting needed); sliding pairs (non-symmetric rows) and an indefinite A (a
+// (Vanderbei 1995: a factorization exists in any order); sliding pairs (non-symmetric rows) and an indefinite A (a
 // compressed thread) are not covered by that argument: a zero or non-finite pivot is refused,
 // and ContactNewton takes the dense LU when the solution is not finite.
 //

@@ -20,8 +20,9 @@
 // Newton. F is piecewise smooth; its generalized Jacobian J = I − D (I − ρ W), D the Jacobian of
 // P at z (1 on equality rows, active normal rows and sticking pairs; 0 on inactive rows;
 // (R/|z_t|)(I − ẑẑᵀ) and μ ẑ ∂z_n on a sliding pair, R = μ z_n). Rows with D = 0 have the step
-// Δ_r = −λ_r; the rest form a smaller system J_SS Δ_S = −F_S − J_SI Δ_I, factored by LU with
-// partial pivoting (J is not symmetric on sliding pairs). Redundant contacts (spheres every
+// Δ_r = −λ_r; the rest form a smaller system J_SS Δ_S = −F_S − J_SI Δ_I, solved by a dense LU
+// with partial pivoting (J is not symmetric on sliding pairs) or through A's band (the cost
+// paragraph below). Redundant contacts (spheres every
 // 0.3 mm on a thread of 1 mm spans) make W nearly singular (cond ~1e10), so J_SS is shifted by
 // δ I, rows of J_SS being scaled to a unit diagonal by ρ: a Levenberg–Marquardt step with δ the
 // relative residual, clamped to [damping, max_damping] (Yamashita & Fukushima 2001: δ_k ~ |F_k|
@@ -103,7 +104,7 @@ class ContactNewton {
   void grow(int c);
   /// ρ per row (from W's diagonal).
   void scale(const Eigen::Ref<const VecX>& diagonal, const ConstraintRows& rows);
-  /// F and the merit θ at λ, given wl_ = Wλ − β; with W (not null), J's rows as forms (forms_:
+  /// F and the merit θ at λ, given wl_ = (W + R)λ − β; with W (not null), J's rows as forms (forms_:
   /// Σ b_k W_k + Σ c_m e_m, three of each at most) and the free set.
   double evaluate(const MatX* w, const ConstraintRows& rows, const Eigen::Ref<const VecX>& lambda);
   /// Δ from J Δ = −F (the reduced system); `structured` counts a step solved through A's band.

@@ -12,11 +12,12 @@
 //   U_ii = K_ii − Σ_{k = first(i)}^{i−1} L_ik U_ki.
 // Both sums run over contiguous memory (a row of L, a column of U).
 //
-// Without pivoting the factorization needs pivots bounded away from zero relative to their rows:
-// true of symmetric quasi-definite matrices in any order (Vanderbei, SIAM J. Optim. 5 (1995)
-// 100), and the caller orders its unknowns so that its pivots are of that kind (contact Newton:
-// a constraint row after the points it acts on). factor() refuses a zero or non-finite pivot; a
-// small one shows as a non-finite or huge solution, which the caller checks. Storage grows only:
+// Without pivoting the factorization needs pivots bounded away from zero relative to their rows.
+// Symmetric quasi-definite matrices have an LDLᵀ factorization in any order (Vanderbei, SIAM J.
+// Optim. 5 (1995) 100: existence, not a stability bound), and the caller orders its unknowns so
+// that its pivots are of the size of its own diagonal (contact Newton: a constraint row after the
+// points it acts on). factor() refuses a zero or non-finite pivot; the caller checks that the
+// solution is finite (a huge finite one is left to its line search). Storage grows only:
 // refactoring a matrix of a size and envelope seen before allocates nothing.
 #pragma once
 
