@@ -2,18 +2,9 @@
 
 #include <algorithm>
 
+#include "filum/core/growing_vector.hpp"
+
 namespace filum::constraints {
-
-namespace {
-
-/// Grows a buffer geometrically (a steady sequence of sizes allocates once), then sizes it.
-template <class T>
-void sizeTo(std::vector<T>& v, std::size_t n) {
-  if (v.capacity() < n) v.reserve(2 * n);
-  v.resize(n);
-}
-
-}  // namespace
 
 int AugmentedNewtonSystem::groupOfPoint(int p) const {
   const int body = (*point_body_)[p];
@@ -38,8 +29,8 @@ bool AugmentedNewtonSystem::build(const ConstraintRows& rows, const std::vector<
   const int bodies = static_cast<int>(problem.bodies.size());
   const int s = static_cast<int>(solved.size());
   // The bodies the rows act on, each with its band.
-  sizeTo(body_base_, bodies);
-  sizeTo(bands_, bodies);
+  resizeGrowing(body_base_, bodies);
+  resizeGrowing(bands_, bodies);
   std::fill(body_base_.begin(), body_base_.end(), -1);
   for (int r : solved)
     for (int t = rows.begin(r); t < rows.end(r); ++t) body_base_[point_body[rows.point(t)]] = 0;
@@ -52,7 +43,7 @@ bool AugmentedNewtonSystem::build(const ConstraintRows& rows, const std::vector<
   }
   // Each row after the last group it acts on (through its own terms and those of the rows its
   // form combines, which share its points for contact rows).
-  sizeTo(by_anchor_, s);
+  resizeGrowing(by_anchor_, s);
   for (int i = 0; i < s; ++i) {
     const int r = solved[i];
     const NewtonRowForm& form = forms[r];
@@ -71,8 +62,8 @@ bool AugmentedNewtonSystem::build(const ConstraintRows& rows, const std::vector<
     by_anchor_[i] = {anchor, i};
   }
   std::sort(by_anchor_.begin(), by_anchor_.end());
-  sizeTo(rows_before_, groups_ + 1);
-  sizeTo(row_unknown_, s);
+  resizeGrowing(rows_before_, groups_ + 1);
+  resizeGrowing(row_unknown_, s);
   int k = 0;
   for (int g = 0; g <= groups_; ++g) {
     rows_before_[g] = k;

@@ -3,36 +3,27 @@
 #include <algorithm>
 #include <cmath>
 
+#include "filum/core/growing_vector.hpp"
+
 namespace filum::constraints {
-
-namespace {
-
-/// Grows a buffer geometrically (a steady sequence of sizes allocates once), then sizes it.
-template <class T>
-void sizeTo(std::vector<T>& v, std::size_t n) {
-  if (v.capacity() < n) v.reserve(2 * n);
-  v.resize(n);
-}
-
-}  // namespace
 
 void ProfileLu::reset(int n) {
   n_ = n;
-  sizeTo(first_, n);
+  resizeGrowing(first_, n);
   for (int i = 0; i < n; ++i) first_[i] = i;
 }
 
 void ProfileLu::allocate() {
-  sizeTo(start_, n_ + 1);
+  resizeGrowing(start_, n_ + 1);
   std::size_t total = 0;
   for (int i = 0; i < n_; ++i) {
     start_[i] = static_cast<int>(total);
     total += i - first_[i];
   }
   start_[n_] = static_cast<int>(total);
-  sizeTo(lower_, total);
-  sizeTo(upper_, total);
-  sizeTo(diagonal_, n_);
+  resizeGrowing(lower_, total);
+  resizeGrowing(upper_, total);
+  resizeGrowing(diagonal_, n_);
   std::fill(lower_.begin(), lower_.end(), 0.0);
   std::fill(upper_.begin(), upper_.end(), 0.0);
   std::fill(diagonal_.begin(), diagonal_.end(), 0.0);

@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "filum/core/growing_vector.hpp"
 #include "filum/core/types.hpp"
 
 namespace filum {
@@ -56,17 +57,6 @@ struct StepMemory {
   std::vector<double> contacts;
 };
 
-
-namespace detail {
-/// to = from, growing to's capacity geometrically (std::vector's copy assignment allocates exactly
-/// the new size, so a copy every step would allocate at every new maximum).
-template <class T>
-void assignGrowing(std::vector<T>& to, const std::vector<T>& from) {
-  if (to.capacity() < from.size()) to.reserve(std::max(from.size(), 2 * to.capacity()));
-  to.assign(from.begin(), from.end());
-}
-}  // namespace detail
-
 inline StepMemory& StepMemory::operator=(const StepMemory& other) {
   if (this == &other) return *this;
   layout_revision = other.layout_revision;
@@ -78,9 +68,9 @@ inline StepMemory& StepMemory::operator=(const StepMemory& other) {
   reuse_skip = other.reuse_skip;
   reuse_backoff = other.reuse_backoff;
   fresh_next = other.fresh_next;
-  detail::assignGrowing(multipliers, other.multipliers);
-  detail::assignGrowing(row_kinds, other.row_kinds);
-  detail::assignGrowing(contacts, other.contacts);
+  assignGrowing(multipliers, other.multipliers);
+  assignGrowing(row_kinds, other.row_kinds);
+  assignGrowing(contacts, other.contacts);
   return *this;
 }
 
