@@ -4,7 +4,7 @@
 // apart and the peak pull force doubled at the shipped cap; the Newton solve stops on its
 // residual, so a higher limit changes only the few solves that had not converged.
 //
-// Tolerances. Shape: the final control points of runs with 50 (default) and 150 Newton iterations
+// Tolerances. Shape: the final control points of runs with 100 (default) and 300 Newton iterations
 // agree to within one thread radius, 0.15 mm — the scale below which the contact geometry is not
 // defined (contact rows keep the centre lines a diameter apart to within their Baumgarte correction
 // and the detection margin r/2), and 40-100 times below what the old solver's caps changed. Force:
@@ -25,6 +25,7 @@ struct KnotRun {
   VecX q;
   double peak_force = 0.0;  // N, on the pulled (right) end
   long unconverged = 0;
+  long solves = 0;
 };
 
 KnotRun runKnot(int newton_iterations) {
@@ -44,17 +45,23 @@ KnotRun runKnot(int newton_iterations) {
   run.q = scene->state().q;
   const ContactSolveTally& tally = scene->constraintSolver()->contactTally();
   run.unconverged = tally.solves - tally.converged;
+  run.solves = tally.solves;
   return run;
 }
 
 TEST(KnotIterationLimit, ShapeAndPullForceDoNotDependOnIt) {
-  const KnotRun low = runKnot(50), high = runKnot(150);
+  const KnotRun low = runKnot(100), high = runKnot(300);
   double gap = 0.0;
   for (int i = 0; i < low.q.size() / 3; ++i) gap = std::max(gap, (low.q.segment<3>(3 * i) - high.q.segment<3>(3 * i)).norm());
   std::printf("  final shapes %.4f mm apart; peak pull %.4f N and %.4f N; unconverged solves %ld and %ld\n", 1e3 * gap,
               low.peak_force, high.peak_force, low.unconverged, high.unconverged);
   EXPECT_LT(gap, 1.5e-4);
   EXPECT_NEAR(low.peak_force, high.peak_force, 0.05 * high.peak_force);
+  // The limit is not what stops the default's solves: at least 99 % of them converge (the share
+  // asked of the contact solve). Below the limit a solve ends in Gauss–Seidel's fallback, and the
+  // knot then depends on the limit again: at 25 iterations 81 of ~550 solves did not converge
+  // and the knot ended 7.7 mm away (measured).
+  EXPECT_LE(low.unconverged, low.solves / 100);
 }
 
 }  // namespace
