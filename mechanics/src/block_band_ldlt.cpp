@@ -115,6 +115,50 @@ void BlockBandLdlt::solve(Eigen::Ref<VecX> x) const {
   }
 }
 
+void BlockBandLdlt::solveColumns(Eigen::Ref<MatX> x, int first) const {
+  // solve()'s two sweeps, with the loop over the columns inside the loop over the block rows.
+  // Rows before `first` are zero in every column and stay zero in the forward sweep
+  // (y_i = x_i − Σ L_ij y_j = 0); row `first` has no non-zero term above it.
+  const Eigen::Index columns = x.cols(), stride = x.outerStride();
+  double* data = x.data();
+  first = std::clamp(first, 0, std::max(n_ - 1, 0));
+  for (int i = first + 1; i < n_; ++i) {
+    const int j0 = std::max(first, i - r_);
+    for (Eigen::Index k = 0; k < columns; ++k) {
+      double* v = data + k * stride;
+      double s0 = v[3 * i], s1 = v[3 * i + 1], s2 = v[3 * i + 2];
+      for (int j = j0; j < i; ++j) {
+        const double* b = block(i, j).data();
+        const double y0 = v[3 * j], y1 = v[3 * j + 1], y2 = v[3 * j + 2];
+        s0 -= b[0] * y0 + b[3] * y1 + b[6] * y2;
+        s1 -= b[1] * y0 + b[4] * y1 + b[7] * y2;
+        s2 -= b[2] * y0 + b[5] * y1 + b[8] * y2;
+      }
+      v[3 * i] = s0;
+      v[3 * i + 1] = s1;
+      v[3 * i + 2] = s2;
+    }
+  }
+  for (int i = n_ - 1; i >= 0; --i) {
+    const int k1 = std::min(n_ - 1, i + r_);
+    for (Eigen::Index c = 0; c < columns; ++c) {
+      double* v = data + c * stride;
+      Eigen::Vector3d xi(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+      solvePivot(block(i, i), reciprocals_[i], xi);
+      for (int k = k1; k > i; --k) {
+        const double* b = block(k, i).data();
+        const double y0 = v[3 * k], y1 = v[3 * k + 1], y2 = v[3 * k + 2];
+        xi[0] -= b[0] * y0 + b[1] * y1 + b[2] * y2;
+        xi[1] -= b[3] * y0 + b[4] * y1 + b[5] * y2;
+        xi[2] -= b[6] * y0 + b[7] * y1 + b[8] * y2;
+      }
+      v[3 * i] = xi[0];
+      v[3 * i + 1] = xi[1];
+      v[3 * i + 2] = xi[2];
+    }
+  }
+}
+
 MatX BlockBandLdlt::reconstruct() const {
   MatX L = MatX::Identity(3 * n_, 3 * n_), D = MatX::Zero(3 * n_, 3 * n_);
   for (int i = 0; i < n_; ++i) {

@@ -404,6 +404,15 @@ void StepMatrix::solveBlock(int body, Eigen::Ref<VecX> x) const {
     if (const int g = block.group_of_slot[k]; g < point_count_) x.segment<3>(3 * (g - block.first_point)) = block.work.segment<3>(3 * k);
 }
 
+void StepMatrix::solveBlockColumns(int body, Eigen::Ref<MatX> x, int first_point) const {
+  const Block& block = blocks_[body_block_[body]];
+  if (block.contiguous && block.band && block.rank == 0) {
+    block.band_factor.solveColumns(x, first_point);
+    return;
+  }
+  for (Eigen::Index k = 0; k < x.cols(); ++k) solveBlock(body, x.col(k));
+}
+
 void StepMatrix::solveAll(Eigen::Ref<VecX> x) const {
   const bool points_only = x.size() == 3 * Eigen::Index(point_count_) && point_body_.size() > std::size_t(point_count_);
   for (const Block& block : blocks_) {

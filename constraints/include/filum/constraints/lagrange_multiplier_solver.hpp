@@ -265,6 +265,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   MatX yt_;  // Yᵀ: the columns y_k = A⁻¹ l_k as rows (assembleGeneralByColumns; grows only)
   VecX diagonal_;
   std::vector<int> bucket_, bucket_start_, cursor_;  // columns to solve, grouped by body
+  MatX batch_;  // right-hand sides solved together (prepareColumns: 3 n_b × kColumnBatch, grows only)
   std::vector<char> body_touched_;
   // The body of each scene point, rebuilt when the scene's layout changes (refine, cut): the
   // O(c²) loops look a term's body up here instead of scanning the bodies (ConstraintProblem::bodies).

@@ -46,6 +46,11 @@ class BlockBandLdlt {
   std::string factor();
   /// In place x := A⁻¹ x (after factor()).
   void solve(Eigen::Ref<VecX> x) const;
+  /// In place X := A⁻¹ X for each column of X, whose block rows before `first` are zero (the
+  /// forward sweep starts there). The same operations on each column as solve(): the same result
+  /// bit for bit. Each block of the factors is read once per block row for all the columns, and
+  /// the columns' dependent chains (row i waits for row i ∓ 1) overlap.
+  void solveColumns(Eigen::Ref<MatX> x, int first = 0) const;
   /// The dense matrix L D Lᵀ of the factors (after factor(); for tests and diagnostics).
   MatX reconstruct() const;
 

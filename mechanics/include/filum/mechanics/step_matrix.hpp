@@ -74,6 +74,9 @@ class StepMatrix final : public BlockInverse, public JacobianAccumulator {
   // BlockInverse
   /// x: the body's 3 n point values (internal DOFs padded with zero force, see the header).
   void solveBlock(int body, Eigen::Ref<VecX> x) const override;
+  /// Through the band's factors once for all the columns (a contiguous band block without
+  /// rank-one terms); column by column otherwise.
+  void solveBlockColumns(int body, Eigen::Ref<MatX> x, int first_point) const override;
   bool coupled() const override { return coupled_; }
   /// x: 3 N point values (internal DOFs padded with zero), or 3 G values in group order (points,
   /// then internal triples: the whole step matrix).

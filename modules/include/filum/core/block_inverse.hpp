@@ -28,6 +28,14 @@ class BlockInverse {
   /// In place x := A_b⁻¹ x for body b's block x (3 n_b values, x0 y0 z0 x1 ...).
   /// Only valid when !coupled().
   virtual void solveBlock(int body, Eigen::Ref<VecX> x) const = 0;
+  /// In place X := A_b⁻¹ X for several right-hand sides at once, one per column of X (3 n_b rows
+  /// each), whose points before `first_point` (of the body) are zero in every column. The
+  /// default solves the columns one by one; an operator whose factors are cheaper to sweep once
+  /// for several columns (a band: each block read once, the columns' sweeps independent) does
+  /// better. The result is the same, bit for bit, as solveBlock's on each column.
+  virtual void solveBlockColumns(int body, Eigen::Ref<MatX> x, int /*first_point*/) const {
+    for (Eigen::Index k = 0; k < x.cols(); ++k) solveBlock(body, x.col(k));
+  }
 
   /// True when the matrix couples bodies (e.g. an implicit step with a force between two
   /// bodies): it is then not block diagonal, and solves must use solveAll on whole vectors.
