@@ -19,7 +19,8 @@ bool startsFrictionPair(const ConstraintRows& rows, int r) {
 void ContactNewton::grow(int c) {
   if (capacity_ >= c) return;  // grows only: a steady step allocates nothing
   capacity_ = 2 * c;
-  for (VecX* v : {&rho_, &wl_, &f_, &delta_, &trial_, &best_, &rhs_, &compliance_, &diagonal_, &w_free_})
+  for (VecX* v : {&rho_, &wl_, &f_, &delta_, &trial_, &best_, &rhs_, &compliance_, &diagonal_, &w_free_, &wl_base_,
+                  &w_delta_})
     v->resize(capacity_);
   lu_.resize(capacity_, capacity_);
   solved_.reserve(capacity_);
@@ -260,6 +261,11 @@ ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const
     wl_.head(c) += compliance_.head(c).cwiseProduct(x) - beta;
     return evaluate(jacobian ? &w : nullptr, rows, x);
   };
+  // Along a step, (W + R)(λ + αΔ) − β = wl(λ) + α (W + R)Δ: one product with W per iteration, not
+  // one per trial of the line search. Updated so, wl_ drifts from the exact product by round-off
+  // (a few ε |W||λ| per iteration, far below any tolerance asked); a residual that looks
+  // converged is measured again with the exact product before the solve stops on it.
+  bool exact = true;  // wl_ is W λ + Rλ − β computed afresh
 
   // The residual is asked to be small against the largest term it balances: |β|∞ or a row's
   // force as an acceleration, |λ_r| (W_rr + R_r) — the round-off of (W + R)λ − β is of that size.
@@ -277,7 +283,14 @@ ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const
   constexpr int kMemory = 8;
   double history[kMemory];
   for (double& h : history) h = merit;
-  while (max_abs_residual_ > threshold() && result.iterations < settings.iterations) {
+  while (true) {
+    if (max_abs_residual_ <= threshold()) {
+      if (exact) break;
+      merit = at(lambda, true);
+      exact = true;
+      continue;
+    }
+    if (result.iterations >= settings.iterations) break;
     ++result.iterations;
     // Levenberg–Marquardt's shift tied to the residual (Yamashita & Fukushima 2001: δ_k ~ |F_k|
     // keeps Newton's local quadratic rate): far from the solution it holds back the steps along
@@ -285,20 +298,25 @@ ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const
     const double relative = max_abs_residual_ / std::max({beta_scale, force_scale_, 1e-300});
     const double shift = std::clamp(relative, settings.damping, settings.max_damping);
     if (!step(shift, rows, result.structured_steps)) break;
+    wl_base_.head(c) = wl_.head(c);
+    w_delta_.head(c).noalias() = w.topLeftCorner(c, c) * delta_.head(c);
+    w_delta_.head(c) += compliance_.head(c).cwiseProduct(delta_.head(c));
     // Armijo: θ(λ + αΔ) <= (1 − 2σα) θ(λ) (θ = |F|², its slope along a Newton step is −2θ).
     double alpha = 1.0;
     bool accepted = false;
     const double reference = *std::max_element(history, history + kMemory);
     for (int k = 0; k <= kHalvings; ++k, alpha *= 0.5) {
       trial_.head(c) = lambda + alpha * delta_.head(c);
-      if (at(trial_.head(c), false) <= reference - 2.0 * kArmijo * alpha * merit) {
+      wl_.head(c) = wl_base_.head(c) + alpha * w_delta_.head(c);
+      if (evaluate(nullptr, rows, trial_.head(c)) <= reference - 2.0 * kArmijo * alpha * merit) {
         accepted = true;
         break;
       }
     }
     if (!accepted) break;
     lambda = trial_.head(c);
-    merit = at(lambda, true);
+    merit = evaluate(&w, rows, lambda);  // wl_ is the accepted trial's
+    exact = false;
     history[result.iterations % kMemory] = merit;
     if (merit < best_merit) {
       best_merit = merit;

@@ -43,7 +43,7 @@
 // largest term it balances, max(|β|∞, max_r |λ_r|(W_rr + R_r)) — the round-off of (W + R)λ − β is
 // of that size, and in a tight knot the contact forces exceed the right-hand side by orders.
 //
-// Cost per iteration: W λ (c²); J's rows as forms in terms of W's rows (O(c): at most three W
+// Cost per iteration: (W + R) Δ (c², one product for all the line search's trials); J's rows as forms in terms of W's rows (O(c): at most three W
 // rows and three unit terms each, not c² entries); the right-hand side's W Δ_I (a column of W per
 // free row that moves); and the step's linear system J_SS Δ_S = r on the |S| rows that are not
 // free: by a dense LU (3 |S|² to form it from the forms, |S|³/3 to factor it), or — given the
@@ -127,6 +127,7 @@ class ContactNewton {
   int capacity_ = 0;
   MatX lu_;    // J_SS + δ I (dense step), factored in place
   VecX w_free_;  // W Δ_I: the free rows' steps seen by W's rows
+  VecX wl_base_, w_delta_;  // (W + R)λ − β at the line search's start, and (W + R)Δ
   const MatX* w_matrix_ = nullptr;  // W of the current solve
   std::vector<int> solved_, free_, pivot_;
   std::vector<char> is_free_;
