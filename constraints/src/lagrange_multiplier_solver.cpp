@@ -12,6 +12,7 @@
 #endif
 
 #include "filum/core/constraint_problem.hpp"
+#include "filum/core/growing_vector.hpp"
 
 namespace filum::constraints {
 
@@ -142,6 +143,7 @@ std::unique_ptr<LagrangeMultiplierSolver> LagrangeMultiplierSolver::fromParams(c
     p.fail("drop_tolerance", "a relative tolerance in [0, 1e-6] (entries of W below round-off, see "
                              "lagrange_multiplier_solver.hpp; larger values change the solution)");
   o.reuse = p.boolean("reuse", o.reuse);
+  o.point_blocks = p.boolean("point_blocks", o.point_blocks);
   const std::string method = p.string("contact_method", "newton");
   if (method == "gauss_seidel")
     o.contact_method = ContactMethod::kGaussSeidel;
@@ -370,6 +372,54 @@ void LagrangeMultiplierSolver::storeEntry(int r, int k, double value) {
   if (r != k && !(std::abs(value) > options_.drop_tolerance * std::sqrt(diagonal_[r] * diagonal_[k]))) return;
   sparse_->triplets.emplace_back(r, k, value);
   ++stats_.nonzeros;
+}
+
+void LagrangeMultiplierSolver::assembleFromPointBlocks(const ConstraintRows& rows) {
+  // W_rk = Σ_{t ∈ r} c_tᵀ Z_{p_t, k} with Z = H_m L_mᵀ over the m points this call's rows touch
+  // (point_inverse_blocks.hpp; H_m their blocks of H, gathered once): column k of Z is
+  // Σ_{t' ∈ k} H_m[:, p_t'] c_t', 36 m multiply-adds; an entry of W 3 per term of its row.
+  const int c = rows.rows();
+  const int terms = c > 0 ? rows.end(c - 1) : 0;
+  resizeGrowing(compact_of_slot_, point_blocks_.held());
+  std::fill(compact_of_slot_.begin(), compact_of_slot_.end(), -1);
+  compact_slots_.clear();
+  resizeGrowing(term_index_, terms);
+  for (int r = 0; r < c; ++r)
+    for (int t = rows.begin(r); t < rows.end(r); ++t) {
+      const int slot = point_blocks_.slot(rows.point(t));
+      if (compact_of_slot_[slot] < 0) {
+        compact_of_slot_[slot] = static_cast<int>(compact_slots_.size());
+        compact_slots_.push_back(slot);
+      }
+      term_index_[t] = 3 * compact_of_slot_[slot];
+    }
+  const int m = static_cast<int>(compact_slots_.size()), height = 3 * m;
+  if (h_m_.rows() < height)  // grows only
+    h_m_.resize(2 * height, 2 * height);
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < m; ++i) h_m_.block<3, 3>(3 * i, 3 * j) = point_blocks_.block(compact_slots_[i], compact_slots_[j]);
+  if (z_.rows() < height || z_.cols() < c)  // grows only, in both dimensions
+    z_.resize(std::max<Eigen::Index>(z_.rows(), 2 * height), std::max<Eigen::Index>(z_.cols(), 2 * c));
+  for (int k = 0; k < c; ++k) {
+    auto z = z_.col(k).head(height);
+    z.setZero();
+    for (int t = rows.begin(k); t < rows.end(k); ++t)
+      z.noalias() += h_m_.block(0, term_index_[t], height, 3) * rows.coeff(t);
+  }
+  for (int k = 0; k < c; ++k) {
+    const double* z = z_.col(k).data();
+    for (int r = k; r < c; ++r) {
+      double sum = 0.0;
+      for (int t = rows.begin(r); t < rows.end(r); ++t) {
+        const Vec3& coeff = rows.coeff(t);
+        const double* zt = z + term_index_[t];
+        sum += coeff[0] * zt[0] + coeff[1] * zt[1] + coeff[2] * zt[2];
+      }
+      w_(r, k) = sum;
+    }
+  }
+  for (int r = 0; r < c; ++r) diagonal_[r] = w_(r, r);
+  stats_.nonzeros += static_cast<long>(c) * (c + 1) / 2;
 }
 
 void LagrangeMultiplierSolver::assembleSeparable(const ConstraintProblem& problem, const ConstraintRows& rows) {
@@ -954,9 +1004,27 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   const bool general_kept = !separable && have_general_ && options_.reuse && inverse.revision() >= 0 &&
                             &inverse == cached_inverse_ && inverse.revision() == cached_revision_ &&
                             cached_size_ == problem.state_size && sameRowsAsLastCall(rows);
+  // With Newton (W dense) through an operator that mixes the axes but not the bodies, W may come
+  // from A⁻¹'s blocks between the rows' points instead (point_inverse_blocks.hpp), kept while A
+  // is: taken when the points not held yet cost fewer solves (3 each) than the rows' columns (1
+  // each). The capstan held reuses its step matrix for ~20 steps (bench_realtime): its contacts
+  // then solve for the few points they move onto.
+  bool by_points = false;
+  if (newton && !separable && !inverse.coupled() && !general_kept && !stats_.sparse && options_.point_blocks && c > 0) {
+    point_blocks_.keepIfUnchanged(inverse, problem);
+    const int missing = point_blocks_.listMissing(rows);
+    by_points = 3 * missing < c && point_blocks_.addMissing(inverse, problem, point_body_);
+    if (by_points) {
+      stats_.point_columns = 3 * missing;
+      body_touched_.assign(problem.bodies.size(), 0);  // (scatterForces solves on these bodies)
+      for (int r = 0; r < c; ++r)
+        for (int t = rows.begin(r); t < rows.end(r); ++t) body_touched_[point_body_[rows.point(t)]] = 1;
+    }
+  }
+  stats_.point_blocks = by_points;
   if (general_kept)
     stats_.reused_columns = c;
-  else
+  else if (!by_points)
     prepareColumns(problem, rows, inverse, separable);
 
   // 2. W = L M⁻¹ Lᵀ (lower triangle), dense or with the entries below round-off dropped —
@@ -985,6 +1053,8 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
     }
     if (separable) {
       assembleSeparable(problem, rows);
+    } else if (by_points) {
+      assembleFromPointBlocks(rows);
     } else {
       assembleGeneral(problem, rows);
     }
@@ -1048,7 +1118,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   constexpr int kColumnSumRows = 16;
   if (factored_form) {
     a.head(u_.size()) += u_;  // kept by the projected Gauss–Seidel sweeps
-  } else if (!separable && !inverse.coupled() && c <= kColumnSumRows) {
+  } else if (!separable && !inverse.coupled() && c <= kColumnSumRows && !by_points) {  // (the columns were solved)
     const auto& bodies = problem.bodies;
     for (int r = 0; r < c; ++r) {
       const Column& col = current_[r];
@@ -1083,7 +1153,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
     cached_size_ = problem.state_size;
   } else {
     previous_index_.clear();
-    have_general_ = lambda_.head(c).allFinite() && inverse.revision() >= 0;
+    have_general_ = lambda_.head(c).allFinite() && inverse.revision() >= 0 && !by_points;  // (no columns kept)
     if (!general_kept) rememberRows(rows);
     cached_inverse_ = &inverse;
     cached_revision_ = inverse.revision();

@@ -81,6 +81,7 @@
 #include <Eigen/Cholesky>
 
 #include "filum/constraints/contact_newton.hpp"
+#include "filum/constraints/point_inverse_blocks.hpp"
 #include "filum/core/constraint_solver.hpp"
 #include "filum/core/params.hpp"
 
@@ -106,6 +107,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     double newton_damping = 1e-9;   // floor of ContactNewton's shift δ (its rows have a unit diagonal)
     int newton_rows = 2000;         // Newton on W kept dense up to this many rows; above, Gauss–Seidel
     bool newton_structured = true;  // Newton's steps through A's band when cheaper (ContactNewton::Structure)
+    bool point_blocks = true;       // Newton's W from A⁻¹'s blocks between touched points when cheaper (point_inverse_blocks.hpp)
     double contact_compliance = 1e-6;   // ε_n: R = ε_n W_rr on normal rows
     double friction_compliance = 1e-6;  // ε_t: R = ε_t W_rr on friction rows
     int contact_iterations = 200;   // projected Gauss–Seidel sweeps at most (contact rows)
@@ -133,6 +135,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     bool converged = true;   // residual <= threshold (always true without contact rows)
     bool fell_back = false;  // Newton did not converge and projected Gauss–Seidel took over
     int structured_steps = 0;  // Newton steps solved through A's band (the others by a dense LU)
+    bool point_blocks = false;  // W formed from A⁻¹'s blocks between touched points (not from per-row columns)
+    int point_columns = 0;      // columns A⁻¹ E_p solved for points newly touched (3 per point)
   };
 
   LagrangeMultiplierSolver();
@@ -145,7 +149,9 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// ("newton", default, or "gauss_seidel"), "newton_iterations" (default 100), "newton_damping"
   /// (the floor of Newton's shift δ, in [0, 1e-3], default 1e-9), "newton_linear_solve" ("auto",
   /// default: each step's system through the step matrix's band when that is cheaper, or "dense":
-  /// always a dense LU; the same steps up to round-off), "contact_compliance" and
+  /// always a dense LU; the same steps up to round-off), "point_blocks" (default true: W from A⁻¹'s
+  /// blocks between the rows' points, kept while A is, when that takes fewer solves than a column
+  /// per row; false: always a column per row), "contact_compliance" and
   /// "friction_compliance" (ε in [0, 1], default 1e-6), "newton_rows" (default 2000),
   /// "contact_iterations" (Gauss–Seidel sweeps, default 200), "contact_tolerance" (relative,
   /// default 1e-6) and
@@ -187,6 +193,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// W dense by column axpys when every column lives on the same bodies; false: not taken.
   bool assembleGeneralByColumns(const ConstraintProblem& problem, const ConstraintRows& rows);
   void storeEntry(int r, int k, double value);
+  /// W dense from A⁻¹'s blocks between the rows' points (point_blocks_, all held).
+  void assembleFromPointBlocks(const ConstraintRows& rows);
   /// a += A⁻¹ Lᵀ λ by scattering Lᵀ λ and one solve per touched body.
   void scatterForces(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a);
   void factorAndSolve();
@@ -266,6 +274,11 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   VecX diagonal_;
   std::vector<int> bucket_, bucket_start_, cursor_;  // columns to solve, grouped by body
   MatX batch_;  // right-hand sides solved together (prepareColumns: 3 n_b × kColumnBatch, grows only)
+  PointInverseBlocks point_blocks_;  // A⁻¹ between touched points, kept while A is
+  // assembleFromPointBlocks (all grow only): the rows' points as held slots in a compact order,
+  // each term's compact coordinate, H between them (3m × 3m) and Z = H_m L_mᵀ (3m × c).
+  std::vector<int> compact_of_slot_, compact_slots_, term_index_;
+  MatX h_m_, z_;
   std::vector<char> body_touched_;
   // The body of each scene point, rebuilt when the scene's layout changes (refine, cut): the
   // O(c²) loops look a term's body up here instead of scanning the bodies (ConstraintProblem::bodies).

@@ -1,0 +1,62 @@
+// PointInverseBlocks: the 3 × 3 blocks (A⁻¹)_pq of a block-diagonal operator's inverse between
+// the points constraint rows touch, kept while the operator does not change.
+//
+// A row is l_r = Σ_{t ∈ r} e_{p_t} ⊗ c_t (at most four points of a spline, two of a rod's
+// segment), so
+//   W_rk = l_rᵀ A⁻¹ l_k = Σ_{t ∈ r} Σ_{t' ∈ k} c_tᵀ (A⁻¹)_{p_t p_t'} c_t'
+// needs A⁻¹ only between touched points: H = E_Pᵀ A⁻¹ E_P over the set P of those points, from
+// the three columns A⁻¹ E_p of each (E_p: the unit vectors of point p's coordinates; H_qp is
+// rows q of them, A being symmetric). That is 3 |P| band solves for the whole set, where W's
+// columns A⁻¹ l_r cost one per row (c of them) — and H stays valid for as long as A does: an
+// implicit step that reuses its matrix for many steps (BlockInverse::revision unchanged) solves
+// only for the points its contacts move onto. Points of different bodies do not couple (the
+// operator is block diagonal: not for coupled operators).
+//
+// Storage: a slot per held point (slot order is arrival order), H as a dense 3P × 3P matrix;
+// everything grows only, up to maxPoints() points.
+#pragma once
+
+#include <vector>
+
+#include "filum/core/block_inverse.hpp"
+#include "filum/core/constraint_problem.hpp"
+#include "filum/core/constraint_rows.hpp"
+#include "filum/core/types.hpp"
+
+namespace filum::constraints {
+
+class PointInverseBlocks {
+ public:
+  /// The most points held (H is then 3·512 square, 19 MB); beyond, rows go through W's columns.
+  static constexpr int maxPoints() { return 512; }
+
+  /// Forgets every block unless `inverse` is the operator, at the revision and on the layout
+  /// of the last call (revision −1: it may change at any call, nothing is kept).
+  void keepIfUnchanged(const BlockInverse& inverse, const ConstraintProblem& problem);
+  /// The points of `rows` not held yet, listed for add(); their count.
+  int listMissing(const ConstraintRows& rows);
+  /// Solves the listed points' columns (3 each, batched per body) and extends H. `point_body`:
+  /// the body of each scene point. False if the points would exceed maxPoints() (nothing added).
+  bool addMissing(const BlockInverse& inverse, const ConstraintProblem& problem, const std::vector<int>& point_body);
+
+  /// The slot of a held point (−1: not held).
+  int slot(int point) const { return point < static_cast<int>(slot_.size()) ? slot_[point] : -1; }
+  /// H's 3 × 3 block between held slots i and j.
+  auto block(int i, int j) const { return h_.block<3, 3>(3 * i, 3 * j); }
+  /// H's three columns of slot j over every held slot (3 held() rows).
+  auto columns(int j) const { return h_.block(0, 3 * j, 3 * held(), 3); }
+  int held() const { return static_cast<int>(points_.size()); }
+
+ private:
+  const BlockInverse* inverse_ = nullptr;
+  long revision_ = -1;
+  long layout_ = -1;
+  Eigen::Index state_size_ = -1;
+  std::vector<int> slot_;     // per scene point: its slot or −1
+  std::vector<int> points_;   // per slot: the point
+  std::vector<int> missing_;  // listMissing's points, in order of first appearance
+  MatX h_;                    // H (3 held() leading rows and columns used)
+  MatX batch_;                // the columns A_b⁻¹ E_p being solved (3 n_b × 8)
+};
+
+}  // namespace filum::constraints
