@@ -1006,20 +1006,33 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
                             cached_size_ == problem.state_size && sameRowsAsLastCall(rows);
   // With Newton (W dense) through an operator that mixes the axes but not the bodies, W may come
   // from A⁻¹'s blocks between the rows' points instead (point_inverse_blocks.hpp), kept while A
-  // is: taken when the points not held yet cost fewer solves (3 each) than the rows' columns (1
-  // each). The capstan held reuses its step matrix for ~20 steps (bench_realtime): its contacts
-  // then solve for the few points they move onto.
+  // is. The capstan held reuses its step matrix for ~20 steps (bench_realtime): its contacts then
+  // solve only for the few points they move onto. Taken when it costs fewer multiply-adds, with
+  // S a solve on the rows' bodies (a band: 9 per block of both sweeps and the pivot, 9 g (2 r + 1)
+  // for g block rows of half bandwidth r; 63 per point otherwise) and m the rows' distinct points:
+  //   columns: c solves,                          c S;
+  //   points:  3 per point not held yet,          3 missing S + 36 m c (Z) + 9 m² (H_m);
+  // W's products (6 c²) are common. Measured (wall ms per simulated ms, columns against points):
+  // the capstan (m ≈ 20 of 170 points, the matrix kept) 0.58 and 0.49; a rod of 100 nodes on a
+  // table (a new matrix every solve, 3 m = 300 solves against c ≈ 600, S doubled by the frames)
+  // 5.8 and 4.9; a 2 m bowel (3 m = 243 solves against c ≈ 390 on a spline's cheaper band)
+  // 2.1 and 2.9 — which this model sends to the columns.
   bool by_points = false;
   if (newton && !separable && !inverse.coupled() && !general_kept && !stats_.sparse && options_.point_blocks && c > 0) {
     point_blocks_.keepIfUnchanged(inverse, problem);
-    const int missing = point_blocks_.listMissing(rows);
-    by_points = 3 * missing < c && point_blocks_.addMissing(inverse, problem, point_body_);
-    if (by_points) {
-      stats_.point_columns = 3 * missing;
-      body_touched_.assign(problem.bodies.size(), 0);  // (scatterForces solves on these bodies)
-      for (int r = 0; r < c; ++r)
-        for (int t = rows.begin(r); t < rows.end(r); ++t) body_touched_[point_body_[rows.point(t)]] = 1;
-    }
+    const double missing = point_blocks_.listMissing(rows), m = point_blocks_.touched();
+    double solve = 0.0;  // S
+    body_touched_.assign(problem.bodies.size(), 0);
+    for (int r = 0; r < c; ++r)
+      for (int t = rows.begin(r); t < rows.end(r); ++t) body_touched_[point_body_[rows.point(t)]] = 1;
+    BandBlocks band;
+    for (std::size_t b = 0; b < problem.bodies.size(); ++b)
+      if (body_touched_[b])
+        solve += inverse.bandBlocks(static_cast<int>(b), band) ? 9.0 * band.groups * (2 * band.range + 1)
+                                                              : 63.0 * problem.bodies[b].pointCount();
+    const double by_columns = solve * c, through_points = 3.0 * missing * solve + 36.0 * m * c + 9.0 * m * m;
+    by_points = through_points < by_columns && point_blocks_.addMissing(inverse, problem, point_body_);
+    if (by_points) stats_.point_columns = 3 * static_cast<int>(missing);  // (body_touched_: for scatterForces)
   }
   stats_.point_blocks = by_points;
   if (general_kept)

@@ -19,14 +19,17 @@ void PointInverseBlocks::keepIfUnchanged(const BlockInverse& inverse, const Cons
 
 int PointInverseBlocks::listMissing(const ConstraintRows& rows) {
   missing_.clear();
+  if (seen_.size() < slot_.size()) seen_.resize(slot_.size(), -1);
+  ++calls_;
+  touched_ = 0;
   for (int r = 0; r < rows.rows(); ++r)
     for (int t = rows.begin(r); t < rows.end(r); ++t) {
       const int p = rows.point(t);
-      if (slot_[p] != -1) continue;
-      slot_[p] = -2;  // listed (marked so that it is listed once)
-      missing_.push_back(p);
+      if (seen_[p] == calls_) continue;
+      seen_[p] = calls_;
+      ++touched_;
+      if (slot_[p] == -1) missing_.push_back(p);
     }
-  for (int p : missing_) slot_[p] = -1;
   return static_cast<int>(missing_.size());
 }
 

@@ -33,8 +33,11 @@ class PointInverseBlocks {
   /// Forgets every block unless `inverse` is the operator, at the revision and on the layout
   /// of the last call (revision −1: it may change at any call, nothing is kept).
   void keepIfUnchanged(const BlockInverse& inverse, const ConstraintProblem& problem);
-  /// The points of `rows` not held yet, listed for add(); their count.
+  /// The points of `rows` not held yet, listed for addMissing(); their count. Also counts the
+  /// distinct points of `rows` (touched()).
   int listMissing(const ConstraintRows& rows);
+  /// The distinct points of the rows of the last listMissing.
+  int touched() const { return touched_; }
   /// Solves the listed points' columns (3 each, batched per body) and extends H. `point_body`:
   /// the body of each scene point. False if the points would exceed maxPoints() (nothing added).
   bool addMissing(const BlockInverse& inverse, const ConstraintProblem& problem, const std::vector<int>& point_body);
@@ -55,6 +58,9 @@ class PointInverseBlocks {
   std::vector<int> slot_;     // per scene point: its slot or −1
   std::vector<int> points_;   // per slot: the point
   std::vector<int> missing_;  // listMissing's points, in order of first appearance
+  std::vector<long> seen_;    // per scene point: the listMissing call that last saw it
+  long calls_ = 0;
+  int touched_ = 0;
   MatX h_;                    // H (3 held() leading rows and columns used)
   MatX batch_;                // the columns A_b⁻¹ E_p being solved (3 n_b × 8)
 };
