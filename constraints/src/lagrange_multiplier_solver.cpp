@@ -394,12 +394,15 @@ void LagrangeMultiplierSolver::assembleFromPointBlocks(const ConstraintRows& row
       term_index_[t] = 3 * compact_of_slot_[slot];
     }
   const int m = static_cast<int>(compact_slots_.size()), height = 3 * m;
-  if (h_m_.rows() < height)  // grows only
-    h_m_.resize(2 * height, 2 * height);
+  if (h_m_.rows() < height) {  // grows only (to at most H's own size)
+    const Eigen::Index size = std::min(2 * height, 3 * PointInverseBlocks::maxPoints());
+    h_m_.resize(size, size);
+  }
   for (int j = 0; j < m; ++j)
     for (int i = 0; i < m; ++i) h_m_.block<3, 3>(3 * i, 3 * j) = point_blocks_.block(compact_slots_[i], compact_slots_[j]);
   if (z_.rows() < height || z_.cols() < c)  // grows only, in both dimensions
-    z_.resize(std::max<Eigen::Index>(z_.rows(), 2 * height), std::max<Eigen::Index>(z_.cols(), 2 * c));
+    z_.resize(std::max<Eigen::Index>(z_.rows(), std::min(2 * height, 3 * PointInverseBlocks::maxPoints())),
+              std::max<Eigen::Index>(z_.cols(), 2 * c));
   for (int k = 0; k < c; ++k) {
     auto z = z_.col(k).head(height);
     z.setZero();
@@ -1007,12 +1010,15 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   // With Newton (W dense) through an operator that mixes the axes but not the bodies, W may come
   // from A⁻¹'s blocks between the rows' points instead (point_inverse_blocks.hpp), kept while A
   // is. The capstan held reuses its step matrix for ~20 steps (bench_realtime): its contacts then
-  // solve only for the few points they move onto. Taken when it costs fewer multiply-adds, with
-  // S a solve on the rows' bodies (a band: 9 per block of both sweeps and the pivot, 9 g (2 r + 1)
-  // for g block rows of half bandwidth r; 63 per point otherwise) and m the rows' distinct points:
+  // solve only for the few points they move onto. Taken when it would cost fewer multiply-adds
+  // with nothing held, S a solve on the rows' bodies (a band: 9 per block of both sweeps and the
+  // pivot, 9 g (2 r + 1) for g block rows of half bandwidth r; 63 per point otherwise; summed
+  // over the bodies, which overstates a solve in a scene of many bodies) and m the rows'
+  // distinct points:
   //   columns: c solves,                          c S;
-  //   points:  3 per point not held yet,          3 missing S + 36 m c (Z) + 9 m² (H_m);
-  // W's products (6 c²) are common. Measured (wall ms per simulated ms, columns against points):
+  //   points:  3 per point,                       3 m S + 36 m c (Z) + 9 m² (H_m);
+  // W's products (6 c²) are common. What is held only saves solves: the choice must not depend
+  // on it, so that a run restored from a saved state takes the same path and repeats bit for bit. Measured (wall ms per simulated ms, columns against points):
   // the capstan (m ≈ 20 of 170 points, the matrix kept) 0.58 and 0.49; a rod of 100 nodes on a
   // table (a new matrix every solve, 3 m = 300 solves against c ≈ 600, S doubled by the frames)
   // 5.8 and 4.9; a 2 m bowel (3 m = 243 solves against c ≈ 390 on a spline's cheaper band)
@@ -1030,7 +1036,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
       if (body_touched_[b])
         solve += inverse.bandBlocks(static_cast<int>(b), band) ? 9.0 * band.groups * (2 * band.range + 1)
                                                               : 63.0 * problem.bodies[b].pointCount();
-    const double by_columns = solve * c, through_points = 3.0 * missing * solve + 36.0 * m * c + 9.0 * m * m;
+    const double by_columns = solve * c, through_points = 3.0 * m * solve + 36.0 * m * c + 9.0 * m * m;
     by_points = through_points < by_columns && point_blocks_.addMissing(inverse, problem, point_body_);
     if (by_points) stats_.point_columns = 3 * static_cast<int>(missing);  // (body_touched_: for scatterForces)
   }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "filum/core/growing_vector.hpp"
+
 namespace filum::constraints {
 
 void PointInverseBlocks::keepIfUnchanged(const BlockInverse& inverse, const ConstraintProblem& problem) {
@@ -15,6 +17,8 @@ void PointInverseBlocks::keepIfUnchanged(const BlockInverse& inverse, const Cons
   if (same) return;
   for (int p : points_) slot_[p] = -1;
   points_.clear();
+  offset_.clear();
+  pool_size_ = 0;
 }
 
 int PointInverseBlocks::listMissing(const ConstraintRows& rows) {
@@ -33,29 +37,51 @@ int PointInverseBlocks::listMissing(const ConstraintRows& rows) {
   return static_cast<int>(missing_.size());
 }
 
+Eigen::Matrix3d PointInverseBlocks::blockFromColumns(int i, int j, const ConstraintProblem& problem,
+                                                     const std::vector<int>& point_body) const {
+  // (A⁻¹)_{p_i p_j} from the columns of the point with the smaller index, whatever order the two
+  // arrived in: the same bits for the same A and points, so W does not depend on the cache's
+  // history (a run restored from a saved state repeats the original bit for bit).
+  const int pi = points_[i], pj = points_[j];
+  if (pi < pj) return blockFromColumns(j, i, problem, point_body).transpose();
+  const BodyBlock& body = problem.bodies[point_body[pj]];
+  const int n3 = 3 * body.pointCount();
+  const double* g = pool_.data() + offset_[j];  // column b of p_j: g[b * n3 + row]
+  Eigen::Matrix3d block;
+  for (int b = 0; b < 3; ++b)
+    for (int a = 0; a < 3; ++a) block(a, b) = g[b * n3 + 3 * (pi - body.offset()) + a];
+  return block;
+}
+
 bool PointInverseBlocks::addMissing(const BlockInverse& inverse, const ConstraintProblem& problem,
                                     const std::vector<int>& point_body) {
   const int old = held(), total = old + static_cast<int>(missing_.size());
   if (total > maxPoints()) return false;
+  // The new points' columns A_b⁻¹ E_p (3 × 3 n_b values each) are kept: H's blocks are read from
+  // the column of the smaller point index of each pair (blockFromColumns).
+  std::size_t stored = pool_size_;
+  for (int p : missing_) stored += 9 * static_cast<std::size_t>(problem.bodies[point_body[p]].pointCount());
+  if (stored > kMaxStored) return false;
   if (h_.rows() < 3 * total) {  // grows only: doubled, the held blocks copied over
     MatX grown(std::min(6 * total, 3 * maxPoints()), std::min(6 * total, 3 * maxPoints()));
     grown.topLeftCorner(3 * old, 3 * old) = h_.topLeftCorner(3 * old, 3 * old);
     h_.swap(grown);
   }
+  resizeGrowing(pool_, stored);
   for (int p : missing_) {
     slot_[p] = held();
     points_.push_back(p);
+    offset_.push_back(pool_size_);
+    pool_size_ += 9 * static_cast<std::size_t>(problem.bodies[point_body[p]].pointCount());
   }
-  // H's new columns: rows of A_b⁻¹ E_p at every held point of the same body, zero elsewhere
-  // (block-diagonal operator). Eight right-hand sides per solve (solveBlockColumns).
+  // The columns, eight right-hand sides per solve (solveBlockColumns), consecutive new points of
+  // one body in a batch.
   constexpr int kBatch = 8;
   const int added = total - old;
-  h_.block(0, 3 * old, 3 * total, 3 * added).setZero();
   for (int first = 0; first < 3 * added;) {
     const int body = point_body[points_[old + first / 3]];
     const BodyBlock& block = problem.bodies[body];
     const int n = block.pointCount(), offset = block.offset();
-    // Consecutive new points of this body, up to kBatch columns.
     int last = first;
     while (last < 3 * added && last - first < kBatch && point_body[points_[old + last / 3]] == body) ++last;
     if (batch_.rows() < 3 * n || batch_.cols() < kBatch)
@@ -70,14 +96,18 @@ bool PointInverseBlocks::addMissing(const BlockInverse& inverse, const Constrain
     }
     inverse.solveBlockColumns(body, x, first_point);
     for (int k = first; k < last; ++k)
-      for (int s = 0; s < total; ++s) {
-        const int q = points_[s];
-        if (point_body[q] == body) h_.block<3, 1>(3 * s, 3 * old + k) = x.col(k - first).segment<3>(3 * (q - offset));
-      }
+      std::copy(x.col(k - first).data(), x.col(k - first).data() + 3 * n,
+                pool_.data() + offset_[old + k / 3] + static_cast<std::size_t>(k % 3) * 3 * n);
     first = last;
   }
-  // The new rows: H is symmetric (A is).
-  h_.block(3 * old, 0, 3 * added, 3 * old) = h_.block(0, 3 * old, 3 * old, 3 * added).transpose();
+  // H's new rows and columns: zero between bodies (a block-diagonal operator), else the block.
+  for (int j = old; j < total; ++j)
+    for (int i = 0; i < total; ++i) {
+      const bool same_body = point_body[points_[i]] == point_body[points_[j]];
+      const Eigen::Matrix3d block = same_body ? blockFromColumns(i, j, problem, point_body) : Eigen::Matrix3d::Zero();
+      h_.block<3, 3>(3 * i, 3 * j) = block;
+      h_.block<3, 3>(3 * j, 3 * i) = block.transpose();
+    }
   return true;
 }
 

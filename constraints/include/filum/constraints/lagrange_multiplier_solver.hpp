@@ -25,7 +25,9 @@
 // Total O(a·n + c² + factorization), a <= c anchors, against the paper's O(c n² + c² n + c³).
 // For other operators (implicit steps mix the coordinates) each row gets its own 3-column
 // solve over the bodies it touches (O(c·n)), or a whole-scene solve if the operator couples
-// bodies, and nothing is kept.
+// bodies; the columns are kept while the operator (its revision) and the rows are unchanged.
+// With contacts by Newton, W may instead come from A⁻¹'s blocks between the rows' points
+// (point_inverse_blocks.hpp), kept while the operator is.
 //
 // The c × c system. Up to `sparse_above` rows (default 64) W is factored densely (LDLᵀ with
 // pivoting, O(c³), negligible at that size). Above, it goes to a sparse LDLᵀ: SuiteSparse
@@ -150,8 +152,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// (the floor of Newton's shift δ, in [0, 1e-3], default 1e-9), "newton_linear_solve" ("auto",
   /// default: each step's system through the step matrix's band when that is cheaper, or "dense":
   /// always a dense LU; the same steps up to round-off), "point_blocks" (default true: W from A⁻¹'s
-  /// blocks between the rows' points, kept while A is, when that takes fewer solves than a column
-  /// per row; false: always a column per row), "contact_compliance" and
+  /// blocks between the rows' points, kept while A is, when that takes fewer multiply-adds than a
+  /// column per row; false: always a column per row), "contact_compliance" and
   /// "friction_compliance" (ε in [0, 1], default 1e-6), "newton_rows" (default 2000),
   /// "contact_iterations" (Gauss–Seidel sweeps, default 200), "contact_tolerance" (relative,
   /// default 1e-6) and

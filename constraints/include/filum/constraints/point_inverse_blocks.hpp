@@ -12,10 +12,17 @@
 // only for the points its contacts move onto. Points of different bodies do not couple (the
 // operator is block diagonal: not for coupled operators).
 //
-// Storage: a slot per held point (slot order is arrival order), H as a dense 3P × 3P matrix;
-// everything grows only, up to maxPoints() points.
+// History. H's block between two points is read from the columns of the one with the smaller
+// point index, whichever arrived first (the columns are kept), so that the same A and points give
+// the same bits whatever the cache held before: a run restored from a saved state repeats the
+// original bit for bit.
+//
+// Storage: a slot per held point (slot order is arrival order), its three columns (9 n_b values),
+// H as a dense 3P × 3P matrix; everything grows only, up to maxPoints() points and kMaxStored
+// column values.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "filum/core/block_inverse.hpp"
@@ -29,6 +36,8 @@ class PointInverseBlocks {
  public:
   /// The most points held (H is then 3·512 square, 19 MB); beyond, rows go through W's columns.
   static constexpr int maxPoints() { return 512; }
+  /// The most column values kept (64 MB); beyond, rows go through W's columns.
+  static constexpr std::size_t kMaxStored = std::size_t{1} << 23;
 
   /// Forgets every block unless `inverse` is the operator, at the revision and on the layout
   /// of the last call (revision −1: it may change at any call, nothing is kept).
@@ -39,7 +48,8 @@ class PointInverseBlocks {
   /// The distinct points of the rows of the last listMissing.
   int touched() const { return touched_; }
   /// Solves the listed points' columns (3 each, batched per body) and extends H. `point_body`:
-  /// the body of each scene point. False if the points would exceed maxPoints() (nothing added).
+  /// the body of each scene point. False if the points would exceed maxPoints() or kMaxStored
+  /// (nothing added).
   bool addMissing(const BlockInverse& inverse, const ConstraintProblem& problem, const std::vector<int>& point_body);
 
   /// The slot of a held point (−1: not held).
@@ -51,6 +61,10 @@ class PointInverseBlocks {
   int held() const { return static_cast<int>(points_.size()); }
 
  private:
+  /// (A⁻¹)_{p_i p_j} for held slots i, j on one body, from the kept columns (see History).
+  Eigen::Matrix3d blockFromColumns(int i, int j, const ConstraintProblem& problem,
+                                   const std::vector<int>& point_body) const;
+
   const BlockInverse* inverse_ = nullptr;
   long revision_ = -1;
   long layout_ = -1;
@@ -63,6 +77,9 @@ class PointInverseBlocks {
   int touched_ = 0;
   MatX h_;                    // H (3 held() leading rows and columns used)
   MatX batch_;                // the columns A_b⁻¹ E_p being solved (3 n_b × 8)
+  std::vector<double> pool_;        // the held points' columns, slot by slot (grows only)
+  std::vector<std::size_t> offset_;  // per slot: where its columns start in pool_
+  std::size_t pool_size_ = 0;        // pool_'s values in use
 };
 
 }  // namespace filum::constraints
