@@ -403,11 +403,18 @@ void LagrangeMultiplierSolver::assembleFromPointBlocks(const ConstraintRows& row
   if (z_.rows() < height || z_.cols() < c)  // grows only, in both dimensions
     z_.resize(std::max<Eigen::Index>(z_.rows(), std::min(2 * height, 3 * PointInverseBlocks::maxPoints())),
               std::max<Eigen::Index>(z_.cols(), 2 * c));
+  // (Written out: the same sum order for every entry whatever the buffers' alignment, which
+  // depends on their history: W must not.)
   for (int k = 0; k < c; ++k) {
-    auto z = z_.col(k).head(height);
-    z.setZero();
-    for (int t = rows.begin(k); t < rows.end(k); ++t)
-      z.noalias() += h_m_.block(0, term_index_[t], height, 3) * rows.coeff(t);
+    double* z = z_.col(k).data();
+    std::fill(z, z + height, 0.0);
+    for (int t = rows.begin(k); t < rows.end(k); ++t) {
+      const Vec3& coeff = rows.coeff(t);
+      const double* h0 = h_m_.col(term_index_[t]).data();
+      const double* h1 = h_m_.col(term_index_[t] + 1).data();
+      const double* h2 = h_m_.col(term_index_[t] + 2).data();
+      for (int i = 0; i < height; ++i) z[i] += h0[i] * coeff[0] + h1[i] * coeff[1] + h2[i] * coeff[2];
+    }
   }
   for (int k = 0; k < c; ++k) {
     const double* z = z_.col(k).data();

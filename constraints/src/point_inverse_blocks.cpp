@@ -15,6 +15,10 @@ void PointInverseBlocks::keepIfUnchanged(const BlockInverse& inverse, const Cons
   state_size_ = problem.state_size;
   if (slot_.size() < static_cast<std::size_t>(problem.dof_points)) slot_.resize(problem.dof_points, -1);
   if (same) return;
+  forget();
+}
+
+void PointInverseBlocks::forget() {
   for (int p : points_) slot_[p] = -1;
   points_.clear();
   offset_.clear();
@@ -23,6 +27,7 @@ void PointInverseBlocks::keepIfUnchanged(const BlockInverse& inverse, const Cons
 
 int PointInverseBlocks::listMissing(const ConstraintRows& rows) {
   missing_.clear();
+  touched_points_.clear();
   if (seen_.size() < slot_.size()) seen_.resize(slot_.size(), -1);
   ++calls_;
   touched_ = 0;
@@ -32,6 +37,7 @@ int PointInverseBlocks::listMissing(const ConstraintRows& rows) {
       if (seen_[p] == calls_) continue;
       seen_[p] = calls_;
       ++touched_;
+      touched_points_.push_back(p);
       if (slot_[p] == -1) missing_.push_back(p);
     }
   return static_cast<int>(missing_.size());
@@ -55,13 +61,22 @@ Eigen::Matrix3d PointInverseBlocks::blockFromColumns(int i, int j, const Constra
 
 bool PointInverseBlocks::addMissing(const BlockInverse& inverse, const ConstraintProblem& problem,
                                     const std::vector<int>& point_body) {
-  const int old = held(), total = old + static_cast<int>(missing_.size());
-  if (total > maxPoints()) return false;
   // The new points' columns A_b⁻¹ E_p (3 × 3 n_b values each) are kept: H's blocks are read from
-  // the column of the smaller point index of each pair (blockFromColumns).
-  std::size_t stored = pool_size_;
-  for (int p : missing_) stored += 9 * static_cast<std::size_t>(problem.bodies[point_body[p]].pointCount());
-  if (stored > kMaxStored) return false;
+  // the column of the smaller point index of each pair (blockFromColumns). Over the limits, the
+  // held points are forgotten and the rows' points taken afresh, so that whether the limits
+  // refuse depends on the rows only, not on what was held (a restored run takes the same path).
+  auto storedWith = [&](std::size_t base) {
+    for (int p : missing_) base += 9 * static_cast<std::size_t>(problem.bodies[point_body[p]].pointCount());
+    return base;
+  };
+  std::size_t stored = storedWith(pool_size_);
+  if (held() + static_cast<int>(missing_.size()) > maxPoints() || stored > kMaxStored) {
+    forget();
+    assignGrowing(missing_, touched_points_);
+    stored = storedWith(0);
+    if (static_cast<int>(missing_.size()) > maxPoints() || stored > kMaxStored) return false;
+  }
+  const int old = held(), total = old + static_cast<int>(missing_.size());
   if (h_.rows() < 3 * total) {  // grows only: doubled, the held blocks copied over
     MatX grown(std::min(6 * total, 3 * maxPoints()), std::min(6 * total, 3 * maxPoints()));
     grown.topLeftCorner(3 * old, 3 * old) = h_.topLeftCorner(3 * old, 3 * old);
@@ -106,7 +121,7 @@ bool PointInverseBlocks::addMissing(const BlockInverse& inverse, const Constrain
       const bool same_body = point_body[points_[i]] == point_body[points_[j]];
       const Eigen::Matrix3d block = same_body ? blockFromColumns(i, j, problem, point_body) : Eigen::Matrix3d::Zero();
       h_.block<3, 3>(3 * i, 3 * j) = block;
-      h_.block<3, 3>(3 * j, 3 * i) = block.transpose();
+      if (i != j) h_.block<3, 3>(3 * j, 3 * i) = block.transpose();
     }
   return true;
 }

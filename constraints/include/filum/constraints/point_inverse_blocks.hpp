@@ -36,7 +36,9 @@ class PointInverseBlocks {
  public:
   /// The most points held (H is then 3·512 square, 19 MB); beyond, rows go through W's columns.
   static constexpr int maxPoints() { return 512; }
-  /// The most column values kept (64 MB); beyond, rows go through W's columns.
+  /// The most column values in use (64 MB; the buffer's capacity may reach twice that); beyond,
+  /// the held points are forgotten, and if the rows' own points still exceed it (or
+  /// maxPoints()) they go through W's columns.
   static constexpr std::size_t kMaxStored = std::size_t{1} << 23;
 
   /// Forgets every block unless `inverse` is the operator, at the revision and on the layout
@@ -48,8 +50,8 @@ class PointInverseBlocks {
   /// The distinct points of the rows of the last listMissing.
   int touched() const { return touched_; }
   /// Solves the listed points' columns (3 each, batched per body) and extends H. `point_body`:
-  /// the body of each scene point. False if the points would exceed maxPoints() or kMaxStored
-  /// (nothing added).
+  /// the body of each scene point. Over maxPoints() or kMaxStored, forgets the held points and
+  /// takes all the rows' points; false if those alone exceed a limit (nothing added).
   bool addMissing(const BlockInverse& inverse, const ConstraintProblem& problem, const std::vector<int>& point_body);
 
   /// The slot of a held point (−1: not held).
@@ -61,6 +63,8 @@ class PointInverseBlocks {
   int held() const { return static_cast<int>(points_.size()); }
 
  private:
+  /// Drops every held point (their columns and blocks).
+  void forget();
   /// (A⁻¹)_{p_i p_j} for held slots i, j on one body, from the kept columns (see History).
   Eigen::Matrix3d blockFromColumns(int i, int j, const ConstraintProblem& problem,
                                    const std::vector<int>& point_body) const;
@@ -72,6 +76,7 @@ class PointInverseBlocks {
   std::vector<int> slot_;     // per scene point: its slot or −1
   std::vector<int> points_;   // per slot: the point
   std::vector<int> missing_;  // listMissing's points, in order of first appearance
+  std::vector<int> touched_points_;  // listMissing's rows' distinct points, in that order
   std::vector<long> seen_;    // per scene point: the listMissing call that last saw it
   long calls_ = 0;
   int touched_ = 0;
