@@ -23,6 +23,7 @@
 #include "filum/timing_summary.hpp"
 #include "filum/visual/instrument_visual.hpp"
 #include "filum/visual/needle_visual.hpp"
+#include "filum/visual/wound_visual.hpp"
 #include "filum/visual/interactive_probe.hpp"
 
 namespace filum::app {
@@ -177,6 +178,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   // The instruments as drawn: shaft and jaws of each.
   std::vector<std::unique_ptr<visual::InstrumentVisual>> instrument_visuals;
   std::vector<std::unique_ptr<visual::NeedleVisual>> needle_visuals;
+  std::vector<std::unique_ptr<visual::WoundVisual>> wound_visuals;
   if (instruments && visuals) {
     for (int i = 0; i < instruments->size(); ++i)
       for (auto part : {visual::InstrumentVisual::Part::kShaft, visual::InstrumentVisual::Part::kJaws}) {
@@ -187,6 +189,12 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
       needle_visuals.push_back(std::make_unique<visual::NeedleVisual>(instruments->needle(k)));
       visuals->addOverlay(*needle_visuals.back());
     }
+    if (instruments->wound())
+      for (int lip = 0; lip < 2; ++lip) {
+        wound_visuals.push_back(std::make_unique<visual::WoundVisual>(*instruments->wound(), lip));
+        visuals->addOverlay(*wound_visuals.back());
+        visuals->hideDefaultSkin(instruments->wound()->lip(lip));
+      }
   }
 
   const long steps = std::lround(duration / dt);

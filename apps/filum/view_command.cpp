@@ -27,6 +27,7 @@
 #include "filum/visual/image_file.hpp"
 #include "filum/visual/instrument_visual.hpp"
 #include "filum/visual/needle_visual.hpp"
+#include "filum/visual/wound_visual.hpp"
 #include "filum/visual/offscreen_renderer.hpp"
 #include "filum/visual/visual_scene.hpp"
 
@@ -126,6 +127,8 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
 
   try {
     visual::VisualScene visuals(*scene);
+    if (instruments && instruments->wound())  // its lips are drawn as slabs (WoundVisual, below)
+      for (int lip = 0; lip < 2; ++lip) visuals.hideDefaultSkin(instruments->wound()->lip(lip));
     visuals.update(scene->state());
     visual::CameraSettings camera;
     if (auto c = visual::readCamera(document, options.scene)) {
@@ -148,6 +151,9 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
           instrument_models.push_back(std::make_unique<visual::InstrumentVisual>(instruments->instrument(i), part));
       for (int k = 0; k < instruments->needleCount(); ++k)
         instrument_models.push_back(std::make_unique<visual::NeedleVisual>(instruments->needle(k)));
+      if (instruments->wound())
+        for (int lip = 0; lip < 2; ++lip)
+          instrument_models.push_back(std::make_unique<visual::WoundVisual>(*instruments->wound(), lip));
       for (auto& m : instrument_models) models.push_back(m.get());
     }
     int selected = -1;          // the instrument the mouse drives (keys 1-9; 0: back to the probe)

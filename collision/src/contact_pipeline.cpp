@@ -398,7 +398,12 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
     const SphereCollisionModel& a = *models_[ma];
     const SphereCollisionModel& b = *models_[mb];
     if (heldInside(ma, k, mb, l)) continue;  // one runs inside the other: their centre lines are meant to be close
-    if (ma == mb && a.mapping().chordDistanceBound(k, l) < a.exclusion()) continue;  // as in beginStep
+    // As in beginStep: a body without self-collision may pass through itself; neighbouring chords
+    // share a sphere (their centre lines always meet there), and nearer ones than the exclusion.
+    if (ma == mb && (!a.selfCollision() ||
+                     (a.mapping().strandOf(k) == a.mapping().strandOf(l) && std::abs(k - l) <= 1) ||
+                     a.mapping().chordDistanceBound(k, l) < a.exclusion()))
+      continue;
     MovingSegment sa{a.centers().row(k).transpose(), a.centers().row(k + 1).transpose(),
                      after_centers_[ma].row(k).transpose(), after_centers_[ma].row(k + 1).transpose()};
     MovingSegment sb{b.centers().row(l).transpose(), b.centers().row(l + 1).transpose(),

@@ -32,6 +32,7 @@ PointTarget PointTarget::fromParams(const Params& p) {
     const Params attach = p.object("target");
     PointTarget t = attached(attach.string("object"), attach.abscissa("abscissa"));
     if (t.object_.empty()) attach.fail("object", "the path of the node holding the target spline");
+    t.offset_ = attach.vec3({"offset", "m"}, Vec3::Zero());
     t.where_ = attach.where("object");
     attach.finish();
     return t;
@@ -68,7 +69,7 @@ Vec3 PointTarget::position(const SceneState& s) const {
     case Kind::kSteered:
       return position_ + velocity_ * (s.time - steered_at_);
     case Kind::kAttached:
-      return point_.map(s.q);
+      return point_.map(s.q) + offset_;
     default:
       return position_;
   }
@@ -105,6 +106,14 @@ Vec3 PointTarget::positionAt(double t) const {
 void PointTarget::addToAnchor(ConstraintRows& rows, double scale) const {
   if (kind_ != Kind::kAttached) return;
   point_.forEachWeight([&](int point, double weight) { rows.addAnchorPoint(point, -scale * weight); });
+}
+
+bool PointTarget::reattach(double abscissa, const Vec3& offset) {
+  if (kind_ != Kind::kAttached) return false;
+  abscissa_ = abscissa;
+  offset_ = offset;
+  point_.moveTo(abscissa);
+  return true;
 }
 
 void PointTarget::addReaction(const Vec3& F, VecX& B) const {

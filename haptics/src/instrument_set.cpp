@@ -86,6 +86,8 @@ std::unique_ptr<InstrumentSet> InstrumentSet::fromScene(const nlohmann::json& do
       set->needles_.push_back(std::make_unique<Needle>(std::move(settings)));
     }
   }
+  if (top.has("wound"))
+    set->wound_ = std::make_unique<Wound>(Wound::settingsFromParams(top.object("wound").withOwner("wound"), scene));
   const std::vector<Params> items = top.objects("instruments");
   if (items.empty()) top.fail("instruments", "a list of at least one instrument ({\"name\", \"type\", \"path\"})");
   for (const Params& item : items) {
@@ -155,12 +157,16 @@ void InstrumentSet::attach(Scene& scene, const std::string& source) {
     const Needle& needle = *needles_[k];
     if (needle.settings().thread.empty()) continue;
     MechanicalState* body = scene.bodyAt(needle.settings().thread);
-    auto field = std::make_unique<ToolForceField>(needle.swageHold());
-    field->setName(needle.name() + " swage");
-    field->setOrigin(source + ": /needles/" + std::to_string(k) + " (on " + body->describe() + ")");
-    body->node()->addComponent(std::move(field));
+    for (const auto& hold : {needle.swageHold(), needle.swageLeadHold()}) {
+      auto field = std::make_unique<ToolForceField>(hold);
+      field->setName(needle.name() + (hold == needle.swageHold() ? " swage" : " swage lead"));
+      field->setOrigin(source + ": /needles/" + std::to_string(k) + " (on " + body->describe() + ")");
+      body->node()->addComponent(std::move(field));
+    }
   }
+  if (wound_) wound_->attach(scene, source + ": /wound");
   scene.init();
+  if (wound_) wound_->bind(scene);
   if (inspected_) {
     // The body's length from s = 0 as it lies at the start, at 1001 abscissas (arc length,
     // geometry/arc_length.hpp; GraspCoverage interpolates linearly between them).
@@ -171,7 +177,13 @@ void InstrumentSet::attach(Scene& scene, const std::string& source) {
   }
   for (auto& needle : needles_) {
     if (needle->settings().thread.empty()) continue;
-    grasp(*needle->swageHold(), *scene.bodyAt(needle->settings().thread)->curve(), needle->settings().abscissa);
+    const CurveBody& thread = *scene.bodyAt(needle->settings().thread)->curve();
+    const double end = needle->settings().abscissa;
+    grasp(*needle->swageHold(), thread, end);
+    // The lead hold kSwageLead along the thread from the swaged end (its arc length at the start).
+    const geometry::ArcLengthParameterization arc(thread.basis(), thread.block(scene.state().q));
+    const double lead = Needle::kSwageLead / arc.lengthAt(1.0);
+    grasp(*needle->swageLeadHold(), thread, std::clamp(end < 0.5 ? end + lead : end - lead, 0.0, 1.0));
     needle->move(needle->pose(), needle->pose(), scene.state().time, dt_);
   }
   // Parts where they are at the start (drawn before the first step; the first beforeStep moves
@@ -225,6 +237,8 @@ void InstrumentSet::beforeStep(Scene& scene) {
     }
   }
   moveNeedles(t);
+  if (wound_)
+    for (const std::string& what : wound_->follow(scene, needles_)) event(t, what);
 }
 
 bool InstrumentSet::catchNeedle(int i, double t) {
@@ -468,6 +482,11 @@ void InstrumentSet::afterStep(const Scene& scene) {
       csv_ << ',' << tip.x() << ',' << tip.y() << ',' << tip.z() << ',' << jaw << ','
            << (tip - before).norm() / dt_ << ',' << force << ',' << (inst.holding() ? 1 : 0);
   }
+  if (wound_) {
+    for (const std::string& what : wound_->afterStep(scene.state())) event(t, what);
+    if (csv_.is_open())
+      csv_ << ',' << wound_->gap(scene.state()) << ',' << wound_->holdingHoles() << ',' << wound_->pressingForce();
+  }
   if (csv_.is_open()) csv_ << '\n';
   countToolContacts(t);
   if (specimen_) measureSpecimen(scene);
@@ -544,6 +563,7 @@ void InstrumentSet::openCsv(const std::string& path) {
   for (const auto& inst : instruments_)
     for (const char* column : {"x", "y", "z", "jaw", "speed", "force", "holding"})
       csv_ << ',' << inst->name() << '_' << column;
+  if (wound_) csv_ << ",wound_gap,wound_holes,needle_tissue_force";
   csv_ << '\n';
 }
 
@@ -582,6 +602,7 @@ void InstrumentSet::measureSpecimen(const Scene& scene) {
 
 void InstrumentSet::writeSummary(const std::string& path) const {
   nlohmann::json out = metrics_.summary();
+  if (wound_) out["wound"] = wound_->summary();
   out["events"] = events_;
   std::ofstream file(path);
   file << out.dump(2) << '\n';

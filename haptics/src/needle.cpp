@@ -35,6 +35,9 @@ Needle::Needle(Settings settings) : settings_(std::move(settings)), pose_(settin
   swage_hold_->touching = false;
   swage_hold_->grasp_stiffness = settings_.stiffness;
   swage_hold_->position = swage(pose_);
+  swage_lead_hold_->touching = false;
+  swage_lead_hold_->grasp_stiffness = settings_.stiffness;
+  swage_lead_hold_->position = swageLead(pose_);
 }
 
 Vec3 Needle::point(const RigidPose& pose, double theta) const {
@@ -46,6 +49,14 @@ void Needle::move(const RigidPose& now, const RigidPose& next, double t, double 
   swage_hold_->position = swage(now);
   swage_hold_->velocity = (swage(next) - swage_hold_->position) / h;
   swage_hold_->time = t;
+  swage_lead_hold_->position = swageLead(now);
+  swage_lead_hold_->velocity = (swageLead(next) - swage_lead_hold_->position) / h;
+  swage_lead_hold_->time = t;
+}
+
+Vec3 Needle::swageLead(const RigidPose& pose) const {
+  // T(0) = dP/dθ / R at θ = 0: the direction v of the needle's frame, turned by the pose.
+  return swage(pose) - kSwageLead * (pose.rotation * Vec3::UnitY());
 }
 
 }  // namespace filum::haptics

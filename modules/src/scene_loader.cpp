@@ -174,6 +174,7 @@ std::unique_ptr<Scene> loadScene(const json& document, const std::string& source
   top.has("instruments");  // read by the applications (haptics/instrument_set.hpp)
   top.has("metrics");  // the instruments' trainee metrics (haptics/instrument_set.hpp)
   top.has("needles");  // the needles the instruments hold (haptics/needle.hpp)
+  top.has("wound");  // the lips a needle punctures (haptics/wound.hpp)
   top.has("navigation");  // catheter and guidewire metrics (haptics/navigation_metrics.hpp)
   top.has("fluoroscopy");  // the C-arm view and its pedal (visual/fluoroscopy_view.hpp, haptics/fluoroscopy_pedal.hpp)
 

@@ -354,16 +354,19 @@ TEST(InstrumentDevices, TwoDevicesEachFeelTheirOwnForceWithinTheirOwnLimits) {
 
 TEST(NeedleHolder, CarriesTheNeedleRigidlyLetsGoAndAnotherTakesItOver) {
   // A 3/8-circle needle of radius 8 mm swaged to the thread's free end (s = 1, at x = 0.1), lying
-  // in the horizontal plane. Holder A closes on its wire from above (0–0.1 s), carries it 2 cm
-  // along +y and 1 cm along −x (0.1–0.5 s), lets go (0.5–0.6 s) and withdraws; holder B closes
-  // on it where it was left (0.7–0.8 s) and carries it 1 cm further along −x (0.8–1.2 s).
+  // in the horizontal plane, leaving the swage along the thread (+x: its centre at (0.1, R, 0), the
+  // swage in direction u = −y from it, so v = ẑ × u = +x). Holder A closes on its wire from above
+  // (0–0.1 s), carries it 2 cm along +y and 1 cm along −x (0.1–0.5 s), lets go (0.5–0.6 s) and
+  // withdraws; holder B closes on it where it was left (0.7–0.8 s) and carries it 1 cm further
+  // along −x (0.8–1.2 s).
   const double R = 0.008, arc = 2.356;
-  const Vec3 centre(kLength - R, 0, 0);
+  const Vec3 centre(kLength, R, 0);
   const double mid = arc / 2;  // the wire's middle, where the jaws close
-  const Vec3 wire = centre + R * Vec3(std::cos(mid), std::sin(mid), 0);
-  // The jaws' plane (shaft down, opening direction n) must cross the wire: n ⊥ its tangent, with
-
-  const double roll = -std::atan2(std::cos(mid), std::sin(mid));
+  // P(θ) = c + R (cos θ u + sin θ v) = c + R (sin θ, −cos θ, 0).
+  const Vec3 wire = centre + R * Vec3(std::sin(mid), -std::cos(mid), 0);
+  // The jaws' plane (shaft down, opening along n) must cross the wire: this needle is the one with
+  // u = +x turned by −90° about z, so the jaws' roll is that one's, −atan2(cos θ, sin θ), plus π/2.
+  const double roll = -std::atan2(std::cos(mid), std::sin(mid)) + M_PI / 2;
   auto holder = [&](const std::string& name, const json& path) {
     return json{{"name", name}, {"type", "NeedleHolder"}, {"path", path}};
   };
@@ -384,7 +387,7 @@ TEST(NeedleHolder, CarriesTheNeedleRigidlyLetsGoAndAnotherTakesItOver) {
   json document = threadScene(json::array({holder("A", path_a), holder("B", path_b)}));
   document["needles"] = json::array({{{"name", "needle"}, {"radius", R}, {"arc", arc}, {"wire_radius", 2.5e-4},
                                       {"center", {centre.x(), centre.y(), centre.z()}}, {"normal", {0, 0, 1}},
-                                      {"start", {1, 0, 0}}, {"thread", "thread"}, {"abscissa", 1.0}}});
+                                      {"start", {0, -1, 0}}, {"thread", "thread"}, {"abscissa", 1.0}}});
   InstrumentRun run(document);
   const Needle& needle = run.instruments->needle(0);
   const Vec3 swage0 = needle.swage(needle.pose());

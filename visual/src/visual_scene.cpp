@@ -98,6 +98,17 @@ VisualScene::VisualScene(Scene& scene) : scene_(scene), layout_revision_(scene.l
   }
 }
 
+void VisualScene::hideDefaultSkin(const MechanicalState& body) {
+  for (std::size_t i = 0; i < models_.size(); ++i) {
+    const bool is_default = std::any_of(defaults_.begin(), defaults_.end(),
+                                        [&](const std::unique_ptr<VisualModel>& d) { return d.get() == models_[i]; });
+    if (!is_default || !models_[i]->bound() || &models_[i]->body() != &body) continue;
+    models_.erase(models_.begin() + static_cast<std::ptrdiff_t>(i));
+    names_.erase(names_.begin() + static_cast<std::ptrdiff_t>(i));
+    return;
+  }
+}
+
 void VisualScene::addObstacleDefaults(Scene& scene) {
   std::set<const collision::Obstacle*> drawn;
   for (const VisualModel* model : models_)

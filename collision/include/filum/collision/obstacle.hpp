@@ -12,6 +12,10 @@
 #include "filum/collision/obstacle_shape.hpp"
 #include "filum/core/params.hpp"
 
+namespace filum {
+class CurveBody;
+}
+
 namespace filum::collision {
 
 struct SurfaceSample {
@@ -40,6 +44,11 @@ class Obstacle : public CollisionModel {
   /// What it looks like at time t, without moving it (a frame drawn at a state's time, after a
   /// restore): a scripted obstacle's shape on its path; the others' current one.
   virtual ObstacleShape shapeAt(double /*t*/) const { return shape(); }
+
+  /// Whether the curve `body` passes through the obstacle at abscissa s, so that its sphere there
+  /// makes no contact with it: a thread in the holes a needle made in a wound's lips
+  /// (haptics/wound_pad.hpp). No by default.
+  virtual bool passesThrough(const CurveBody& /*body*/, double /*s*/) const { return false; }
 
   /// Coulomb friction coefficient μ of thread contacts on this obstacle ("friction" in the scene
   /// file); nullopt: the pipeline's.

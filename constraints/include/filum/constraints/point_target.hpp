@@ -1,8 +1,11 @@
 // PointTarget: what a point constraint holds the curve point P(s) to (paper Fig. 1a, [Lenoir talk 2008]):
 //   fixed      X(t) = X0              "target": [x, y, z]   (default: where P(s) starts)
 //   scripted   X(t) = path(t)         "path": [{"time": t, "position": [x, y, z]}, ...]
-//   attached   X(t) = P2(s2, t) = Σ_k b_k(s2) q2_k, a point of another spline (or of the same
-//              spline at another abscissa)  "target": {"object": "node/path", "abscissa": s2}.
+//   attached   X(t) = P2(s2, t) + o = Σ_k b_k(s2) q2_k + o, a point of another spline (or of the
+//              same spline at another abscissa), with an optional constant offset o (m) — a hole a
+//              needle made in a wound's lip beside the lip's edge curve (haptics/wound.hpp): it
+//              translates with the point, its turn neglected; Ẋ and Ẍ are the point's
+//              "target": {"object": "node/path", "abscissa": s2, "offset": [x, y, z]}.
 //   steered    X(t) = x + u (t − t0), set between steps by an application (steer(): a tool moved
 //              by a script or a device, Python's Scene.steer), not by the scene file.
 // Fixed and scripted targets are known functions of time whose acceleration Ẍ(t) goes into the
@@ -73,6 +76,14 @@ class PointTarget {
   /// Adds −scale·b_k(s2) on the attached body's points to the current anchor (nothing unless
   /// attached): the target's share of the rows Dᵀ(P(s) − X).
   void addToAnchor(ConstraintRows& rows, double scale = 1.0) const;
+  /// Moves an attached target to the abscissa s2 ∈ [0, 1] of its body, offset by o (m): X = P2(s2) + o.
+  /// Returns false, changing nothing, for a target that is not attached.
+  bool reattach(double abscissa, const Vec3& offset);
+  /// The attached target's offset o (m; zero unless attached with one).
+  const Vec3& offset() const { return offset_; }
+  /// The attached target's abscissa s2 on its body.
+  double attachedAbscissa() const { return abscissa_; }
+
   /// Applies the reaction −F at the attached point: B_k −= b_k(s2) F (nothing unless attached).
   void addReaction(const Vec3& F, VecX& B) const;
 
@@ -92,6 +103,7 @@ class PointTarget {
   std::string object_;     // attached: node path
   std::string where_;      // attached: JSON place of "object" (file: /pointer)
   double abscissa_ = 0.0;  // attached: s2, as read (bound to the body by init)
+  Vec3 offset_ = Vec3::Zero();  // attached: o
   BodyPoint point_;        // attached: the point s2 of the target body
 };
 

@@ -3,6 +3,7 @@
 //
 //   "instruments": [ {"name": ..., "type": "Grasper", "path": [...], ...}, ... ],
 //   "needles": [ {"name": ..., "radius": ..., "thread": ..., ...}, ... ]   (needle.hpp; optional)
+//   "wound": {"lips": [...], "thread": ..., ...}   (wound.hpp; optional: the lips the needles puncture)
 //   "metrics": {"idle_speed": 0.005,     (m/s; optional)
 //               "specimen": {"body": "tube", "kept_end": 0},  (optional: the length cut off the
 //                 body's end kept in the patient, s = kept_end, is the specimen removed)
@@ -34,6 +35,7 @@
 #include "filum/haptics/instrument.hpp"
 #include "filum/haptics/needle.hpp"
 #include "filum/haptics/trainee_metrics.hpp"
+#include "filum/haptics/wound.hpp"
 
 namespace filum::haptics {
 
@@ -75,6 +77,8 @@ class InstrumentSet {
   int needleCount() const { return static_cast<int>(needles_.size()); }
   const Needle& needle(int k) const { return *needles_[k]; }
   const Instrument& instrument(int i) const { return *instruments_[i]; }
+  /// The scene's wound, or nullptr.
+  const Wound* wound() const { return wound_.get(); }
   const TraineeMetrics& metrics() const { return metrics_; }
 
   /// Whether s lies in a span of `body` coagulated by bipolar forceps.
@@ -114,6 +118,7 @@ class InstrumentSet {
   std::vector<std::unique_ptr<Instrument>> instruments_;
   std::vector<std::unique_ptr<HapticSession>> devices_;   // per instrument; null: scripted
   std::vector<std::unique_ptr<Needle>> needles_;
+  std::unique_ptr<Wound> wound_;
   /// A needle holder's jaws closed on a needle's wire: takes it (true), else false.
   bool catchNeedle(int i, double t);
   /// The needles where their holders have them over the coming step.

@@ -3,7 +3,8 @@
 // jaws (instrument.hpp) catch it where they close on its wire and carry it rigidly; let go, it
 // stays where it is (it rests in tissue or on a drape: no dynamics of its own); another holder
 // may take it over (a regrasp). The thread's end follows the swage through the coupling of
-// haptics/tool.hpp (a stiff hold on the thread's point).
+// haptics/tool.hpp (a stiff hold on the thread's point, and a second one 2 mm along the thread that
+// keeps it leaving the swage along the needle's axis).
 //
 //   "needles": [{"name": "needle", "radius": 0.008, "arc": 2.356, "wire_radius": 2.5e-4,
 //                "center": [x, y, z], "normal": [x, y, z], "start": [x, y, z],
@@ -64,6 +65,14 @@ class Needle {
 
   /// The swage's hold on the thread (a ToolState the coupling force field reads).
   const std::shared_ptr<ToolState>& swageHold() const { return swage_hold_; }
+  /// The swage clamps the thread's direction too: the thread leaves it along the needle's axis. A
+  /// second hold, on the thread kSwageLead (m) of its length from its end, to the point that far
+  /// behind the swage on the wire's tangent line there, X = P(0) − kSwageLead T(0) (T the unit
+  /// tangent towards the tip); so the thread follows the needle's track through tissue.
+  const std::shared_ptr<ToolState>& swageLeadHold() const { return swage_lead_hold_; }
+  static constexpr double kSwageLead = 2e-3;
+  /// X of the lead hold for the pose `pose`.
+  Vec3 swageLead(const RigidPose& pose) const;
 
   /// Which instrument holds it (−1: none) and where, relative to that instrument's jaws.
   int holder = -1;
@@ -74,6 +83,7 @@ class Needle {
   Settings settings_;
   RigidPose pose_;
   std::shared_ptr<ToolState> swage_hold_ = std::make_shared<ToolState>();
+  std::shared_ptr<ToolState> swage_lead_hold_ = std::make_shared<ToolState>();
 };
 
 }  // namespace filum::haptics
