@@ -1,5 +1,5 @@
 // bench_applications: the surgical applications in wall time per simulated millisecond — the
-// shipped salpingectomy.json, intestine.json, catheter.json and coil.json played whole with their
+// shipped salpingectomy.json, intestine.json, catheter.json, coil.json and stitch.json played whole with their
 // instruments or navigation metrics (as `filum run` plays them: the instruments' drivers, jaws and
 // metrics between the steps), and the
 // small bowel's cost against its length: a bowel of 0.5, 1, 2 and 4 m (radius 1.5 cm, soft
@@ -173,6 +173,8 @@ BENCHMARK_CAPTURE(application, intestine, std::string("intestine.json"))
 BENCHMARK_CAPTURE(application, catheter, std::string("catheter.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(application, coil, std::string("coil.json"))
+    ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(application, stitch, std::string("stitch.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK(bowelLength)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(wireThroughCatheter)->UseRealTime()->Unit(benchmark::kMillisecond);

@@ -12,17 +12,24 @@ WoundPad::WoundPad(double width, double thickness, double edge_radius)
 void WoundPad::setEdges(std::vector<Station> lip0, std::vector<Station> lip1) {
   edges_[0] = std::move(lip0);
   edges_[1] = std::move(lip1);
-  // Every point of a slab lies within width + thickness of its edge's stations' box.
-  const double reach = width_ + thickness_ + edge_radius_;
-  lower_ = Vec3::Constant(std::numeric_limits<double>::infinity());
-  upper_ = -lower_;
+  // Each slab's box: the corners of its cross-section at every station, x = P + (u − r_e) ô −
+  // (v − r_e) n̂ for u ∈ {0, width}, v ∈ {0, thickness} (between stations the slab is interpolated
+  // from them: within the box up to the frames' turn over a station's length, below the
+  // contact reach queries add).
   speed_ = 0.0;
-  for (const auto& edge : edges_)
-    for (const Station& st : edge) {
-      lower_ = lower_.cwiseMin(st.point - Vec3::Constant(reach));
-      upper_ = upper_.cwiseMax(st.point + Vec3::Constant(reach));
+  for (int k = 0; k < 2; ++k) {
+    lower_[k] = Vec3::Constant(std::numeric_limits<double>::infinity());
+    upper_[k] = -lower_[k];
+    for (const Station& st : edges_[k]) {
+      for (const double u : {0.0, width_})
+        for (const double v : {0.0, thickness_}) {
+          const Vec3 x = st.point + (u - edge_radius_) * st.outward - (v - edge_radius_) * st.normal;
+          lower_[k] = lower_[k].cwiseMin(x);
+          upper_[k] = upper_[k].cwiseMax(x);
+        }
       speed_ = std::max(speed_, st.velocity.norm());
     }
+  }
 }
 
 void WoundPad::setPassage(const CurveBody* thread, std::vector<std::pair<double, double>> spans) {
@@ -38,11 +45,12 @@ bool WoundPad::passesThrough(const CurveBody& body, double s) const {
 }
 
 bool WoundPad::sample(const Vec3& x, double max_distance, collision::SurfaceSample& out) const {
-  if ((x - lower_).minCoeff() < -max_distance || (upper_ - x).minCoeff() < -max_distance) return false;
   collision::SurfaceSample lip;
   bool found = false;
-  for (const auto& edge : edges_) {
-    if (!sampleLip(edge, x, max_distance, lip)) continue;
+  for (int k = 0; k < 2; ++k) {
+    // Farther than max_distance outside the slab's box: farther from the slab too.
+    if ((x - lower_[k]).minCoeff() < -max_distance || (upper_[k] - x).minCoeff() < -max_distance) continue;
+    if (!sampleLip(edges_[k], x, max_distance, lip)) continue;
     if (!found || lip.distance < out.distance) out = lip;
     found = true;
   }

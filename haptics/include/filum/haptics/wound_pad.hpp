@@ -57,7 +57,7 @@ class WoundPad final : public collision::Obstacle {
 
   double width_, thickness_, edge_radius_;
   std::vector<Station> edges_[2];
-  Vec3 lower_ = Vec3::Zero(), upper_ = Vec3::Zero();  // the stations' box, widened by the slab's reach
+  Vec3 lower_[2] = {Vec3::Zero(), Vec3::Zero()}, upper_[2] = {Vec3::Zero(), Vec3::Zero()};  // each slab's box
   double speed_ = 0.0;
   const CurveBody* thread_ = nullptr;
   std::vector<std::pair<double, double>> spans_;
