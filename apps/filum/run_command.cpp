@@ -62,7 +62,9 @@ void finishInstruments(haptics::InstrumentSet& instruments, const std::string& d
   log << instruments.writeDeviceLogs(directory);
   instruments.writeSummary(directory + "/metrics.json");
   for (const std::string& e : instruments.events()) log << "  " << e << '\n';
-  log << instruments.metrics().text() << "  -> metrics.csv, metrics.json\n";
+  log << instruments.metrics().text();
+  if (instruments.wound()) log << instruments.wound()->text();
+  log << "  -> metrics.csv, metrics.json\n";
 }
 
 /// The threads that tore (ForceField::tearsAt), one line each; the instruments' events list them too.
@@ -192,8 +194,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     if (instruments->wound())
       for (int lip = 0; lip < 2; ++lip) {
         wound_visuals.push_back(std::make_unique<visual::WoundVisual>(*instruments->wound(), lip));
-        visuals->addOverlay(*wound_visuals.back());
-        visuals->hideDefaultSkin(instruments->wound()->lip(lip));
+        visuals->drawBodyWith(instruments->wound()->lip(lip), *wound_visuals.back(), "wound_lip_" + std::to_string(lip));
       }
   }
 

@@ -55,8 +55,11 @@ class RunVisual {
   /// Draws `model` too in the pictures (not in the meshes): a model that is not a scene
   /// component, such as the haptic tool's sphere. It must outlive this object.
   void addOverlay(visual::VisualModel& model) { overlays_.push_back(&model); }
-  /// The body is drawn by an overlay: no default skin for it.
-  void hideDefaultSkin(const MechanicalState& body) { visuals_.hideDefaultSkin(body); }
+  /// The body drawn by `model` instead of its default skin, in pictures and meshes
+  /// (visual::VisualScene::drawBodyWith).
+  void drawBodyWith(const MechanicalState& body, visual::VisualModel& model, const std::string& name) {
+    visuals_.drawBodyWith(body, model, name);
+  }
   /// Final OBJ/PLY, video and contact sheet (idempotent).
   void finish(const Scene& scene);
   /// What was written, for the log ("meshes.pvd, video.avi, ...").

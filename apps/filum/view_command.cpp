@@ -127,8 +127,12 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
 
   try {
     visual::VisualScene visuals(*scene);
-    if (instruments && instruments->wound())  // its lips are drawn as slabs (WoundVisual, below)
-      for (int lip = 0; lip < 2; ++lip) visuals.hideDefaultSkin(instruments->wound()->lip(lip));
+    std::vector<std::unique_ptr<visual::WoundVisual>> wound_models;  // a wound's lips, drawn as slabs
+    if (instruments && instruments->wound())
+      for (int lip = 0; lip < 2; ++lip) {
+        wound_models.push_back(std::make_unique<visual::WoundVisual>(*instruments->wound(), lip));
+        visuals.drawBodyWith(instruments->wound()->lip(lip), *wound_models.back(), "wound_lip_" + std::to_string(lip));
+      }
     visuals.update(scene->state());
     visual::CameraSettings camera;
     if (auto c = visual::readCamera(document, options.scene)) {
@@ -151,9 +155,6 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
           instrument_models.push_back(std::make_unique<visual::InstrumentVisual>(instruments->instrument(i), part));
       for (int k = 0; k < instruments->needleCount(); ++k)
         instrument_models.push_back(std::make_unique<visual::NeedleVisual>(instruments->needle(k)));
-      if (instruments->wound())
-        for (int lip = 0; lip < 2; ++lip)
-          instrument_models.push_back(std::make_unique<visual::WoundVisual>(*instruments->wound(), lip));
       for (auto& m : instrument_models) models.push_back(m.get());
     }
     int selected = -1;          // the instrument the mouse drives (keys 1-9; 0: back to the probe)

@@ -16,7 +16,8 @@ Holder A holds the wire 10° from the swage and turns the needle 125° over 0.2-
 in through the left lip's skin, out of its cut face, into the right lip's cut face and out of its
 skin. Holder B takes the wire 10° from the tip at 1.75-1.85 s, A lets go at 2.0 s, and B turns the
 needle 135° more over 2.1-3.1 s, until the swage is out, then draws it PULL_Y along +y and PULL_Z
-up by 4.5 s. The thread's tail is held by an assistant who brings its end towards the wound by 2.5 s.
+up by 4.5 s. The thread leaves the swage along the needle's axis; its tail is held by an assistant who brings
+its end towards the wound by 2.5 s.
 
     python3 apps/tools/make_stitch.py [--out apps/scenes]
 """
@@ -27,7 +28,7 @@ import os
 
 R, ARC, BITE_Y = 0.008, 2.356, 0.006
 ZC = math.sqrt(R * R - BITE_Y * BITE_Y)
-BETA = math.radians(80.0)  # the swage's angle at the start: the tip at −145°, 0.7 mm above the skin
+BETA = math.radians(85.0)  # the swage's angle at the start: the tip at −140°, 0.15 mm above the skin
 HINGE_DX = -0.006
 LENGTH, PULL_Y, PULL_Z = 0.15, 0.04, 0.09
 TAIL = [0.04, -0.03, 0.01]
@@ -98,8 +99,12 @@ def scene():
     a, b = paths()
     sw = wire(BETA)
     keys = lambda path: ",\n".join("                 " + json.dumps(k) for k in path)
+    # The thread leaves the swage along the needle's axis, −T(0) = (sin β, −cos β) in (y, z): the
+    # swage's two holds (needle.hpp) start without a pull.
+    back = [0.0, math.sin(BETA), -math.cos(BETA)]
     start = f"[0, {sw[1]:.7f}, {sw[2]:.7f}]"
-    tail_start = f"[{LENGTH}, {sw[1]:.7f}, {sw[2]:.7f}]"
+    tail = [sw[i] + LENGTH * back[i] for i in range(3)]
+    tail_start = f"[{tail[0]:.7f}, {tail[1]:.7f}, {tail[2]:.7f}]"
     u = [0.0, math.cos(BETA), math.sin(BETA)]
     return f'''// A stitch through a wound (written by apps/tools/make_stitch.py): a 3/8-circle needle (radius 8 mm)
 // swaged to 15 cm of 3-0 polypropylene is driven through both lips of a skin incision by two needle

@@ -76,8 +76,8 @@ void findObstacleContacts(const SphereCollisionModel& model, int model_index, co
   for (int k = 0; k < model.sphereCount(); ++k) {
     // Reach of the sphere during the step: d − r <= margin + (|v_k| + u) h.
     const double reach = settings.margin + (speed(model, k) + surface_speed) * settings.time_step;
-    if (!obstacle.sample(center(model, k), r + reach, sample)) continue;
     if (obstacle.passesThrough(model.curve(), model.mapping().abscissas()[k])) continue;
+    if (!obstacle.sample(center(model, k), r + reach, sample)) continue;
     if (sample.distance - r > reach) continue;
     Contact c;
     c.model_a = model_index;

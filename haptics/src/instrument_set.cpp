@@ -166,7 +166,7 @@ void InstrumentSet::attach(Scene& scene, const std::string& source) {
   }
   if (wound_) wound_->attach(scene, source + ": /wound");
   scene.init();
-  if (wound_) wound_->bind(scene);
+  if (wound_) wound_->bind(scene, needles_);
   if (inspected_) {
     // The body's length from s = 0 as it lies at the start, at 1001 abscissas (arc length,
     // geometry/arc_length.hpp; GraspCoverage interpolates linearly between them).

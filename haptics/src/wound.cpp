@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "filum/collision/sphere_collision_model.hpp"
 #include "filum/constraints/sliding_point_constraint.hpp"
 #include "filum/core/curve_body.hpp"
 #include "filum/core/node.hpp"
@@ -14,7 +15,7 @@ namespace filum::haptics {
 
 namespace {
 
-std::string text(double x) {
+std::string number(double x) {
   std::ostringstream out;
   out.precision(4);
   out << x;
@@ -56,6 +57,10 @@ Wound::Settings Wound::settingsFromParams(const Params& p, const Scene& scene) {
   s.holes_per_lip = p.integer("holes_per_lip", 1, kMaxHolesPerLip, s.holes_per_lip, "sliding points made per lip");
   s.friction = p.nonNegative({"friction", "N·s/m"}, s.friction);
   s.engage_distance = p.positive({"engage_distance", "m"}, s.engage_distance);
+  if (p.has({"targets", "m"})) {
+    const Points targets = p.points({"targets", "m"}, 1, kMaxTargets, "points marked on the skin");
+    for (int i = 0; i < targets.rows(); ++i) s.targets.push_back(targets.row(i).transpose());
+  }
   p.finish();
   return s;
 }
@@ -63,6 +68,7 @@ Wound::Settings Wound::settingsFromParams(const Params& p, const Scene& scene) {
 Wound::Wound(Settings settings) : settings_(std::move(settings)) {}
 
 void Wound::attach(Scene& scene, const std::string& origin) {
+  origin_ = origin;
   MechanicalState* thread = scene.bodyAt(settings_.thread);
   for (int k = 0; k < 2; ++k) {
     for (int i = 0; i < settings_.holes_per_lip; ++i) {
@@ -84,18 +90,41 @@ void Wound::attach(Scene& scene, const std::string& origin) {
   scene.root().addComponent(std::move(pad));
 }
 
-void Wound::bind(const Scene& scene) {
+void Wound::bind(const Scene& scene, const std::vector<std::unique_ptr<Needle>>& needles) {
   for (int k = 0; k < 2; ++k) lips_[k] = scene.bodyAt(settings_.lips[k])->curve();
   thread_ = scene.bodyAt(settings_.thread)->curve();
-  // ô = ± n̂ × t̂ away from the other lip, decided at the middle of each lip at the start.
+  if (!scene.collisionPipeline())
+    throw SceneError(origin_, "a \"collision\" pipeline (ContactPipeline) for the skin to hold the thread and the lips "
+                              "to meet", "none");
+  std::vector<collision::SphereCollisionModel*> models;
+  scene.root().collect(models);
+  if (std::none_of(models.begin(), models.end(),
+                   [&](const collision::SphereCollisionModel* m) { return &m->curve() == thread_; }))
+    throw SceneError(origin_ + "/thread", "a SphereCollisionModel on the thread '" + settings_.thread +
+                                              "' (the skin is an obstacle to it)", "none");
+  carries_.assign(needles.size(), 0);
+  for (std::size_t j = 0; j < needles.size(); ++j) {
+    const MechanicalState* body = needles[j]->settings().thread.empty() ? nullptr : scene.bodyAt(needles[j]->settings().thread);
+    carries_[j] = body && body->curve() == thread_;
+  }
+  if (std::find(carries_.begin(), carries_.end(), 1) == carries_.end())
+    throw SceneError(origin_ + "/thread", "a needle carrying the thread '" + settings_.thread +
+                                              "' (\"needles\": [{..., \"thread\": \"" + settings_.thread + "\"}])",
+                     "none");
+  // ô = ± n̂ × t̂ away from the other lip, decided at the middle of each lip at the start; the skin's
+  // normal must cross each edge (|n̂ × t̂| >= ½ along it) for the slab to have a side.
   const SceneState& st = scene.state();
   for (int k = 0; k < 2; ++k) {
+    for (int i = 0; i <= 8; ++i)
+      if (settings_.normal.cross(lips_[k]->tangent(st.q, i / 8.0).normalized()).norm() < 0.5)
+        throw SceneError(origin_ + "/normal", "the skin's normal across the lips' edges (at 30° or more to them)",
+                         "one within 30° of lip '" + settings_.lips[k] + "' at s = " + number(i / 8.0));
     const Vec3 p = lips_[k]->position(st.q, 0.5), t = lips_[k]->tangent(st.q, 0.5).normalized();
     const Vec3 other = lips_[1 - k]->position(st.q, 0.5);
     side_[k] = settings_.normal.cross(t).dot(p - other) >= 0.0 ? 1.0 : -1.0;
   }
   gap_start_ = gap_min_ = gap_last_ = gap(st);
-  updatePad(st, {});
+  updatePad(st, needles);
 }
 
 void Wound::updatePad(const SceneState& st, const std::vector<std::unique_ptr<Needle>>& needles) {
@@ -115,33 +144,36 @@ void Wound::updatePad(const SceneState& st, const std::vector<std::unique_ptr<Ne
     }
   }
   pad_->setEdges(std::move(edges[0]), std::move(edges[1]));
-  // The thread in the tissue: between its holding holes, and on to its swaged end while a needle
-  // has holes its swage has not reached (the thread follows it in the tissue), widened by the margin.
-  double lo = 2.0, hi = -1.0;
-  for (std::size_t i = 0; i < slots_.size(); ++i) {
-    if (slot_used_[i] != 1) continue;
-    const double s = slots_[i]->abscissa(st);
-    lo = std::min(lo, s);
-    hi = std::max(hi, s);
-  }
-  if (hi >= lo)
-    for (const Hole& h : holes_)
-      if (h.slot == -1 && h.needle < static_cast<int>(needles.size())) {
-        const double end = needles[h.needle]->settings().abscissa;
-        lo = std::min(lo, end);
-        hi = std::max(hi, end);
-      }
-  // |P'| at the middle of the thread: metres of thread per unit of abscissa.
+  // The thread in the tissue, pass by pass (metres of thread to abscissa by |P'| at its middle):
+  // - around each hole holding it, by the margin;
+  // - between consecutive holding holes of one needle, unless the first is an exit out of the skin
+  //   and the second an entry into it (the thread between two stitches lies on the skin);
+  // - from a needle's last holding hole on to its swaged end while a hole it made is still on its
+  //   track ahead of the swage (the thread follows the needle in the tissue), unless that last
+  //   hole is an exit out of the skin;
+  // - the swaged end itself, which goes where the needle goes (the needle does not collide).
   const double per_metre = 1.0 / std::max(thread_->tangent(st.q, 0.5).norm(), 1e-12);
+  const double margin = WoundPad::kHoleMargin * per_metre;
   std::vector<std::pair<double, double>> spans;
-  if (hi >= lo) spans.emplace_back(lo - WoundPad::kHoleMargin * per_metre, hi + WoundPad::kHoleMargin * per_metre);
-  // The thread's end in the swage goes where the needle goes (the needle does not collide): its
-  // swaged length and the margin.
-  for (const auto& needle : needles) {
-    if (needle->settings().thread != settings_.thread) continue;
-    const double end = needle->settings().abscissa;
-    const double reach = (Needle::kSwageLead + WoundPad::kHoleMargin) * per_metre;
-    spans.emplace_back(end - reach, end + reach);
+  auto span = [&](double a, double b) { spans.emplace_back(std::min(a, b) - margin, std::max(a, b) + margin); };
+  for (std::size_t j = 0; j < needles.size(); ++j) {
+    if (!carries_[j]) continue;
+    const Hole* last = nullptr;
+    bool ahead = false;
+    for (const Hole& h : holes_) {
+      if (h.needle != static_cast<int>(j)) continue;
+      if (h.slot == kPending && onNeedleTrack(st, h, *needles[j])) ahead = true;
+      if (h.slot < 0 || slot_used_[h.slot] != 1) continue;
+      const double s = slots_[h.slot]->abscissa(st);
+      span(s, s);
+      const bool new_stitch = last && !last->entry && last->face == Face::kSkin && h.entry && h.face == Face::kSkin;
+      if (last && !new_stitch) span(slots_[last->slot]->abscissa(st), s);
+      last = &h;
+    }
+    const double end = needles[j]->settings().abscissa;
+    if (ahead && last && !(!last->entry && last->face == Face::kSkin)) span(slots_[last->slot]->abscissa(st), end);
+    const double reach = Needle::kSwageLead * per_metre;
+    span(end - reach, end + reach);
   }
   pad_->setPassage(thread_, std::move(spans));
 }
@@ -163,6 +195,17 @@ Wound::LipPoint Wound::locate(const SceneState& st, int k, const Vec3& x) const 
   return l;
 }
 
+Wound::Face Wound::nearestFace(const LipPoint& l, Vec3* inward) const {
+  const double to[4] = {l.depth, l.across, settings_.thickness - l.depth, settings_.width - l.across};
+  const Face faces[4] = {Face::kSkin, Face::kCut, Face::kBottom, Face::kFar};
+  const Vec3 normals[4] = {-l.normal, l.outward, l.normal, -l.outward};
+  int nearest = 0;
+  for (int i = 1; i < 4; ++i)
+    if (std::abs(to[i]) < std::abs(to[nearest])) nearest = i;
+  if (inward) *inward = normals[nearest];
+  return faces[nearest];
+}
+
 Vec3 Wound::crossing(const SceneState& st, int k, Vec3 a, Vec3 b, bool inside_a) const {
   // Bisection on [a, b]: 40 halvings leave 2⁻⁴⁰ of a step's motion (~0.1 mm), below round-off of
   // the positions (1e-16 of 0.1 m).
@@ -177,20 +220,41 @@ Vec3 Wound::holePosition(const SceneState& st, const Hole& h) const {
   return lips_[h.lip]->position(st.q, h.lip_abscissa) + h.offset;
 }
 
-void Wound::makeHole(const SceneState& st, int k, const Vec3& at, bool entry, int needle,
-                     std::vector<std::string>& events) {
+namespace {
+const char* faceName(Wound::Face f) {
+  switch (f) {
+    case Wound::Face::kSkin: return "skin";
+    case Wound::Face::kCut: return "cut face";
+    case Wound::Face::kBottom: return "underside";
+    default: return "far side";
+  }
+}
+}  // namespace
+
+int Wound::makeHole(const SceneState& st, int k, const Vec3& at, bool entry, Face face, int needle, double depth,
+                    std::vector<std::string>& events) {
+  const LipPoint l = locate(st, k, at);
   Hole h;
   h.lip = k;
-  h.lip_abscissa = locate(st, k, at).s;
+  h.lip_abscissa = l.s;
   h.offset = at - lips_[k]->position(st.q, h.lip_abscissa);
   h.entry = entry;
+  h.face = face;
   h.time = st.time;
   h.needle = needle;
-  h.from_edge = locate(st, k, at).across;
+  h.from_edge = l.across;
+  h.depth = depth;
+  h.made_at = at;
+  h.edge_tangent = l.tangent;
+  for (const Vec3& target : settings_.targets) {
+    const double d = (target - at).norm();
+    if (h.target_distance < 0.0 || d < h.target_distance) h.target_distance = d;
+  }
   holes_.push_back(h);
-  events.push_back(std::string("the needle ") + (entry ? "punctured" : "came out of") + " lip " +
-                   std::to_string(k) + " ('" + settings_.lips[k] + "') at s = " + text(h.lip_abscissa) + ", " +
-                   text(1e3 * h.from_edge) + " mm from its edge");
+  events.push_back(std::string("the needle ") + (entry ? "went into" : "came out of") + " lip " + std::to_string(k) +
+                   " ('" + settings_.lips[k] + "') through its " + faceName(face) + " at s = " + number(h.lip_abscissa) +
+                   ", " + number(1e3 * h.from_edge) + " mm from its cut face");
+  return static_cast<int>(holes_.size()) - 1;
 }
 
 double Wound::pressingForce(int needle) const {
@@ -217,23 +281,80 @@ std::vector<std::string> Wound::afterStep(const SceneState& st) {
     const bool holding = slots_[i]->active() && !slots_[i]->releasedAt(st);
     if (slot_used_[i] == 1 && !holding) {
       slot_used_[i] = 2;  // used, and let go for good
-      events.push_back("the thread slid out of " + slots_[i]->name() + " at s = " + text(slots_[i]->abscissa(st)));
+      events.push_back("the thread slid out of " + slots_[i]->name() + " at s = " + number(slots_[i]->abscissa(st)));
     }
   }
   return events;
 }
 
+std::vector<Wound::Stitch> Wound::stitches() const {
+  // An entry into the skin, then (by the same needle) the next exit out of the skin: a stitch when
+  // the two are in different lips. Both holes must not have been withdrawn.
+  std::vector<Stitch> out;
+  for (std::size_t i = 0; i < holes_.size(); ++i) {
+    const Hole& a = holes_[i];
+    if (!a.entry || a.face != Face::kSkin || a.slot == kWithdrawn) continue;
+    double depth = 0.0;
+    for (std::size_t j = i + 1; j < holes_.size(); ++j) {
+      const Hole& b = holes_[j];
+      if (b.needle != a.needle || b.slot == kWithdrawn) continue;
+      if (!b.entry) depth = std::max(depth, b.depth);
+      if (b.entry && b.face == Face::kSkin) break;  // a new stitch began
+      if (b.entry || b.face != Face::kSkin) continue;
+      if (b.lip != a.lip) {
+        Stitch s;
+        s.entry = static_cast<int>(i);
+        s.exit = static_cast<int>(j);
+        s.entry_bite = a.from_edge;
+        s.exit_bite = b.from_edge;
+        s.depth = depth;
+        // The line between the holes as made, in the skin's plane (⊥ n̂), against the entry's edge
+        // tangent: acos |t̂·ℓ̂| ∈ [0, π/2].
+        Vec3 line = b.made_at - a.made_at;
+        line -= line.dot(settings_.normal) * settings_.normal;
+        s.angle = line.norm() > 0.0 ? std::acos(std::min(1.0, std::abs(a.edge_tangent.dot(line.normalized())))) : 0.0;
+        out.push_back(s);
+      }
+      break;
+    }
+  }
+  return out;
+}
+
 nlohmann::json Wound::summary() const {
   nlohmann::json holes = nlohmann::json::array();
-  for (const Hole& h : holes_)
-    holes.push_back({{"lip", settings_.lips[h.lip]}, {"kind", h.entry ? "entry" : "exit"}, {"time", h.time},
-                     {"from_edge", h.from_edge}, {"holds_thread", h.slot >= 0}});
+  for (const Hole& h : holes_) {
+    nlohmann::json hole = {{"lip", settings_.lips[h.lip]}, {"kind", h.entry ? "entry" : "exit"},
+                           {"face", faceName(h.face)}, {"time", h.time}, {"from_cut_face", h.from_edge},
+                           {"held_thread", h.slot >= 0}, {"holds_thread", h.slot >= 0 && slot_used_[h.slot] == 1},
+                           {"withdrawn", h.slot == kWithdrawn}};
+    if (!h.entry) hole["depth"] = h.depth;
+    if (h.target_distance >= 0.0) hole["target_distance"] = h.target_distance;
+    holes.push_back(hole);
+  }
+  nlohmann::json stitches = nlohmann::json::array();
+  for (const Stitch& s : this->stitches())
+    stitches.push_back({{"entry_bite", s.entry_bite}, {"exit_bite", s.exit_bite}, {"depth", s.depth},
+                        {"angle_deg", s.angle * 180.0 / M_PI}});
   return {{"holes", holes},
+          {"stitches", stitches},
           {"holding", holdingHoles()},
           {"peak_needle_force", peak_force_},
           {"gap_start", gap_start_},
           {"gap_min", gap_min_},
           {"gap_end", gap_last_}};
+}
+
+std::string Wound::text() const {
+  std::ostringstream out;
+  out.precision(3);
+  out << "  wound: " << holes_.size() << " holes (" << holdingHoles() << " hold the thread), gap " << 1e3 * gap_start_
+      << " -> " << 1e3 * gap_last_ << " mm (smallest " << 1e3 * gap_min_ << "), peak needle force " << peak_force_
+      << " N\n";
+  for (const Stitch& s : stitches())
+    out << "    stitch: bites " << 1e3 * s.entry_bite << " / " << 1e3 * s.exit_bite << " mm, " << 1e3 * s.depth
+        << " mm deep, at " << s.angle * 180.0 / M_PI << " deg to the wound\n";
+  return out.str();
 }
 
 double Wound::gap(const SceneState& st) const {
@@ -252,6 +373,7 @@ std::vector<std::string> Wound::follow(Scene& scene, const std::vector<std::uniq
   for (std::size_t j = 0; j < needles.size(); ++j) {
     const Needle& needle = *needles[j];
     Tip& tip = tips_[j];
+    const int index = static_cast<int>(j);
     const Vec3 x = needle.tip(needle.pose());
     if (!tip.started) {
       tip.started = true;
@@ -261,26 +383,35 @@ std::vector<std::string> Wound::follow(Scene& scene, const std::vector<std::uniq
       continue;
     }
     tip.force = 0.0;
-    if (tip.in_lip >= 0 && !locate(st, tip.in_lip, x).inside) {
-      makeHole(st, tip.in_lip, crossing(st, tip.in_lip, tip.previous, x, true), false, static_cast<int>(j), events);
-      tip.in_lip = -1;
+    if (tip.in_lip >= 0) {
+      const LipPoint now = locate(st, tip.in_lip, x);
+      if (now.inside) {
+        tip.deepest = std::max(tip.deepest, now.depth);
+      } else {
+        const Vec3 at = crossing(st, tip.in_lip, tip.previous, x, true);
+        const Face face = nearestFace(locate(st, tip.in_lip, at), nullptr);
+        const int exit = makeHole(st, tip.in_lip, at, false, face, index, tip.deepest, events);
+        // Drawn back out the way it went in: neither hole is a passage for the thread.
+        if (tip.entry_hole >= 0) {
+          Hole& in = holes_[tip.entry_hole];
+          if (in.face == face && (holePosition(st, in) - at).norm() <= settings_.engage_distance) {
+            in.slot = kWithdrawn;
+            holes_[exit].slot = kWithdrawn;
+            events.push_back("the needle was drawn back out of lip " + std::to_string(tip.in_lip) +
+                             " where it went in: no passage");
+          }
+        }
+        tip.in_lip = -1;
+        tip.entry_hole = -1;
+      }
     }
     if (tip.pressing >= 0 && !locate(st, tip.pressing, x).inside) tip.pressing = -1;  // drawn back
     if (tip.in_lip < 0 && tip.pressing < 0) {
       for (int k = 0; k < 2; ++k) {
-        const LipPoint now = locate(st, k, x);
-        if (!now.inside) continue;
+        if (!locate(st, k, x).inside) continue;
         tip.pressing = k;
         tip.entered = crossing(st, k, tip.previous, x, false);
-        // The entered face: the boundary nearest to e in the slab's coordinates, its inward normal.
-        const LipPoint e = locate(st, k, tip.entered);
-        const double to_top = e.depth, to_cut = e.across, to_bottom = settings_.thickness - e.depth,
-                     to_far = settings_.width - e.across;
-        const double nearest = std::min({to_top, to_cut, to_bottom, to_far});
-        tip.inward = nearest == to_top ? Vec3(-e.normal)
-                     : nearest == to_cut ? e.outward
-                     : nearest == to_bottom ? e.normal
-                                            : Vec3(-e.outward);
+        tip.face = nearestFace(locate(st, k, tip.entered), &tip.inward);
         break;
       }
     }
@@ -289,8 +420,9 @@ std::vector<std::string> Wound::follow(Scene& scene, const std::vector<std::uniq
       tip.force = settings_.indentation_stiffness * std::max(0.0, (x - tip.entered).dot(tip.inward));
       peak_force_ = std::max(peak_force_, tip.force);
       if (tip.force >= settings_.puncture_force) {
-        makeHole(st, tip.pressing, tip.entered, true, static_cast<int>(j), events);
+        tip.entry_hole = makeHole(st, tip.pressing, tip.entered, true, tip.face, index, 0.0, events);
         tip.in_lip = tip.pressing;
+        tip.deepest = locate(st, tip.in_lip, x).depth;
         tip.pressing = -1;
         tip.force = 0.0;
       }
@@ -302,11 +434,19 @@ std::vector<std::string> Wound::follow(Scene& scene, const std::vector<std::uniq
   return events;
 }
 
+bool Wound::onNeedleTrack(const SceneState& st, const Hole& h, const Needle& needle) const {
+  // In the needle's frame (u, v, w): within engage_distance of its circle of radius R, radially and
+  // out of its plane.
+  const Vec3 local = needle.pose().inverse().apply(holePosition(st, h));
+  return std::abs(std::hypot(local.x(), local.y()) - needle.settings().radius) <= settings_.engage_distance &&
+         std::abs(local.z()) <= settings_.engage_distance;
+}
+
 double Wound::threadAtHole(const SceneState& st, const Needle& needle, const Vec3& X) const {
   // The thread's end at the swage, s_e, and the side the thread runs to from it.
   const double end = needle.settings().abscissa, toward = end < 0.5 ? 1.0 : -1.0;
-  // Samples over 5 mm of thread from the swage (the hole is within one step's motion of it, ~0.1 mm),
-  // the nearest refined by one projection on the tangent, s += tᵀ(X − P) / |t|².
+  // Samples over 5 mm of thread from the swage (the hole is kEngageLag behind it), the nearest
+  // refined by one projection on the tangent, s += tᵀ(X − P) / |t|².
   const double window = 5e-3 / std::max(thread_->tangent(st.q, end).norm(), 1e-12);
   double best_s = end, best = (thread_->position(st.q, end) - X).squaredNorm();
   for (int k = 1; k <= 100; ++k) {
@@ -318,36 +458,32 @@ double Wound::threadAtHole(const SceneState& st, const Needle& needle, const Vec
     }
   }
   const Vec3 t = thread_->tangent(st.q, best_s);
-  const double nearest = best_s + t.dot(X - thread_->position(st.q, best_s)) / t.squaredNorm();
-  // The thread near its end need not yet lie along the needle's track (its end only follows the
-  // swage's hold): then its nearest point is the end itself. The hole is behind the swage by
-  // |X − swage|; so much thread at least has passed it.
-  const double passed = end + toward * (needle.swage(needle.pose()) - X).norm() /
-                                  std::max(thread_->tangent(st.q, end).norm(), 1e-12);
-  return std::clamp(toward > 0.0 ? std::max(nearest, passed) : std::min(nearest, passed), 0.0, 1.0);
+  return std::clamp(best_s + t.dot(X - thread_->position(st.q, best_s)) / t.squaredNorm(), 0.0, 1.0);
 }
 
 void Wound::engage(Scene& scene, const std::vector<std::unique_ptr<Needle>>& needles, std::vector<std::string>& events) {
   for (Hole& h : holes_) {
-    if (h.slot != -1) continue;
+    if (h.slot != kPending || !carries_[h.needle]) continue;
     const SceneState& st = scene.state();
-    const Vec3 X = holePosition(st, h);
-    // The needle runs along its own arc through the holes it made: once the hole is behind the
-    // swage (its angle in the needle's plane, from the swage towards the tip, below 0), the thread
-    // runs through it.
     const Needle& needle = *needles[h.needle];
+    const Vec3 X = holePosition(st, h);
+    // The hole's angle in the needle's plane, from the swage towards the tip; the thread runs
+    // through it once that falls below −kEngageLag / R between two steps (the swage kEngageLag
+    // past it) while the hole is on the needle's track.
     const Vec3 local = needle.pose().inverse().apply(X);
-    if (std::atan2(local.y(), local.x()) >= 0.0) continue;
+    const double angle = std::atan2(local.y(), local.x()), lag = -kEngageLag / needle.settings().radius;
+    const bool passed = h.angle >= lag && angle < lag;
+    h.angle = angle;
+    if (!passed || !onNeedleTrack(st, h, needle)) continue;
     const double s_h = threadAtHole(st, needle, X);
     const double miss = (thread_->position(st.q, s_h) - X).norm();
     if (!(s_h > 0.0 && s_h < 1.0) || miss > settings_.engage_distance) {
-      h.slot = -2;
+      h.slot = kMissed;
       events.push_back("the needle's swage passed a hole of lip " + std::to_string(h.lip) + " but the thread is " +
-                       text(1e3 * miss) + " mm from it (more than engage_distance): the hole does not hold the thread");
+                       number(1e3 * miss) + " mm from it (more than engage_distance): the hole does not hold the thread");
       continue;
     }
-    const geometry::ClosestPoint cp{s_h, thread_->position(st.q, s_h), miss};
-    int slot = -2;  // none free
+    int slot = kNoSlot;
     for (int i = 0; i < settings_.holes_per_lip; ++i) {
       const int index = h.lip * settings_.holes_per_lip + i;
       if (!slot_used_[index]) {
@@ -357,27 +493,27 @@ void Wound::engage(Scene& scene, const std::vector<std::unique_ptr<Needle>>& nee
     }
     h.slot = slot;
     if (slot < 0) {
-      h.slot = -3;
-      events.push_back("the thread passed a hole of lip " + std::to_string(h.lip) +
-                       " but all its " + std::to_string(settings_.holes_per_lip) +
+      events.push_back("the thread passed a hole of lip " + std::to_string(h.lip) + " but all its " +
+                       std::to_string(settings_.holes_per_lip) +
                        " sliding points are used (raise \"holes_per_lip\"): it does not hold the thread");
       continue;
     }
     slot_used_[slot] = 1;
     constraints::SlidingPointConstraint& c = *slots_[slot];
     c.target().reattach(h.lip_abscissa, h.offset);
+    c.rearm();
     c.setActive(true);
     // s(t) starts where the thread is in the hole, ṡ at its sliding rate: ġ's tangential part
     // vanishes, tᵀ(Ṗ(s) + t ṡ − Ẋ) = 0.
     SceneState next = st;
-    const Vec3 t = thread_->tangent(st.q, cp.s);
-    const Vec3 pdot = thread_->position(st.v, cp.s);  // Ṗ(s) = Σ b_j(s) q̇_j
+    const Vec3 t = thread_->tangent(st.q, s_h);
+    const Vec3 pdot = thread_->position(st.v, s_h);  // Ṗ(s) = Σ b_j(s) q̇_j
     const Vec3 xdot = lips_[h.lip]->position(st.v, h.lip_abscissa);
-    next.q[c.extraIndex()] = cp.s;
+    next.q[c.extraIndex()] = s_h;
     next.v[c.extraIndex()] = t.dot(xdot - pdot) / t.squaredNorm();
     scene.setState(next);
-    events.push_back("the thread runs through the hole in lip " + std::to_string(h.lip) +
-                     " at s = " + text(cp.s) + " (" + c.name() + ")");
+    events.push_back("the thread runs through the hole in lip " + std::to_string(h.lip) + " at s = " + number(s_h) +
+                     " (" + c.name() + ")");
   }
 }
 

@@ -97,3 +97,43 @@ INSTANTIATE_TEST_SUITE_P(Responses, NoPassThrough, ::testing::Values("penalty", 
 
 }  // namespace
 }  // namespace filum::collision
+
+namespace filum::collision {
+namespace {
+
+TEST(MissedContact, NeighbouringChordsAndABodyWithoutSelfCollisionAreNotPassThroughs) {
+  // Two straight threads 4 cm apart at rest, beside each other: nothing moves through anything.
+  // The first has spheres exactly 2 r apart, so that the bound on two neighbouring chords' distance
+  // along it, 2 h = 4 r, equals the exclusion 4 r: they share a sphere, their centre lines meet
+  // there, and the end-of-step check (missedContact) must skip them as the contact search does.
+  // The second has no self-collision: its own chords are never checked. Before both were skipped
+  // the first step faulted ("a thread passed through another").
+  for (const bool self : {true, false}) {
+    const double r = 1e-4;
+    const auto thread = [&](const std::string& name, double y, bool self_collision) {
+      return nlohmann::json{
+          {"name", name},
+          {"components", nlohmann::json::array(
+                             {{{"type", "DynamicSpline"},
+                               {"control_points", {{"from", {0, y, 0}}, {"to", {0.1, y, 0}}, {"count", 20}}},
+                               {"radius", r}, {"density", 910}},
+                              {{"type", "GreenLagrangeStretching"}, {"youngs_modulus", 2e9}},
+                              {{"type", "SphereCollisionModel"}, {"spacing", 2 * r}, {"self_collision", self_collision}},
+                              {{"type", "FixedPointConstraint"}, {"abscissa", 0.0}},
+                              {{"type", "FixedPointConstraint"}, {"abscissa", 1.0}}})}};
+    };
+    const nlohmann::json document{
+        {"name", "missed contact"}, {"dt", 1e-3}, {"duration", 0.01}, {"gravity", {0, 0, 0}},
+        {"integrator", {{"type", "ImplicitEuler"}}},
+        {"collision", {{"type", "ContactPipeline"}, {"response", "unilateral"}}},
+        {"nodes", nlohmann::json::array({thread("a", 0.0, self), thread("b", 0.04, false)})}};
+    auto scene = loadScene(document, "missed contact", app::makeFactory());
+    for (int k = 0; k < 10; ++k) {
+      const StepReport report = scene->step();
+      ASSERT_TRUE(report.ok) << "self-collision " << self << ", step " << k << ": " << report.message;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace filum::collision

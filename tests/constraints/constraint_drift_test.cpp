@@ -97,6 +97,19 @@ std::vector<Case> cases() {
                           {"target", {{"object", "thread"}, {"abscissa", 1.0}}}}};
     out.push_back({"fixed point attached to another thread", {a, b}});
   }
+  {
+    // The same with a constant offset o: X = P2(s2) + o (a wound's hole beside its lip's edge,
+    // point_target.hpp), g linear in q as before: the same bound. b starts where it is held.
+    ConstraintThread a, b;
+    a.control_points = b.control_points = 6;
+    a.length = b.length = 0.05;
+    b.name = "second";
+    b.origin = {0.05, 0.002, 0.0};
+    a.constraints = {fixedStart};
+    b.constraints = {json{{"type", "FixedPointConstraint"}, {"abscissa", 0.0},
+                          {"target", {{"object", "thread"}, {"abscissa", 1.0}, {"offset", {0.0, 0.002, 0.0}}}}}};
+    out.push_back({"fixed point attached to another thread with an offset", {a, b}});
+  }
   return out;
 }
 

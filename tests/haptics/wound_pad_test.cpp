@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include "filum/collision/register_components.hpp"
 #include "filum/constraints/register_components.hpp"
@@ -98,12 +99,18 @@ TEST(Wound, EveryFieldIsRefusedAtItsJsonPath) {
   const json thread = {{"type", "DynamicSpline"}, {"control_points", {{"from", {0, 0, 0.01}}, {"to", {0.1, 0, 0.01}}, {"count", 10}}},
                        {"radius", 1e-4}, {"density", 910}};
   const json good_wound = {{"lips", {"left", "right"}}, {"thread", "suture"}, {"edge_radius", 0.001}};
+  json thread_components = json::array({thread, {{"type", "SphereCollisionModel"}, {"spacing", 2e-4}, {"self_collision", false}}});
+  // A needle carrying the thread, lying away from the wound.
+  const json needle = {{"name", "needle"}, {"radius", 0.008}, {"arc", 2.356}, {"center", {0.1, 0.0, 0.018}},
+                       {"normal", {0, 1, 0}}, {"start", {-1, 0, 0}}, {"thread", "suture"}, {"abscissa", 1.0}};
   auto document = [&](const json& wound) {
     return json{{"name", "wound test"}, {"dt", 1e-3}, {"duration", 0.01}, {"gravity", {0, 0, 0}},
-                {"nodes", json::array({{{"name", "suture"}, {"components", json::array({thread})}},
+                {"collision", {{"type", "ContactPipeline"}, {"response", "unilateral"}}},
+                {"nodes", json::array({{{"name", "suture"}, {"components", thread_components}},
                                        {{"name", "left"}, {"components", json::array({lip})}},
                                        {{"name", "right"}, {"components", json::array({lip2})}}})},
                 {"wound", wound},
+                {"needles", json::array({needle})},
                 {"instruments", json::array({{{"name", "holder"}, {"type", "NeedleHolder"}, {"collide", false},
                                               {"path", json::array({{{"time", 0}, {"position", {0, 0, 0.05}}, {"direction", {0, 0, -1}}}})}}})}};
   };
@@ -138,6 +145,11 @@ TEST(Wound, EveryFieldIsRefusedAtItsJsonPath) {
       {"holes_per_lip", 0, "/wound/holes_per_lip"},
       {"holes_per_lip", 65, "/wound/holes_per_lip"},
       {"friction", -1.0, "/wound/friction"},
+      {"engage_distance", 0.0, "/wound/engage_distance"},
+      {"thickness", 0.0, "/wound/thickness"},
+      {"indentation_stiffness", -5.0, "/wound/indentation_stiffness"},
+      {"targets", json::array({json::array({0, 0})}), "/wound/targets"},
+      {"normal", json::array({1, 0, 0}), "/wound/normal"},  // along the lips' edges: no side
       {"colour", 1.0, "/wound/colour"},
   };
   for (const Case& c : cases) {
@@ -150,6 +162,29 @@ TEST(Wound, EveryFieldIsRefusedAtItsJsonPath) {
       ADD_FAILURE() << c.key << " = " << c.value.dump() << " was accepted";
     } catch (const SceneError& e) {
       EXPECT_NE(std::string(e.what()).find(c.where), std::string::npos) << c.key << ": " << e.what();
+    }
+  }
+  // What the wound needs from the rest of the scene: a needle carrying its thread, a collision
+  // model on the thread (the loader always makes a collision pipeline: the factory's default).
+  struct Missing {
+    const char* what;
+    std::function<void(json&)> remove;
+    const char* where;
+  };
+  const std::vector<Missing> missing = {
+      {"no needle carries the thread", [](json& d) { d["needles"][0]["thread"] = "left"; }, "/wound/thread"},
+      {"no collision model on the thread",
+       [](json& d) { d["nodes"][0]["components"].erase(1); }, "/wound/thread"},
+  };
+  for (const Missing& m : missing) {
+    json doc = document(good_wound);
+    m.remove(doc);
+    auto scene = loadScene(doc, "wound test", factory);
+    try {
+      InstrumentSet::fromScene(doc, "wound test", *scene);
+      ADD_FAILURE() << m.what << " was accepted";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(m.where), std::string::npos) << m.what << ": " << e.what();
     }
   }
 }

@@ -98,15 +98,20 @@ VisualScene::VisualScene(Scene& scene) : scene_(scene), layout_revision_(scene.l
   }
 }
 
-void VisualScene::hideDefaultSkin(const MechanicalState& body) {
+void VisualScene::drawBodyWith(const MechanicalState& body, VisualModel& model, const std::string& name) {
   for (std::size_t i = 0; i < models_.size(); ++i) {
     const bool is_default = std::any_of(defaults_.begin(), defaults_.end(),
                                         [&](const std::unique_ptr<VisualModel>& d) { return d.get() == models_[i]; });
     if (!is_default || !models_[i]->bound() || &models_[i]->body() != &body) continue;
     models_.erase(models_.begin() + static_cast<std::ptrdiff_t>(i));
     names_.erase(names_.begin() + static_cast<std::ptrdiff_t>(i));
-    return;
+    break;
   }
+  models_.push_back(&model);
+  std::string unique = safeName(name);
+  for (int k = 2; std::find(names_.begin(), names_.end(), unique) != names_.end(); ++k)
+    unique = safeName(name) + "_" + std::to_string(k);
+  names_.push_back(unique);
 }
 
 void VisualScene::addObstacleDefaults(Scene& scene) {

@@ -88,6 +88,9 @@ class SlidingPointConstraint final : public Constraint, public TargetConstraint 
   bool hasTargetPoint() const override { return true; }
   /// P(s(t)) − X(t).
   Vec3 gap(const SceneState& s) const;
+  /// Forgets a release by a cut end reaching the hole (a point held again elsewhere: a wound's hole
+  /// engaging a parked sliding point, haptics/wound.hpp).
+  void rearm() { cut_release_time_.reset(); }
 
  private:
   void init(const Scene& scene) override;

@@ -26,9 +26,11 @@ class VisualScene {
   void update(const SceneState& s);
 
   const std::vector<VisualModel*>& models() const { return models_; }
-  /// Drops the default skin of `body` (nothing if the scene file draws it): another model draws it
-  /// (a wound's lip, drawn as the slab beside its edge by visual/wound_visual.hpp).
-  void hideDefaultSkin(const MechanicalState& body);
+  /// Draws `body` by `model` (not owned; it must outlive this object) instead of its default skin,
+  /// if it had one: a model the scene file cannot name (a wound's lip, drawn as the slab beside its
+  /// edge by visual/wound_visual.hpp). The model joins models() — pictures, meshes and bounds —
+  /// under the name `name` (made unique).
+  void drawBodyWith(const MechanicalState& body, VisualModel& model, const std::string& name);
   /// A unique, file-name-safe name per model: "<node path>_<model name>" with '/' and spaces as '_'.
   const std::string& modelName(std::size_t i) const { return names_[i]; }
   /// Bounds of every vertex of the last update (false if there is none), without the models that
