@@ -59,7 +59,9 @@ int main(int argc, char** argv) {
   view_cmd->footer(
       "Mouse: left drag pushes the thread with a sphere; Shift+left drag (or g, then left drag) grabs the nearest "
       "point and pulls it; right drag orbits the camera; the wheel zooms.\nKeys: space pause, r restart, g grab "
-      "mode, q or Escape quit. Needs a display (or Xvfb) and FILUM_WITH_OPENCV.");
+      "mode, q or Escape quit; with instruments, 1-9 give one to the mouse (left drag moves it), 0 the probe, c/o "
+      "close/open its jaws, [/] turn the needle it holds about the needle's centre. Needs a display (or Xvfb) and "
+      "FILUM_WITH_OPENCV.");
 
   std::vector<std::string> check_scenes;
   CLI::App* check_cmd = app.add_subcommand("check", "load and check scene files without simulating them");

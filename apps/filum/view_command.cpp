@@ -225,6 +225,11 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
           }
           if (selected >= 0 && (e.key == "c" || e.key == "o"))
             instruments->moveJaws(selected, e.key == "c", scene->state().time);
+          // [ and ]: the needle the mouse's instrument holds turned about its own centre, 10° over
+          // 0.2 s a press (] drives it towards its tip: through the tissue along its curve).
+          if (selected >= 0 && (e.key == "bracketleft" || e.key == "bracketright"))
+            instruments->turnNeedle(selected, (e.key == "bracketright" ? 10.0 : -10.0) * std::numbers::pi / 180.0,
+                                    scene->state().time);
           if (e.key == "r" && (instruments || hub_moved)) {
             // The instruments' holds, cuts and metrics are not rewound with the state.
             // The hand's strokes, the instruments' holds, cuts and metrics are not rewound with the state.
@@ -337,8 +342,8 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
         hud += force.str();
       }
       visual::drawHeadsUp(frame, hud);
-      visual::drawFooter(frame, instruments ? "1-9: instrument to the mouse, 0: probe | c/o: close/open jaws | left: move | "
-                                              "right: orbit | wheel: zoom | space | r | q"
+      visual::drawFooter(frame, instruments ? "1-9: instrument to the mouse, 0: probe | c/o: close/open jaws | [/]: turn needle | "
+                                              "left: move | right: orbit | wheel: zoom | space | r | q"
                                 : hub       ? std::string("up/down: push/pull the hub | left/right: turn it") +
                                                   (fluoroscopy ? " | f: X-ray pedal | x: monitor/3D" : "") + " | space | q"
                                             : "left: push | shift+left or g: grab | right: orbit | wheel: zoom | space: pause | r | q");

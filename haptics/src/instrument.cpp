@@ -203,6 +203,10 @@ void Instrument::setStylus(const Vec3& position, const Vec3& velocity, double ti
 
 void Instrument::setHand(const Vec3& position, const Vec3& velocity, double time) {
   if (!drive_) return;
+  if (drive_->turn) {  // the turn stops where it has got to: its frame kept, the hand where it says
+    drive_->frame = drivenPose(time).frame;
+    drive_->turn.reset();
+  }
   drive_->position = position;
   drive_->velocity = velocity;
   drive_->time = time;
@@ -224,12 +228,43 @@ double Instrument::jawAt(double t) const {
   return std::clamp(d.jaw + (d.closing ? -1.0 : 1.0) * d.jaw_speed * std::max(0.0, t - d.jaw_time), 0.0, 1.0);
 }
 
+InstrumentPose Instrument::drivenPose(double t) const {
+  const Vec3 hand = drive_->position + drive_->velocity * (t - drive_->time);
+  InstrumentPose pose;
+  pose.hinge = settings_.trocar ? Vec3(2.0 * *settings_.trocar - hand) : hand;
+  pose.frame = drive_->frame;
+  if (drive_->turn) {
+    // x → c + R(φ) (x − c), R(φ) the turn by φ = angle · min(1, (t − start) / duration) about the axis.
+    const DeviceDrive::Turn& turn = *drive_->turn;
+    const double phi = turn.angle * std::clamp((t - turn.start) / turn.duration, 0.0, 1.0);
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(phi, turn.axis).toRotationMatrix();
+    pose.hinge = turn.centre + R * (pose.hinge - turn.centre);
+    pose.frame = R * pose.frame;
+  }
+  return pose;
+}
+
+void Instrument::turnAbout(const Vec3& centre, const Vec3& axis, double angle, double time, double duration) {
+  if (!drive_) return;
+  // The turn so far made part of the hand's position and frame, then the new one from `time`; a
+  // turn about the same axis still under way adds what it had left to go (key presses add up).
+  const Vec3 unit = axis.normalized();
+  if (drive_->turn && (drive_->turn->centre - centre).norm() <= 1e-12 && (drive_->turn->axis - unit).norm() <= 1e-12) {
+    const DeviceDrive::Turn& turn = *drive_->turn;
+    angle += turn.angle * (1.0 - std::clamp((time - turn.start) / turn.duration, 0.0, 1.0));
+  }
+  const InstrumentPose now = drivenPose(time);
+  drive_->frame = now.frame;
+  drive_->position = settings_.trocar ? Vec3(2.0 * *settings_.trocar - now.hinge) : now.hinge;
+  drive_->velocity = Vec3::Zero();
+  drive_->time = time;
+  drive_->turn = DeviceDrive::Turn{centre, unit, angle, time, duration};
+}
+
 InstrumentPose Instrument::poseAt(double t) const {
   InstrumentPose pose;
   if (drive_) {
-    const Vec3 hand = drive_->position + drive_->velocity * (t - drive_->time);
-    pose.hinge = settings_.trocar ? Vec3(2.0 * *settings_.trocar - hand) : hand;
-    pose.frame = drive_->frame;
+    pose = drivenPose(t);
     if (settings_.trocar) {
       // The hand cannot pull the jaws out through the port nor push the shaft past its length:
       // the hinge kept between 1 mm and shaft_length from the port (a scripted path is checked

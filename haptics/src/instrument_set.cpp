@@ -522,6 +522,19 @@ void InstrumentSet::steer(int i, const Vec3& hinge, double t) {
 
 void InstrumentSet::moveJaws(int i, bool close, double t) { instruments_[i]->setJaws(close, t); }
 
+bool InstrumentSet::turnNeedle(int i, double angle, double t, double duration) {
+  Instrument& inst = *instruments_[i];
+  if (!inst.drivenByDevice() || devices_[i] || inst.settings().trocar) return false;
+  for (const auto& needle : needles_) {
+    if (needle->holder != i) continue;
+    // The needle where the jaws have it at t: its centre and its plane's normal (w).
+    const RigidPose pose = jawsPose(inst.poseAt(t)) * needle->in_jaws;
+    inst.turnAbout(pose.position, pose.rotation.col(2), angle, t, duration);
+    return true;
+  }
+  return false;
+}
+
 void InstrumentSet::start() {
   for (auto& d : devices_)
     if (d) d->start();

@@ -193,6 +193,40 @@ TEST(ViewCommand, KeysGiveAnInstrumentToTheMouseAndCloseItsJaws) {
   EXPECT_EQ(jaw, 0.0);
 }
 
+TEST(ViewCommand, BracketsTurnTheNeedleTheMousesHolderHolds) {
+  // apps/scenes/stitch.json: holder A has caught the needle by 0.053 s; key 1 gives A to the mouse,
+  // and three presses of ] (10° over 0.2 s each, adding up) turn the needle 30° about its own
+  // centre and normal: its centre stays and its swage turns by 30°, to the round-off of composing
+  // rigid placements (1e-16 of 0.1 m, a few dozen operations).
+  FILUM_REQUIRE_RENDERING();
+  ViewOptions options;
+  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/stitch.json";
+  options.frames = 30;
+  options.fixed_step = 0.02;
+  haptics::RigidPose before;
+  double centre_moved = -1.0, swage_error = -1.0;
+  options.on_frame = [&](const ViewFrame& f) {
+    ASSERT_NE(f.instruments, nullptr);
+    const haptics::Needle& needle = f.instruments->needle(0);
+    if (f.index == 3) f.window.sendToSelf({WindowEvent::Type::kKey, 0, 0, 0, false, "1"});
+    if (f.index == 5) {
+      before = needle.pose();
+      for (int k = 0; k < 3; ++k) f.window.sendToSelf({WindowEvent::Type::kKey, 0, 0, 0, false, "bracketright"});
+    }
+    if (f.index == 29) {  // the needle's pose is measured while the view (and its needle) lives
+      const haptics::RigidPose after = needle.pose();
+      const Eigen::Matrix3d turn = Eigen::AngleAxisd(M_PI / 6, before.rotation.col(2)).toRotationMatrix();
+      centre_moved = (after.position - before.position).norm();
+      swage_error = (needle.swage(after) - (before.position + turn * (needle.swage(before) - before.position))).norm();
+    }
+  };
+  std::ostringstream log;
+  ASSERT_EQ(viewScene(options, log), kRunOk) << log.str();
+  ASSERT_GE(centre_moved, 0.0);
+  EXPECT_LT(centre_moved, 64 * 1e-16 * 0.1);
+  EXPECT_LT(swage_error, 64 * 1e-16 * 0.1);
+}
+
 /// Plays apps/scenes/`scene_file` in the view for at most `frames` frames of `fixed_step`,
 /// sending the `keys` at frame `at`; the view must end normally. Returns the frames played.
 int framesPlayedWithKeys(const std::string& scene_file, int frames, double fixed_step, int at,

@@ -420,6 +420,45 @@ TEST(NeedleHolder, CarriesTheNeedleRigidlyLetsGoAndAnotherTakesItOver) {
   EXPECT_EQ(run.instruments->metrics().instrument(1).regrasps, 1);
 }
 
+TEST(NeedleHolder, TheHandTurnsTheHeldNeedleAboutItsOwnCentre) {
+  // The needle of the test above, caught by holder A from above (0–0.1 s); at 0.2 s the hand takes
+  // A over and turns the needle by 90° over 0.2 s ([ ] in filum view). A turn about the needle's
+  // centre c and normal w moves every point x of it to c + R(φ)(x − c): the centre stays, the swage
+  // turns by φ; by the turn's end φ = 90°, to the round-off of composing rigid placements (1e-16
+  // of 0.1 m, a few dozen operations).
+  const double R = 0.008, arc = 2.356, mid = arc / 2;
+  const Vec3 centre(kLength, R, 0);
+  const Vec3 wire = centre + R * Vec3(std::sin(mid), -std::cos(mid), 0);
+  const double roll = -std::atan2(std::cos(mid), std::sin(mid)) + M_PI / 2;
+  const Vec3 a0 = wire + Vec3(0, 0, 0.01);
+  const json path = json::array(
+      {{{"time", 0.0}, {"position", {a0.x(), a0.y(), a0.z()}}, {"direction", {0, 0, -1}}, {"roll", roll}, {"jaw", 1}},
+       {{"time", 0.1}, {"position", {a0.x(), a0.y(), a0.z()}}, {"jaw", 0}}});
+  json document = threadScene(json::array({{{"name", "A"}, {"type", "NeedleHolder"}, {"path", path}}}));
+  document["needles"] = json::array({{{"name", "needle"}, {"radius", R}, {"arc", arc}, {"wire_radius", 2.5e-4},
+                                      {"center", {centre.x(), centre.y(), centre.z()}}, {"normal", {0, 0, 1}},
+                                      {"start", {0, -1, 0}}, {"thread", "thread"}, {"abscissa", 1.0}}});
+  InstrumentRun run(document);
+  const Needle& needle = run.instruments->needle(0);
+  for (int k = 0; k < 200; ++k) ASSERT_TRUE(run.step());
+  ASSERT_EQ(needle.holder, 0);
+  // A script cannot be turned by hand until the hand takes it over.
+  EXPECT_FALSE(run.instruments->turnNeedle(0, M_PI / 2, run.scene->state().time));
+  ASSERT_TRUE(run.instruments->takeOver(0, run.scene->state().time));
+  const RigidPose before = needle.pose();
+  ASSERT_TRUE(run.instruments->turnNeedle(0, M_PI / 2, run.scene->state().time, 0.2));
+  for (int k = 0; k < 300; ++k) ASSERT_TRUE(run.step());
+  const RigidPose after = needle.pose();
+  const Vec3 w = before.rotation.col(2);
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(M_PI / 2, w).toRotationMatrix();
+  EXPECT_LT((after.position - before.position).norm(), 64 * 1e-16 * 0.1);
+  EXPECT_LT((needle.swage(after) - (before.position + turn * (needle.swage(before) - before.position))).norm(),
+            64 * 1e-16 * 0.1);
+  // Positive angles drive the needle towards its tip: the swage moved to where the wire was, a
+  // quarter turn along it.
+  EXPECT_LT((needle.swage(after) - needle.point(before, M_PI / 2)).norm(), 64 * 1e-16 * 0.1);
+}
+
 TEST(Trocar, TheHandTakesOverAtTheHingeAndSteersItThroughThePort) {
   // A trocar grasper given to the hand: taking over leaves the hinge where the script had it, and
   // steering to a hinge puts it there (the hand at its mirror through the port), to round-off.

@@ -132,6 +132,12 @@ class Instrument {
   /// from `time` on. A hand-driven instrument's jaws stay as they were until setJaws.
   void setHand(const Vec3& position, const Vec3& velocity, double time);
   void setJaws(bool closing, double time);
+  /// Driven: turns the jaws (hinge and frame) by `angle` (rad) about the axis through `centre`
+  /// along the unit `axis`, evenly over [time, time + duration] — the wrist's pronation that drives
+  /// a held needle along its own curve (centre and axis: the needle's). A turn about the same
+  /// centre and axis still under way adds what it had left to go. The hand's next stroke (setHand,
+  /// setStylus) starts from where the turn has got to.
+  void turnAbout(const Vec3& centre, const Vec3& axis, double angle, double time, double duration);
   /// The driven jaws are closing (false: opening or at rest).
   bool jawsClosing() const { return drive_ && drive_->moving && drive_->closing; }
   /// Moves the instrument to time t (from its driver) and its parts over [t, t + h].
@@ -201,7 +207,14 @@ class Instrument {
     double jaw = 1.0, jaw_time = 0.0;  // the opening at jaw_time
     bool closing = false;
     bool moving = false;  // the jaws move (a device's always; the mouse's once a key moved them)
+    struct Turn {
+      Vec3 centre = Vec3::Zero(), axis = Vec3::UnitZ();
+      double angle = 0.0, start = 0.0, duration = 1.0;
+    };
+    std::optional<Turn> turn;  // applied after the hand's position and frame (turnAbout)
   };
+  /// A drive's pose at time t before the trocar's port is applied.
+  InstrumentPose drivenPose(double t) const;
   std::optional<DeviceDrive> drive_;
 };
 

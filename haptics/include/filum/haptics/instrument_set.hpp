@@ -65,6 +65,10 @@ class InstrumentSet {
   /// its mirror), and its jaws closing or opening (at 5 per second) from t on.
   void steer(int i, const Vec3& hinge, double t);
   void moveJaws(int i, bool close, double t);
+  /// Turns the needle taken-over instrument i holds about its own centre and normal by `angle`
+  /// (rad; > 0 drives it towards its tip) over [t, t + duration] (Instrument::turnAbout); false,
+  /// doing nothing, when i holds no needle, is not the hand's, or works through a trocar.
+  bool turnNeedle(int i, double angle, double t, double duration = 0.2);
   /// The device of instrument i, or nullptr for a scripted one.
   HapticSession* device(int i) const { return devices_[i].get(); }
   /// haptics_<name>.csv per device-driven instrument in `directory`; one summary line each.
