@@ -80,43 +80,21 @@ std::string BlockBandLdlt::factor() {
 }
 
 void BlockBandLdlt::solve(Eigen::Ref<VecX> x) const {
-  // L y = x, z = D⁻¹ y, Lᵀ x = z. Both sweeps gather: row i of the forward sweep reads the y_j
-  // above it, y_i = x_i − Σ_{j<i} L_ij y_j; row i of the backward sweep reads the x_k below it,
+  // One column of solveColumns: the same sweeps, the same operations in the same order.
+  Eigen::Map<MatX> column(x.data(), x.size(), 1);
+  solveColumns(column, 0);
+}
+
+void BlockBandLdlt::solveColumns(Eigen::Ref<MatX> x, int first) const {
+  // L y = x, z = D⁻¹ y, Lᵀ x = z, with the loop over the columns inside the loop over the block
+  // rows (the factors read once per block row for all the columns). Both sweeps gather: row i of
+  // the forward sweep reads the y_j above it, y_i = x_i − Σ_{j<i} L_ij y_j; row i of the backward
+  // sweep reads the x_k below it,
   //   x_i = D_i⁻¹ y_i − Σ_{k=i+1}^{i+r} L_kiᵀ x_k,
   // each sum kept in registers (a scatter, x_j −= L_ijᵀ x_i from each row i, would store and
   // reload x_j r times, one dependent store-to-load per block), and D_i⁻¹ applied on the way.
   // The sweeps are sequential (row i needs row i ∓ 1): the terms of the farther rows are summed
   // first, so that only the nearest block's product waits for the row just solved.
-  double* v = x.data();
-  for (int i = 1; i < n_; ++i) {
-    double s0 = v[3 * i], s1 = v[3 * i + 1], s2 = v[3 * i + 2];
-    for (int j = std::max(0, i - r_); j < i; ++j) {
-      const double* b = block(i, j).data();  // column-major: b[r + 3 c] = (L_ij)_rc
-      const double y0 = v[3 * j], y1 = v[3 * j + 1], y2 = v[3 * j + 2];
-      s0 -= b[0] * y0 + b[3] * y1 + b[6] * y2;
-      s1 -= b[1] * y0 + b[4] * y1 + b[7] * y2;
-      s2 -= b[2] * y0 + b[5] * y1 + b[8] * y2;
-    }
-    v[3 * i] = s0;
-    v[3 * i + 1] = s1;
-    v[3 * i + 2] = s2;
-  }
-  for (int i = n_ - 1; i >= 0; --i) {
-    Eigen::Vector3d xi = x.segment<3>(3 * i);
-    solvePivot(block(i, i), reciprocals_[i], xi);
-    for (int k = std::min(n_ - 1, i + r_); k > i; --k) {
-      const double* b = block(k, i).data();  // (L_kiᵀ)_rc = b[c + 3 r]
-      const double y0 = v[3 * k], y1 = v[3 * k + 1], y2 = v[3 * k + 2];
-      xi[0] -= b[0] * y0 + b[1] * y1 + b[2] * y2;
-      xi[1] -= b[3] * y0 + b[4] * y1 + b[5] * y2;
-      xi[2] -= b[6] * y0 + b[7] * y1 + b[8] * y2;
-    }
-    x.segment<3>(3 * i) = xi;
-  }
-}
-
-void BlockBandLdlt::solveColumns(Eigen::Ref<MatX> x, int first) const {
-  // solve()'s two sweeps, with the loop over the columns inside the loop over the block rows.
   // Rows before `first` are zero in every column and stay zero in the forward sweep
   // (y_i = x_i − Σ L_ij y_j = 0); row `first` has no non-zero term above it.
   const Eigen::Index columns = x.cols(), stride = x.outerStride();
