@@ -9,18 +9,12 @@
 #include "filum/collision/segment_closest_points.hpp"
 #include "filum/core/curve_body.hpp"
 #include "filum/core/scene_error.hpp"
+#include "filum/haptics/event_number.hpp"
 #include "filum/geometry/arc_length.hpp"
 
 namespace filum::haptics {
 
 namespace {
-
-std::string number(double x) {
-  std::ostringstream out;
-  out.precision(4);
-  out << x;
-  return out.str();
-}
 
 /// The strand of the curve holding abscissa s (the first one whose end is past s).
 Strand strandAt(const CurveBasis& basis, double s) {
@@ -202,7 +196,7 @@ void InstrumentSet::attach(Scene& scene, const std::string& source) {
 }
 
 void InstrumentSet::event(double t, const std::string& what) {
-  events_.push_back("t = " + number(t) + " s: " + what);
+  events_.push_back("t = " + eventNumber(t) + " s: " + what);
 }
 
 void InstrumentSet::beforeStep(Scene& scene) {
@@ -226,7 +220,7 @@ void InstrumentSet::beforeStep(Scene& scene) {
       inst.releaseObject();
     } else if (inst.letsGo()) {
       released_[i].push_back(inst.hold()->grasp.body());
-      event(t, "'" + inst.name() + "' let go at s = " + number(inst.hold()->grasp.abscissa()));
+      event(t, "'" + inst.name() + "' let go at s = " + eventNumber(inst.hold()->grasp.abscissa()));
       inst.stopHolding();
     }
     if (!inst.holding() && !inst.holdsObject() && inst.closing() && !inst.latched()) closeJaws(i, scene);
@@ -314,7 +308,7 @@ void InstrumentSet::closeJaws(int i, Scene& scene) {
   }
   event(scene.state().time, "'" + inst.name() + "' " +
                                 (inst.kind() == InstrumentKind::kBipolarForceps ? "clamped" : "grasped") + " at s = " +
-                                number(c->abscissa));
+                                eventNumber(c->abscissa));
 }
 
 void InstrumentSet::cut(int i, Scene& scene, const JawCatch& c) {
@@ -332,7 +326,7 @@ void InstrumentSet::cut(int i, Scene& scene, const JawCatch& c) {
   }
   if (required && !coagulated_here) {
     ++tally.cuts_refused;
-    event(t, "'" + inst.name() + "' refused to cut at s = " + number(c.abscissa) + ": the span is not coagulated");
+    event(t, "'" + inst.name() + "' refused to cut at s = " + eventNumber(c.abscissa) + ": the span is not coagulated");
     return;
   }
   CurveBody* body = mutableCurve(scene, c.body);
@@ -340,12 +334,12 @@ void InstrumentSet::cut(int i, Scene& scene, const JawCatch& c) {
     scene.cut(*body, c.abscissa);
   } catch (const SceneError& e) {
     ++tally.cuts_refused;
-    event(t, "'" + inst.name() + "' could not cut at s = " + number(c.abscissa) + ": " + e.what());
+    event(t, "'" + inst.name() + "' could not cut at s = " + eventNumber(c.abscissa) + ": " + e.what());
     return;
   }
   ++tally.cuts;
   if (coagulated_here) ++tally.cuts_coagulated;
-  event(t, "'" + inst.name() + "' cut at s = " + number(c.abscissa) + (coagulated_here ? " (coagulated)" : ""));
+  event(t, "'" + inst.name() + "' cut at s = " + eventNumber(c.abscissa) + (coagulated_here ? " (coagulated)" : ""));
 }
 
 Vec3 InstrumentSet::holdForce(int i, const Scene& scene) const {
@@ -405,7 +399,7 @@ void InstrumentSet::coagulate(int i, const Scene& scene) {
   const double from = std::max(strand.begin, point.abscissa() - half), to = std::min(strand.end, point.abscissa() + half);
   coagulated_.push_back({point.body(), from, to});
   ++metrics_.instrument(i).coagulations;
-  event(scene.state().time, "'" + inst.name() + "' coagulated s in [" + number(from) + ", " + number(to) + "]");
+  event(scene.state().time, "'" + inst.name() + "' coagulated s in [" + eventNumber(from) + ", " + eventNumber(to) + "]");
 }
 
 bool InstrumentSet::coagulated(const CurveBody& body, double s) const {
@@ -494,7 +488,7 @@ void InstrumentSet::afterStep(const Scene& scene) {
   for (; ruptures_seen_ < scene.ruptures().size(); ++ruptures_seen_) {
     const Scene::Rupture& r = scene.ruptures()[ruptures_seen_];
     metrics_.countBreak();
-    event(r.time, r.body + " broke at s = " + number(r.abscissa) + " under " + number(r.tension) + " N");
+    event(r.time, r.body + " broke at s = " + eventNumber(r.abscissa) + " under " + eventNumber(r.tension) + " N");
   }
 }
 

@@ -9,18 +9,12 @@
 #include "filum/core/curve_body.hpp"
 #include "filum/core/node.hpp"
 #include "filum/core/scene_error.hpp"
+#include "filum/haptics/event_number.hpp"
 #include "filum/geometry/closest_point.hpp"
 
 namespace filum::haptics {
 
 namespace {
-
-std::string number(double x) {
-  std::ostringstream out;
-  out.precision(4);
-  out << x;
-  return out.str();
-}
 
 /// The curve body at node `path`, or a SceneError at key `key` of p.
 const CurveBody& curveNamed(const Scene& scene, const Params& p, const std::string& key, const std::string& path) {
@@ -118,7 +112,7 @@ void Wound::bind(const Scene& scene, const std::vector<std::unique_ptr<Needle>>&
     for (int i = 0; i <= 8; ++i)
       if (settings_.normal.cross(lips_[k]->tangent(st.q, i / 8.0).normalized()).norm() < 0.5)
         throw SceneError(origin_ + "/normal", "the skin's normal across the lips' edges (at 30° or more to them)",
-                         "one within 30° of lip '" + settings_.lips[k] + "' at s = " + number(i / 8.0));
+                         "one within 30° of lip '" + settings_.lips[k] + "' at s = " + eventNumber(i / 8.0));
     const Vec3 p = lips_[k]->position(st.q, 0.5), t = lips_[k]->tangent(st.q, 0.5).normalized();
     const Vec3 other = lips_[1 - k]->position(st.q, 0.5);
     side_[k] = settings_.normal.cross(t).dot(p - other) >= 0.0 ? 1.0 : -1.0;
@@ -252,8 +246,8 @@ int Wound::makeHole(const SceneState& st, int k, const Vec3& at, bool entry, Fac
   }
   holes_.push_back(h);
   events.push_back(std::string("the needle ") + (entry ? "went into" : "came out of") + " lip " + std::to_string(k) +
-                   " ('" + settings_.lips[k] + "') through its " + faceName(face) + " at s = " + number(h.lip_abscissa) +
-                   ", " + number(1e3 * h.from_edge) + " mm from its cut face");
+                   " ('" + settings_.lips[k] + "') through its " + faceName(face) + " at s = " + eventNumber(h.lip_abscissa) +
+                   ", " + eventNumber(1e3 * h.from_edge) + " mm from its cut face");
   return static_cast<int>(holes_.size()) - 1;
 }
 
@@ -281,7 +275,7 @@ std::vector<std::string> Wound::afterStep(const SceneState& st) {
     const bool holding = slots_[i]->active() && !slots_[i]->releasedAt(st);
     if (slot_used_[i] == 1 && !holding) {
       slot_used_[i] = 2;  // used, and let go for good
-      events.push_back("the thread slid out of " + slots_[i]->name() + " at s = " + number(slots_[i]->abscissa(st)));
+      events.push_back("the thread slid out of " + slots_[i]->name() + " at s = " + eventNumber(slots_[i]->abscissa(st)));
     }
   }
   return events;
@@ -480,7 +474,7 @@ void Wound::engage(Scene& scene, const std::vector<std::unique_ptr<Needle>>& nee
     if (!(s_h > 0.0 && s_h < 1.0) || miss > settings_.engage_distance) {
       h.slot = kMissed;
       events.push_back("the needle's swage passed a hole of lip " + std::to_string(h.lip) + " but the thread is " +
-                       number(1e3 * miss) + " mm from it (more than engage_distance): the hole does not hold the thread");
+                       eventNumber(1e3 * miss) + " mm from it (more than engage_distance): the hole does not hold the thread");
       continue;
     }
     int slot = kNoSlot;
@@ -512,7 +506,7 @@ void Wound::engage(Scene& scene, const std::vector<std::unique_ptr<Needle>>& nee
     next.q[c.extraIndex()] = s_h;
     next.v[c.extraIndex()] = t.dot(xdot - pdot) / t.squaredNorm();
     scene.setState(next);
-    events.push_back("the thread runs through the hole in lip " + std::to_string(h.lip) + " at s = " + number(s_h) +
+    events.push_back("the thread runs through the hole in lip " + std::to_string(h.lip) + " at s = " + eventNumber(s_h) +
                      " (" + c.name() + ")");
   }
 }
