@@ -156,7 +156,9 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     return kRunSceneError;
   }
 
-  // Visual outputs (on request): bind the visual models, open the renderer.
+  // Visual outputs (on request): bind the visual models, open the renderer. The models the scene
+  // file cannot name outlive the visuals that point at them.
+  std::vector<std::unique_ptr<visual::WoundVisual>> wound_visuals;
   std::unique_ptr<RunVisual> visuals;
   if (options.meshes || options.render) {
     try {
@@ -180,7 +182,6 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   // The instruments as drawn: shaft and jaws of each.
   std::vector<std::unique_ptr<visual::InstrumentVisual>> instrument_visuals;
   std::vector<std::unique_ptr<visual::NeedleVisual>> needle_visuals;
-  std::vector<std::unique_ptr<visual::WoundVisual>> wound_visuals;
   if (instruments && visuals) {
     for (int i = 0; i < instruments->size(); ++i)
       for (auto part : {visual::InstrumentVisual::Part::kShaft, visual::InstrumentVisual::Part::kJaws}) {

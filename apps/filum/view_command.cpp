@@ -126,8 +126,8 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
   const SceneState initial = scene->state();
 
   try {
-    visual::VisualScene visuals(*scene);
     std::vector<std::unique_ptr<visual::WoundVisual>> wound_models;  // a wound's lips, drawn as slabs
+    visual::VisualScene visuals(*scene);                             // (it keeps pointers to them)
     if (instruments && instruments->wound())
       for (int lip = 0; lip < 2; ++lip) {
         wound_models.push_back(std::make_unique<visual::WoundVisual>(*instruments->wound(), lip));
@@ -227,9 +227,11 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
             instruments->moveJaws(selected, e.key == "c", scene->state().time);
           // [ and ]: the needle the mouse's instrument holds turned about its own centre, 10° over
           // 0.2 s a press (] drives it towards its tip: through the tissue along its curve).
-          if (selected >= 0 && (e.key == "bracketleft" || e.key == "bracketright"))
-            instruments->turnNeedle(selected, (e.key == "bracketright" ? 10.0 : -10.0) * std::numbers::pi / 180.0,
-                                    scene->state().time);
+          if (selected >= 0 && (e.key == "bracketleft" || e.key == "bracketright") &&
+              !instruments->turnNeedle(selected, (e.key == "bracketright" ? 10.0 : -10.0) * std::numbers::pi / 180.0,
+                                       scene->state().time))
+            log << "filum view: [ and ] turn a needle the mouse's instrument holds; '"
+                << instruments->instrument(selected).name() << "' holds none (or works through a trocar)\n";
           if (e.key == "r" && (instruments || hub_moved)) {
             // The instruments' holds, cuts and metrics are not rewound with the state.
             // The hand's strokes, the instruments' holds, cuts and metrics are not rewound with the state.

@@ -203,13 +203,22 @@ void Instrument::setStylus(const Vec3& position, const Vec3& velocity, double ti
 
 void Instrument::setHand(const Vec3& position, const Vec3& velocity, double time) {
   if (!drive_) return;
-  if (drive_->turn) {  // the turn stops where it has got to: its frame kept, the hand where it says
-    drive_->frame = drivenPose(time).frame;
-    drive_->turn.reset();
-  }
+  bakeTurn(time);
   drive_->position = position;
   drive_->velocity = velocity;
   drive_->time = time;
+}
+
+void Instrument::bakeTurn(double time) {
+  if (!drive_ || !drive_->turn) return;
+  // The turn stops where it has got to at `time`: its frame kept, and the hinge's swing about the
+  // centre kept as an offset from the hand (the hand's next stroke moves the jaws from there,
+  // without a jump).
+  const InstrumentPose turned = drivenPose(time);
+  drive_->turn.reset();
+  const InstrumentPose unturned = drivenPose(time);
+  drive_->frame = turned.frame;
+  drive_->hand_offset += turned.hinge - unturned.hinge;
 }
 
 void Instrument::setJaws(bool closing, double time) {
@@ -231,13 +240,15 @@ double Instrument::jawAt(double t) const {
 InstrumentPose Instrument::drivenPose(double t) const {
   const Vec3 hand = drive_->position + drive_->velocity * (t - drive_->time);
   InstrumentPose pose;
-  pose.hinge = settings_.trocar ? Vec3(2.0 * *settings_.trocar - hand) : hand;
+  pose.hinge = (settings_.trocar ? Vec3(2.0 * *settings_.trocar - hand) : hand) + drive_->hand_offset;
   pose.frame = drive_->frame;
   if (drive_->turn) {
-    // x → c + R(φ) (x − c), R(φ) the turn by φ = angle · min(1, (t − start) / duration) about the axis.
+    // x → c + R(φ) (x − c), R(φ) the turn by φ = angle · min(1, (t − start) / duration) about the
+    // axis (at once when the duration is not positive).
     const DeviceDrive::Turn& turn = *drive_->turn;
-    const double phi = turn.angle * std::clamp((t - turn.start) / turn.duration, 0.0, 1.0);
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(phi, turn.axis).toRotationMatrix();
+    const double progress =
+        turn.duration > 0.0 ? std::clamp((t - turn.start) / turn.duration, 0.0, 1.0) : (t >= turn.start ? 1.0 : 0.0);
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(turn.angle * progress, turn.axis).toRotationMatrix();
     pose.hinge = turn.centre + R * (pose.hinge - turn.centre);
     pose.frame = R * pose.frame;
   }
@@ -246,18 +257,16 @@ InstrumentPose Instrument::drivenPose(double t) const {
 
 void Instrument::turnAbout(const Vec3& centre, const Vec3& axis, double angle, double time, double duration) {
   if (!drive_) return;
-  // The turn so far made part of the hand's position and frame, then the new one from `time`; a
-  // turn about the same axis still under way adds what it had left to go (key presses add up).
+  // A turn about the same axis still under way adds what it had left to go (key presses add up);
+  // the turn so far is made part of the drive, then the new one runs from `time`.
   const Vec3 unit = axis.normalized();
   if (drive_->turn && (drive_->turn->centre - centre).norm() <= 1e-12 && (drive_->turn->axis - unit).norm() <= 1e-12) {
     const DeviceDrive::Turn& turn = *drive_->turn;
-    angle += turn.angle * (1.0 - std::clamp((time - turn.start) / turn.duration, 0.0, 1.0));
+    const double progress =
+        turn.duration > 0.0 ? std::clamp((time - turn.start) / turn.duration, 0.0, 1.0) : (time >= turn.start ? 1.0 : 0.0);
+    angle += turn.angle * (1.0 - progress);
   }
-  const InstrumentPose now = drivenPose(time);
-  drive_->frame = now.frame;
-  drive_->position = settings_.trocar ? Vec3(2.0 * *settings_.trocar - now.hinge) : now.hinge;
-  drive_->velocity = Vec3::Zero();
-  drive_->time = time;
+  bakeTurn(time);
   drive_->turn = DeviceDrive::Turn{centre, unit, angle, time, duration};
 }
 

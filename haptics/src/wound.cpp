@@ -152,20 +152,23 @@ void Wound::updatePad(const SceneState& st, const std::vector<std::unique_ptr<Ne
   auto span = [&](double a, double b) { spans.emplace_back(std::min(a, b) - margin, std::max(a, b) + margin); };
   for (std::size_t j = 0; j < needles.size(); ++j) {
     if (!carries_[j]) continue;
-    const Hole* last = nullptr;
-    bool ahead = false;
+    const Hole* last = nullptr;  // the current stitch's last hole holding the thread
+    bool ahead = false;          // a hole of the current stitch still ahead of the swage
     for (const Hole& h : holes_) {
-      if (h.needle != static_cast<int>(j)) continue;
-      if (h.slot == kPending && onNeedleTrack(st, h, *needles[j])) ahead = true;
+      if (h.needle != static_cast<int>(j) || h.slot == kWithdrawn) continue;
+      if (h.entry && h.face == Face::kSkin) {  // a new stitch: the thread before it lies on the skin
+        last = nullptr;
+        ahead = false;
+      }
+      if (h.slot == kPending && aheadOfSwage(st, h, *needles[j])) ahead = true;
       if (h.slot < 0 || slot_used_[h.slot] != 1) continue;
       const double s = slots_[h.slot]->abscissa(st);
       span(s, s);
-      const bool new_stitch = last && !last->entry && last->face == Face::kSkin && h.entry && h.face == Face::kSkin;
-      if (last && !new_stitch) span(slots_[last->slot]->abscissa(st), s);
+      if (last) span(slots_[last->slot]->abscissa(st), s);
       last = &h;
     }
     const double end = needles[j]->settings().abscissa;
-    if (ahead && last && !(!last->entry && last->face == Face::kSkin)) span(slots_[last->slot]->abscissa(st), end);
+    if (ahead && last) span(slots_[last->slot]->abscissa(st), end);
     const double reach = Needle::kSwageLead * per_metre;
     span(end - reach, end + reach);
   }
@@ -240,6 +243,7 @@ int Wound::makeHole(const SceneState& st, int k, const Vec3& at, bool entry, Fac
   h.depth = depth;
   h.made_at = at;
   h.edge_tangent = l.tangent;
+  h.skin_normal = l.normal;
   for (const Vec3& target : settings_.targets) {
     const double d = (target - at).norm();
     if (h.target_distance < 0.0 || d < h.target_distance) h.target_distance = d;
@@ -302,10 +306,11 @@ std::vector<Wound::Stitch> Wound::stitches() const {
         s.entry_bite = a.from_edge;
         s.exit_bite = b.from_edge;
         s.depth = depth;
-        // The line between the holes as made, in the skin's plane (⊥ n̂), against the entry's edge
-        // tangent: acos |t̂·ℓ̂| ∈ [0, π/2].
+        // The line between the holes as made, in the skin's plane there (⊥ the normal n̂ made ⊥ the
+        // edge's tangent t̂ at the entry), against t̂: acos |t̂·ℓ̂| ∈ [0, π/2].
+        const Vec3 n = a.skin_normal;  // ⊥ a.edge_tangent (locate)
         Vec3 line = b.made_at - a.made_at;
-        line -= line.dot(settings_.normal) * settings_.normal;
+        line -= line.dot(n) * n;
         s.angle = line.norm() > 0.0 ? std::acos(std::min(1.0, std::abs(a.edge_tangent.dot(line.normalized())))) : 0.0;
         out.push_back(s);
       }
@@ -385,10 +390,11 @@ std::vector<std::string> Wound::follow(Scene& scene, const std::vector<std::uniq
         const Vec3 at = crossing(st, tip.in_lip, tip.previous, x, true);
         const Face face = nearestFace(locate(st, tip.in_lip, at), nullptr);
         const int exit = makeHole(st, tip.in_lip, at, false, face, index, tip.deepest, events);
+        holes_[exit].angle = angleOnNeedle(at, needle);
         // Drawn back out the way it went in: neither hole is a passage for the thread.
         if (tip.entry_hole >= 0) {
           Hole& in = holes_[tip.entry_hole];
-          if (in.face == face && (holePosition(st, in) - at).norm() <= settings_.engage_distance) {
+          if (in.slot == kPending && in.face == face && (holePosition(st, in) - at).norm() <= settings_.engage_distance) {
             in.slot = kWithdrawn;
             holes_[exit].slot = kWithdrawn;
             events.push_back("the needle was drawn back out of lip " + std::to_string(tip.in_lip) +
@@ -415,6 +421,7 @@ std::vector<std::string> Wound::follow(Scene& scene, const std::vector<std::uniq
       peak_force_ = std::max(peak_force_, tip.force);
       if (tip.force >= settings_.puncture_force) {
         tip.entry_hole = makeHole(st, tip.pressing, tip.entered, true, tip.face, index, 0.0, events);
+        holes_[tip.entry_hole].angle = angleOnNeedle(tip.entered, needle);
         tip.in_lip = tip.pressing;
         tip.deepest = locate(st, tip.in_lip, x).depth;
         tip.pressing = -1;
@@ -426,6 +433,20 @@ std::vector<std::string> Wound::follow(Scene& scene, const std::vector<std::uniq
   engage(scene, needles, events);
   updatePad(scene.state(), needles);
   return events;
+}
+
+double Wound::angleOnNeedle(const Vec3& x, const Needle& needle) {
+  // atan2 in the needle's plane, unwrapped about the arc's middle: θ ∈ [α/2 − π, α/2 + π], so that
+  // points on the arc read 0 .. α whatever α (up to 2π).
+  const Vec3 local = needle.pose().inverse().apply(x);
+  const double middle = 0.5 * needle.settings().arc;
+  return middle + std::remainder(std::atan2(local.y(), local.x()) - middle, 2.0 * M_PI);
+}
+
+bool Wound::aheadOfSwage(const SceneState& st, const Hole& h, const Needle& needle) const {
+  const double angle = angleOnNeedle(holePosition(st, h), needle);
+  return onNeedleTrack(st, h, needle) && angle >= -kEngageLag / needle.settings().radius &&
+         angle <= needle.settings().arc;
 }
 
 bool Wound::onNeedleTrack(const SceneState& st, const Hole& h, const Needle& needle) const {
@@ -463,12 +484,17 @@ void Wound::engage(Scene& scene, const std::vector<std::unique_ptr<Needle>>& nee
     const Vec3 X = holePosition(st, h);
     // The hole's angle in the needle's plane, from the swage towards the tip; the thread runs
     // through it once that falls below −kEngageLag / R between two steps (the swage kEngageLag
-    // past it) while the hole is on the needle's track.
-    const Vec3 local = needle.pose().inverse().apply(X);
-    const double angle = std::atan2(local.y(), local.x()), lag = -kEngageLag / needle.settings().radius;
-    const bool passed = h.angle >= lag && angle < lag;
+    // past it) from within the needle's arc, while the hole is on the needle's circle.
+    const double angle = angleOnNeedle(X, needle), lag = -kEngageLag / needle.settings().radius;
+    const bool passed = h.angle >= lag && h.angle <= needle.settings().arc && angle < lag;
     h.angle = angle;
-    if (!passed || !onNeedleTrack(st, h, needle)) continue;
+    if (!passed) continue;
+    if (!onNeedleTrack(st, h, needle)) {
+      h.slot = kMissed;
+      events.push_back("the needle's swage passed a hole of lip " + std::to_string(h.lip) +
+                       " away from its track (the needle left its curve): the hole does not hold the thread");
+      continue;
+    }
     const double s_h = threadAtHole(st, needle, X);
     const double miss = (thread_->position(st.q, s_h) - X).norm();
     if (!(s_h > 0.0 && s_h < 1.0) || miss > settings_.engage_distance) {

@@ -457,6 +457,13 @@ TEST(NeedleHolder, TheHandTurnsTheHeldNeedleAboutItsOwnCentre) {
   // Positive angles drive the needle towards its tip: the swage moved to where the wire was, a
   // quarter turn along it.
   EXPECT_LT((needle.swage(after) - needle.point(before, M_PI / 2)).norm(), 64 * 1e-16 * 0.1);
+  // The hand's next stroke starts from where the turn left the jaws: the mouse, still where it was
+  // when the turn began, steers the hinge there again, and nothing jumps (the turn's swing of the
+  // hinge about the needle's centre is kept as an offset from the hand).
+  run.instruments->steer(0, a0, run.scene->state().time);
+  for (int k = 0; k < 10; ++k) ASSERT_TRUE(run.step());
+  EXPECT_LT((needle.pose().position - after.position).norm(), 64 * 1e-16 * 0.1);
+  EXPECT_LT((needle.swage(needle.pose()) - needle.swage(after)).norm(), 64 * 1e-16 * 0.1);
 }
 
 TEST(Trocar, TheHandTakesOverAtTheHingeAndSteersItThroughThePort) {

@@ -134,9 +134,11 @@ class Instrument {
   void setJaws(bool closing, double time);
   /// Driven: turns the jaws (hinge and frame) by `angle` (rad) about the axis through `centre`
   /// along the unit `axis`, evenly over [time, time + duration] — the wrist's pronation that drives
-  /// a held needle along its own curve (centre and axis: the needle's). A turn about the same
-  /// centre and axis still under way adds what it had left to go. The hand's next stroke (setHand,
-  /// setStylus) starts from where the turn has got to.
+  /// a held needle along its own curve (centre and axis: the needle's); at once if duration <= 0.
+  /// A turn about the same centre and axis still under way adds what it had left to go. The hand's
+  /// next stroke (setHand, setStylus) ends the turn where it has got to and moves the jaws on from
+  /// there: the hinge's swing is kept as an offset from the hand. (Through a trocar the port turns
+  /// the shaft back: InstrumentSet::turnNeedle refuses those.)
   void turnAbout(const Vec3& centre, const Vec3& axis, double angle, double time, double duration);
   /// The driven jaws are closing (false: opening or at rest).
   bool jawsClosing() const { return drive_ && drive_->moving && drive_->closing; }
@@ -212,7 +214,10 @@ class Instrument {
       double angle = 0.0, start = 0.0, duration = 1.0;
     };
     std::optional<Turn> turn;  // applied after the hand's position and frame (turnAbout)
+    Vec3 hand_offset = Vec3::Zero();  // the hinge's swing by the turns made so far, off the hand
   };
+  /// Makes the turn under way part of the drive at `time` (frame and hand offset), and ends it.
+  void bakeTurn(double time);
   /// A drive's pose at time t before the trocar's port is applied.
   InstrumentPose drivenPose(double t) const;
   std::optional<DeviceDrive> drive_;

@@ -17,8 +17,8 @@
 // The slab moves with its edge: the part of the lip a suture pulls is near the wound. Each lip
 // carries a SphereCollisionModel of radius r_e, so that the lips meet at their cut faces and press
 // on each other; the slabs are an obstacle for the thread (wound_pad.hpp) except where it runs in
-// the tissue between its holes. The scene must have a ContactPipeline and the thread a
-// SphereCollisionModel (refused otherwise), and a needle must carry the thread.
+// the tissue between its holes. The thread must have a SphereCollisionModel and a needle must carry
+// it (refused otherwise).
 //
 // Puncture. A needle's tip that enters a lip from outside presses on it: the skin resists with
 // F = k_i δ, δ the tip's depth past the point e where it entered, along the entered face's inward
@@ -32,10 +32,11 @@
 //
 // Holes. A hole is fixed in its lip: X(t) = P_k(s_h, t) + o, o = e − P_k(s_h) at the puncture (it
 // translates with the edge; its turn is neglected, point_target.hpp). The needle runs along its own
-// arc through the holes it made. A hole within engage_distance of the needle's circle (radially
-// and out of its plane) whose angle in the needle's plane (from the swage towards the tip) falls
-// below −kEngageLag / R between two steps — the swage is kEngageLag past it — has the thread
-// swaged to that needle running through it: the thread's point nearest to X within 5 mm of the
+// arc through the holes it made. A hole whose angle in the needle's plane (from the swage towards
+// the tip, unwrapped about the arc's middle) falls from within the arc to below −kEngageLag / R
+// between two steps — the swage is kEngageLag past it — has the thread swaged to that needle
+// running through it, if it lies within engage_distance of the needle's circle (radially and out
+// of its plane; else the needle left its curve, and the hole holds nothing): the thread's point nearest to X within 5 mm of the
 // swage, if it is within engage_distance (else the hole holds nothing, and says so), is where a
 // sliding point (constraints/sliding_point_constraint.hpp) engages: s(t) starts at that abscissa
 // and ṡ at the thread's sliding rate through the hole, tᵀ(Ẋ − Ṗ(s)) / |t|². From then on the thread
@@ -58,7 +59,6 @@
 // the lips' edge spheres (a bite must be deeper than the edge's radius).
 #pragma once
 
-#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -110,8 +110,8 @@ class Wound {
   void attach(Scene& scene, const std::string& origin);
   /// After the scene is bound: the lips' sides (ô away from the other lip) at the start, which
   /// needles carry the thread. Throws SceneError when the skin's normal runs along a lip, when
-  /// there is no ContactPipeline or the thread has no SphereCollisionModel, or no needle carries
-  /// the thread.
+  /// the thread has no SphereCollisionModel (or the scene no collision pipeline: a factory without
+  /// a default one), or no needle carries the thread.
   void bind(const Scene& scene, const std::vector<std::unique_ptr<Needle>>& needles);
   /// The skin as an obstacle of the thread (added to the scene's root by attach).
   const WoundPad& pad() const { return *pad_; }
@@ -135,8 +135,9 @@ class Wound {
     double target_distance = -1.0;  // to the nearest marked target (m); −1: no targets
     Vec3 made_at = Vec3::Zero();  // where it was made (m)
     Vec3 edge_tangent = Vec3::UnitX();  // its lip's edge tangent there
-    double angle = std::numeric_limits<double>::infinity();  // its angle in the needle's plane at
-                                  // the last step (rad; not yet followed: ∞)
+    Vec3 skin_normal = Vec3::UnitZ();   // the skin's normal there, ⊥ edge_tangent
+    double angle = 0.0;           // its angle in its needle's plane at the last step (rad, unwrapped
+                                  // about the arc's middle: 0 at the swage, α at the tip)
     int slot = kPending;          // its sliding point (index into slots), or a state below
   };
   static constexpr int kPending = -1;     // not reached by the swage yet
@@ -211,9 +212,13 @@ class Wound {
   Face nearestFace(const LipPoint& l, Vec3* inward) const;
   int makeHole(const SceneState& s, int lip, const Vec3& at, bool entry, Face face, int needle, double depth,
                std::vector<std::string>& events);
-  /// Whether hole h may still take the thread: pending, made by a needle that carries the thread,
-  /// and lying on that needle's circle (within engage_distance).
+  /// Whether hole h lies on the needle's circle (within engage_distance, radially and out of its plane).
   bool onNeedleTrack(const SceneState& s, const Hole& h, const Needle& needle) const;
+  /// Whether hole h lies on the needle's track ahead of its swage: on its circle, its angle between
+  /// −kEngageLag / R and α.
+  bool aheadOfSwage(const SceneState& s, const Hole& h, const Needle& needle) const;
+  /// The angle of x in the needle's plane from the swage towards the tip, in [α/2 − π, α/2 + π].
+  static double angleOnNeedle(const Vec3& x, const Needle& needle);
   /// The pad where the lips are at state s, and the thread's spans in the tissue.
   void updatePad(const SceneState& s, const std::vector<std::unique_ptr<Needle>>& needles);
   void engage(Scene& scene, const std::vector<std::unique_ptr<Needle>>& needles, std::vector<std::string>& events);
