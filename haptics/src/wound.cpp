@@ -138,13 +138,14 @@ void Wound::updatePad(const SceneState& st, const std::vector<std::unique_ptr<Ne
     }
   }
   pad_->setEdges(std::move(edges[0]), std::move(edges[1]));
-  // The thread in the tissue, pass by pass (metres of thread to abscissa by |P'| at its middle):
+  // The thread in the tissue, stitch by stitch (a needle's holes from one entry into the skin to
+  // the next; metres of thread to abscissa by |P'| at its middle):
   // - around each hole holding it, by the margin;
-  // - between consecutive holding holes of one needle, unless the first is an exit out of the skin
-  //   and the second an entry into it (the thread between two stitches lies on the skin);
-  // - from a needle's last holding hole on to its swaged end while a hole it made is still on its
-  //   track ahead of the swage (the thread follows the needle in the tissue), unless that last
-  //   hole is an exit out of the skin;
+  // - between consecutive holding holes of one stitch (the thread between two stitches lies on
+  //   the skin);
+  // - from the current stitch's last holding hole on to the swaged end while a hole of that stitch
+  //   is still on the needle's track ahead of the swage (the thread follows the needle in the
+  //   tissue);
   // - the swaged end itself, which goes where the needle goes (the needle does not collide).
   const double per_metre = 1.0 / std::max(thread_->tangent(st.q, 0.5).norm(), 1e-12);
   const double margin = WoundPad::kHoleMargin * per_metre;
