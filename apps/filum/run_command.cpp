@@ -158,12 +158,19 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
 
   // Visual outputs (on request): bind the visual models, open the renderer. The models the scene
   // file cannot name outlive the visuals that point at them.
-  std::vector<std::unique_ptr<visual::WoundVisual>> wound_visuals;
+  std::vector<std::unique_ptr<visual::WoundVisual>> wound_visuals;  // a wound's lips, drawn as slabs
+  std::vector<RunVisual::BodyDrawing> drawings;
+  if (instruments && instruments->wound())
+    for (int lip = 0; lip < 2; ++lip) {
+      wound_visuals.push_back(std::make_unique<visual::WoundVisual>(*instruments->wound(), lip));
+      drawings.push_back({&instruments->wound()->lip(lip), wound_visuals.back().get(), "wound_lip_" + std::to_string(lip)});
+    }
   std::unique_ptr<RunVisual> visuals;
   if (options.meshes || options.render) {
     try {
       visuals = std::make_unique<RunVisual>(*scene, document, directory,
-                                            RunVisualOptions{options.meshes, options.render, options.png_frames}, duration);
+                                            RunVisualOptions{options.meshes, options.render, options.png_frames}, duration,
+                                            drawings);
     } catch (const SceneError& e) {
       log << "error: " << e.what() << '\n';
       return kRunSceneError;
@@ -192,11 +199,6 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
       needle_visuals.push_back(std::make_unique<visual::NeedleVisual>(instruments->needle(k)));
       visuals->addOverlay(*needle_visuals.back());
     }
-    if (instruments->wound())
-      for (int lip = 0; lip < 2; ++lip) {
-        wound_visuals.push_back(std::make_unique<visual::WoundVisual>(*instruments->wound(), lip));
-        visuals->drawBodyWith(instruments->wound()->lip(lip), *wound_visuals.back(), "wound_lip_" + std::to_string(lip));
-      }
   }
 
   const long steps = std::lround(duration / dt);

@@ -17,8 +17,9 @@ constexpr double kMaxVideoFps = 30.0;  // players choke on higher rates; denser 
 }  // namespace
 
 RunVisual::RunVisual(Scene& scene, const nlohmann::json& document, const std::string& directory,
-                     const RunVisualOptions& options, double duration)
+                     const RunVisualOptions& options, double duration, const std::vector<BodyDrawing>& drawings)
     : options_(options), directory_(directory), scene_name_(scene.settings().name), visuals_(scene) {
+  for (const BodyDrawing& d : drawings) visuals_.drawBodyWith(*d.body, *d.model, d.name);
   visuals_.update(scene.state());
   // The scene's camera, or one that frames the visual models at t = 0.
   if (auto camera = visual::readCamera(document, scene.settings().source)) {

@@ -35,11 +35,21 @@ struct RunVisualOptions {
 
 class RunVisual {
  public:
-  /// Binds the visual models (throws SceneError) and opens the renderer (throws
+  /// A body drawn by a model the scene file cannot name (a wound's lip as its slab) instead of its
+  /// default skin, in pictures and meshes (visual::VisualScene::drawBodyWith); the model must
+  /// outlive the RunVisual.
+  struct BodyDrawing {
+    const MechanicalState* body;
+    visual::VisualModel* model;
+    std::string name;
+  };
+
+  /// Binds the visual models (throws SceneError), draws the bodies of `drawings` by their models,
+  /// frames the camera on them all when the scene has none, and opens the renderer (throws
   /// std::runtime_error, e.g. without OpenCV or an X display). `duration` (s) spreads the
   /// contact sheet.
   RunVisual(Scene& scene, const nlohmann::json& document, const std::string& directory,
-            const RunVisualOptions& options, double duration);
+            const RunVisualOptions& options, double duration, const std::vector<BodyDrawing>& drawings = {});
   ~RunVisual();
 
   bool active() const { return options_.meshes || options_.render; }
@@ -55,11 +65,6 @@ class RunVisual {
   /// Draws `model` too in the pictures (not in the meshes): a model that is not a scene
   /// component, such as the haptic tool's sphere. It must outlive this object.
   void addOverlay(visual::VisualModel& model) { overlays_.push_back(&model); }
-  /// The body drawn by `model` instead of its default skin, in pictures and meshes
-  /// (visual::VisualScene::drawBodyWith).
-  void drawBodyWith(const MechanicalState& body, visual::VisualModel& model, const std::string& name) {
-    visuals_.drawBodyWith(body, model, name);
-  }
   /// Final OBJ/PLY, video and contact sheet (idempotent).
   void finish(const Scene& scene);
   /// What was written, for the log ("meshes.pvd, video.avi, ...").
