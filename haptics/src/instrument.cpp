@@ -243,12 +243,9 @@ InstrumentPose Instrument::drivenPose(double t) const {
   pose.hinge = (settings_.trocar ? Vec3(2.0 * *settings_.trocar - hand) : hand) + drive_->hand_offset;
   pose.frame = drive_->frame;
   if (drive_->turn) {
-    // x → c + R(φ) (x − c), R(φ) the turn by φ = angle · min(1, (t − start) / duration) about the
-    // axis (at once when the duration is not positive).
+    // x → c + R(φ) (x − c), R(φ) the turn by φ = angle · progress(t) about the axis.
     const DeviceDrive::Turn& turn = *drive_->turn;
-    const double progress =
-        turn.duration > 0.0 ? std::clamp((t - turn.start) / turn.duration, 0.0, 1.0) : (t >= turn.start ? 1.0 : 0.0);
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(turn.angle * progress, turn.axis).toRotationMatrix();
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(turn.angle * turn.progress(t), turn.axis).toRotationMatrix();
     pose.hinge = turn.centre + R * (pose.hinge - turn.centre);
     pose.frame = R * pose.frame;
   }
@@ -261,10 +258,7 @@ void Instrument::turnAbout(const Vec3& centre, const Vec3& axis, double angle, d
   // the turn so far is made part of the drive, then the new one runs from `time`.
   const Vec3 unit = axis.normalized();
   if (drive_->turn && (drive_->turn->centre - centre).norm() <= 1e-12 && (drive_->turn->axis - unit).norm() <= 1e-12) {
-    const DeviceDrive::Turn& turn = *drive_->turn;
-    const double progress =
-        turn.duration > 0.0 ? std::clamp((time - turn.start) / turn.duration, 0.0, 1.0) : (time >= turn.start ? 1.0 : 0.0);
-    angle += turn.angle * (1.0 - progress);
+    angle += drive_->turn->angle * (1.0 - drive_->turn->progress(time));
   }
   bakeTurn(time);
   drive_->turn = DeviceDrive::Turn{centre, unit, angle, time, duration};

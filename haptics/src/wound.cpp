@@ -122,22 +122,14 @@ void Wound::bind(const Scene& scene, const std::vector<std::unique_ptr<Needle>>&
 }
 
 void Wound::updatePad(const SceneState& st, const std::vector<std::unique_ptr<Needle>>& needles) {
-  // The edges at 32 stations each (a polyline: the pad's slabs within (L/31)² κ / 8 of the curve's).
+  // The edges at 32 stations each (a polyline: the pad's slabs within (L/31)² κ / 8 of the curve's),
+  // into buffers sized once.
   constexpr int kStations = 32;
-  std::vector<WoundPad::Station> edges[2];
   for (int k = 0; k < 2; ++k) {
-    edges[k].resize(kStations);
-    for (int i = 0; i < kStations; ++i) {
-      const double s = static_cast<double>(i) / (kStations - 1);
-      WoundPad::Station& station = edges[k][i];
-      station.point = lips_[k]->position(st.q, s);
-      station.tangent = lips_[k]->tangent(st.q, s).normalized();
-      station.normal = (settings_.normal - settings_.normal.dot(station.tangent) * station.tangent).normalized();
-      station.outward = side_[k] * station.normal.cross(station.tangent);
-      station.velocity = lips_[k]->position(st.v, s);
-    }
+    edges_[k].resize(kStations);
+    for (int i = 0; i < kStations; ++i) edges_[k][i] = edgeAt(st, k, static_cast<double>(i) / (kStations - 1));
   }
-  pad_->setEdges(std::move(edges[0]), std::move(edges[1]));
+  pad_->setEdges(edges_[0], edges_[1]);
   // The thread in the tissue, stitch by stitch (a needle's holes from one entry into the skin to
   // the next; metres of thread to abscissa by |P'| at its middle):
   // - around each hole holding it, by the margin;
@@ -149,8 +141,8 @@ void Wound::updatePad(const SceneState& st, const std::vector<std::unique_ptr<Ne
   // - the swaged end itself, which goes where the needle goes (the needle does not collide).
   const double per_metre = 1.0 / std::max(thread_->tangent(st.q, 0.5).norm(), 1e-12);
   const double margin = WoundPad::kHoleMargin * per_metre;
-  std::vector<std::pair<double, double>> spans;
-  auto span = [&](double a, double b) { spans.emplace_back(std::min(a, b) - margin, std::max(a, b) + margin); };
+  spans_.clear();
+  auto span = [&](double a, double b) { spans_.emplace_back(std::min(a, b) - margin, std::max(a, b) + margin); };
   for (std::size_t j = 0; j < needles.size(); ++j) {
     if (!carries_[j]) continue;
     const Hole* last = nullptr;  // the current stitch's last hole holding the thread
@@ -173,18 +165,29 @@ void Wound::updatePad(const SceneState& st, const std::vector<std::unique_ptr<Ne
     const double reach = Needle::kSwageLead * per_metre;
     span(end - reach, end + reach);
   }
-  pad_->setPassage(thread_, std::move(spans));
+  pad_->setPassage(thread_, spans_);
+}
+
+WoundPad::Station Wound::edgeAt(const SceneState& st, int k, double s) const {
+  WoundPad::Station e;
+  e.point = lips_[k]->position(st.q, s);
+  e.tangent = lips_[k]->tangent(st.q, s).normalized();
+  e.normal = (settings_.normal - settings_.normal.dot(e.tangent) * e.tangent).normalized();
+  e.outward = side_[k] * e.normal.cross(e.tangent);
+  e.velocity = lips_[k]->position(st.v, s);  // Ṗ(s) = Σ b_j(s) q̇_j
+  return e;
 }
 
 Wound::LipPoint Wound::locate(const SceneState& st, int k, const Vec3& x) const {
   const CurveBody& lip = *lips_[k];
   const geometry::ClosestPoint cp = geometry::closestPoint(lip.basis(), lip.block(st.q), x);
   LipPoint l;
+  const WoundPad::Station frame = edgeAt(st, k, cp.s);
   l.s = cp.s;
   l.edge = cp.point;
-  l.tangent = lip.tangent(st.q, cp.s).normalized();
-  l.normal = (settings_.normal - settings_.normal.dot(l.tangent) * l.tangent).normalized();
-  l.outward = side_[k] * l.normal.cross(l.tangent);
+  l.tangent = frame.tangent;
+  l.normal = frame.normal;
+  l.outward = frame.outward;
   const Vec3 d = x - cp.point;
   l.across = d.dot(l.outward) + settings_.edge_radius;
   l.depth = -d.dot(l.normal) + settings_.edge_radius;
@@ -254,10 +257,6 @@ int Wound::makeHole(const SceneState& st, int k, const Vec3& at, bool entry, Fac
                    " ('" + settings_.lips[k] + "') through its " + faceName(face) + " at s = " + eventNumber(h.lip_abscissa) +
                    ", " + eventNumber(1e3 * h.from_edge) + " mm from its cut face");
   return static_cast<int>(holes_.size()) - 1;
-}
-
-double Wound::pressingForce(int needle) const {
-  return needle < static_cast<int>(tips_.size()) ? tips_[needle].force : 0.0;
 }
 
 double Wound::pressingForce() const {
@@ -358,12 +357,9 @@ std::string Wound::text() const {
 }
 
 double Wound::gap(const SceneState& st) const {
-  const Vec3 p = lips_[0]->position(st.q, 0.5);
-  const Vec3 t = lips_[0]->tangent(st.q, 0.5).normalized();
-  const Vec3 n = (settings_.normal - settings_.normal.dot(t) * t).normalized();
-  const Vec3 toward = -side_[0] * n.cross(t);  // across the wound, towards lip 1
-  const geometry::ClosestPoint cp = geometry::closestPoint(lips_[1]->basis(), lips_[1]->block(st.q), p);
-  return (cp.point - p).dot(toward) - 2.0 * settings_.edge_radius;
+  const WoundPad::Station middle = edgeAt(st, 0, 0.5);  // −ô: across the wound, towards lip 1
+  const geometry::ClosestPoint cp = geometry::closestPoint(lips_[1]->basis(), lips_[1]->block(st.q), middle.point);
+  return -(cp.point - middle.point).dot(middle.outward) - 2.0 * settings_.edge_radius;
 }
 
 std::vector<std::string> Wound::follow(Scene& scene, const std::vector<std::unique_ptr<Needle>>& needles) {

@@ -9,9 +9,9 @@ namespace filum::haptics {
 WoundPad::WoundPad(double width, double thickness, double edge_radius)
     : width_(width), thickness_(thickness), edge_radius_(edge_radius) {}
 
-void WoundPad::setEdges(std::vector<Station> lip0, std::vector<Station> lip1) {
-  edges_[0] = std::move(lip0);
-  edges_[1] = std::move(lip1);
+void WoundPad::setEdges(const std::vector<Station>& lip0, const std::vector<Station>& lip1) {
+  edges_[0] = lip0;
+  edges_[1] = lip1;
   // Each slab's box: the corners of its cross-section at every station, x = P + (u − r_e) ô −
   // (v − r_e) n̂ for u ∈ {0, width}, v ∈ {0, thickness} (between stations the slab is interpolated
   // from them: within the box up to the frames' turn over a station's length, below the
@@ -32,9 +32,9 @@ void WoundPad::setEdges(std::vector<Station> lip0, std::vector<Station> lip1) {
   }
 }
 
-void WoundPad::setPassage(const CurveBody* thread, std::vector<std::pair<double, double>> spans) {
+void WoundPad::setPassage(const CurveBody* thread, const std::vector<std::pair<double, double>>& spans) {
   thread_ = thread;
-  spans_ = std::move(spans);
+  spans_ = spans;
 }
 
 bool WoundPad::passesThrough(const CurveBody& body, double s) const {

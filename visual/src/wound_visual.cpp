@@ -13,15 +13,13 @@ WoundVisual::WoundVisual(const haptics::Wound& wound, int lip) : wound_(wound), 
 
 void WoundVisual::update(const SceneState& s) {
   const haptics::Wound::Settings& set = wound_.settings();
-  const CurveBody& edge = wound_.lip(lip_);
   // The slab's four corners at each station: A the cut face at the skin, B across, C across and
   // down, D down.
   std::vector<std::array<Vec3, 4>> corners(kStations);
   for (int i = 0; i < kStations; ++i) {
     const double u = static_cast<double>(i) / (kStations - 1);
-    const Vec3 p = edge.position(s.q, u), t = edge.tangent(s.q, u).normalized();
-    const Vec3 n = (set.normal - set.normal.dot(t) * t).normalized();
-    const Vec3 o = wound_.side(lip_) * n.cross(t);
+    const haptics::WoundPad::Station frame = wound_.edgeAt(s, lip_, u);
+    const Vec3 &p = frame.point, &n = frame.normal, &o = frame.outward;
     // x(u, v) = P + (u − r_e) ô − (v − r_e) n̂ at the rectangle's corners (haptics/wound.hpp).
     const double r = set.edge_radius;
     const auto at = [&](double u, double v) { return Vec3(p + (u - r) * o - (v - r) * n); };

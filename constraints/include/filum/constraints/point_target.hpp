@@ -79,10 +79,6 @@ class PointTarget {
   /// Moves an attached target to the abscissa s2 ∈ [0, 1] of its body, offset by o (m): X = P2(s2) + o.
   /// Returns false, changing nothing, for a target that is not attached.
   bool reattach(double abscissa, const Vec3& offset);
-  /// The attached target's offset o (m; zero unless attached with one).
-  const Vec3& offset() const { return offset_; }
-  /// The attached target's abscissa s2 on its body.
-  double attachedAbscissa() const { return abscissa_; }
 
   /// Applies the reaction −F at the attached point: B_k −= b_k(s2) F (nothing unless attached).
   void addReaction(const Vec3& F, VecX& B) const;

@@ -48,6 +48,7 @@
 // holding, the hold is their contact; scissors' blades never push (they cut what is between them).
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <optional>
 #include <memory>
@@ -212,6 +213,12 @@ class Instrument {
     struct Turn {
       Vec3 centre = Vec3::Zero(), axis = Vec3::UnitZ();
       double angle = 0.0, start = 0.0, duration = 1.0;
+      /// The fraction of the turn made by time t: (t − start) / duration in [0, 1] (at once when
+      /// the duration is not positive).
+      double progress(double t) const {
+        if (duration <= 0.0) return t >= start ? 1.0 : 0.0;
+        return std::clamp((t - start) / duration, 0.0, 1.0);
+      }
     };
     std::optional<Turn> turn;  // applied after the hand's position and frame (turnAbout)
     Vec3 hand_offset = Vec3::Zero();  // the hinge's swing by the turns made so far, off the hand

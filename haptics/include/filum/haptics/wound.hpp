@@ -150,9 +150,8 @@ class Wound {
   /// The sliding points, lip by lip (holes_per_lip each).
   const std::vector<constraints::SlidingPointConstraint*>& slots() const { return slots_; }
 
-  /// The force the skin pushes back on needle k's tip while it presses (N, 0 otherwise); without
-  /// an index, the largest over the needles.
-  double pressingForce(int needle) const;
+  /// The largest force the skin pushes back on a pressing needle's tip at the last step (N, 0 when
+  /// none presses).
   double pressingForce() const;
   /// The largest of them so far (N).
   double peakForce() const { return peak_force_; }
@@ -176,6 +175,9 @@ class Wound {
   /// One line for the log: holes, stitches with their bites, depth and angle, gap, peak force.
   std::string text() const;
 
+  /// Lip k's edge at abscissa s at state s: P, t̂, n̂ (the skin's normal made ⊥ t̂), ô = ± n̂ × t̂
+  /// away from the other lip, and Ṗ.
+  WoundPad::Station edgeAt(const SceneState& s, int lip, double abscissa) const;
   /// Lip k at state s: whether x lies in it, and its local coordinates.
   struct LipPoint {
     bool inside = false;
@@ -236,6 +238,8 @@ class Wound {
   std::vector<Hole> holes_;
   std::vector<Tip> tips_;
   WoundPad* pad_ = nullptr;  // owned by the scene's root node
+  std::vector<WoundPad::Station> edges_[2];             // the pad's edges, sized once
+  std::vector<std::pair<double, double>> spans_;        // the thread's passage, grown once
   double peak_force_ = 0.0;
   double gap_start_ = 0.0, gap_min_ = 0.0, gap_last_ = 0.0;
 };

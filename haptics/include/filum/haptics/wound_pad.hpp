@@ -39,10 +39,11 @@ class WoundPad final : public collision::Obstacle {
   WoundPad(double width, double thickness, double edge_radius);
   std::string typeName() const override { return "WoundPad"; }
 
-  /// Both lips' edges now (stations along each, at least two).
-  void setEdges(std::vector<Station> lip0, std::vector<Station> lip1);
-  /// The abscissa spans [a, b] of `thread` that run in the tissue (already widened).
-  void setPassage(const CurveBody* thread, std::vector<std::pair<double, double>> spans);
+  /// Both lips' edges now (stations along each, at least two; copied into buffers that keep their
+  /// capacity).
+  void setEdges(const std::vector<Station>& lip0, const std::vector<Station>& lip1);
+  /// The abscissa spans [a, b] of `thread` that run in the tissue (already widened; copied).
+  void setPassage(const CurveBody* thread, const std::vector<std::pair<double, double>>& spans);
   const std::vector<std::pair<double, double>>& passage() const { return spans_; }
 
   bool sample(const Vec3& x, double max_distance, collision::SurfaceSample& out) const override;
