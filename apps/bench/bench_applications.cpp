@@ -1,7 +1,7 @@
 // bench_applications: the surgical applications in wall time per simulated millisecond — the
-// shipped salpingectomy.json, intestine.json, catheter.json, coil.json and stitch.json played whole with their
-// instruments or navigation metrics (as `filum run` plays them: the instruments' drivers, jaws and
-// metrics between the steps), and the
+// shipped salpingectomy.json, intestine.json, catheter.json, catheter_device.json, coil.json and stitch.json
+// played whole with their instruments, navigation metrics or hub device (as `filum run` plays them:
+// the instruments' drivers, jaws and metrics, the device's servo ticks between the steps), and the
 // small bowel's cost against its length: a bowel of 0.5, 1, 2 and 4 m (radius 1.5 cm, soft
 // tissue, a control point every 2.5 cm, contact spheres every 1.5 cm with self-collision and
 // friction 0.3) laid as a serpentine on the posterior abdominal wall (a plane), its turns relaxing
@@ -23,6 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "filum/haptics/hub_device.hpp"
 #include "filum/haptics/instrument_set.hpp"
 #include "filum/haptics/navigation_metrics.hpp"
 #include "scene_stepping.hpp"
@@ -42,18 +43,21 @@ void application(benchmark::State& state, const std::string& file) {
     if (!scene) return;
     auto instruments = filum::haptics::InstrumentSet::fromScene(document, path, *scene);
     auto navigation = filum::haptics::NavigationMetrics::fromScene(document, path, *scene);
+    auto hub_device = filum::haptics::HubDevice::fromScene(document, path, *scene, scene->settings().duration);
     const double dt = scene->settings().dt;
     const long steps = std::lround(scene->settings().duration / dt);
     if (navigation) navigation->start(*scene);
     state.ResumeTiming();
     for (long k = 0; k < steps; ++k) {
       if (instruments) instruments->beforeStep(*scene);
+      if (hub_device) hub_device->beforeStep(*scene);
       const filum::StepReport report = scene->step();
       if (!report.ok) {
         state.SkipWithError(report.message.c_str());
         return;
       }
       if (instruments) instruments->afterStep(*scene);
+      if (hub_device) hub_device->afterStep(*scene);
       if (navigation) navigation->afterStep(*scene, dt);
     }
     simulated += scene->settings().duration;
@@ -171,6 +175,8 @@ BENCHMARK_CAPTURE(application, salpingectomy, std::string("salpingectomy.json"))
 BENCHMARK_CAPTURE(application, intestine, std::string("intestine.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(application, catheter, std::string("catheter.json"))
+    ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(application, catheter_device, std::string("catheter_device.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(application, coil, std::string("coil.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);

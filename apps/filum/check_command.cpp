@@ -7,6 +7,7 @@
 #include "filum/core/scene_loader.hpp"
 #include "filum/haptics/fluoroscopy_pedal.hpp"
 #include "filum/haptics/haptic_session.hpp"
+#include "filum/haptics/hub_device.hpp"
 #include "filum/haptics/instrument_set.hpp"
 #include "filum/output_settings.hpp"
 #include "filum/physics_check.hpp"
@@ -28,6 +29,7 @@ int checkScene(const std::string& path, std::ostream& out) {
     // The "haptics" block, read by `filum run` (a Phantom is opened, then closed, to check it).
     haptics::HapticSession::fromScene(document, path, *scene, 0.0);  // (no run: the shortest servo log)
     haptics::InstrumentSet::fromScene(document, path, *scene);  // the "instruments", read by `filum run`
+    haptics::HubDevice::fromScene(document, path, *scene, 0.0);  // a device at a catheter's hub ("navigation")
     visual::VisualScene visuals(*scene);  // binds what the visual models follow (--meshes, --render, view)
     visuals.update(scene->state());
     // Physics mistakes: what is well-formed but cannot run as written (physics_check.hpp).

@@ -14,6 +14,7 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/haptics/haptic_session.hpp"
+#include "filum/haptics/hub_device.hpp"
 #include "filum/haptics/instrument_set.hpp"
 #include "filum/haptics/navigation_metrics.hpp"
 #include "filum/output_settings.hpp"
@@ -150,6 +151,23 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     log << "error: " << options.scene << ": /navigation: " << e.what() << '\n';
     return kRunSceneError;
   }
+  // A haptic device on an instrument's hub (the navigation block's "device"): the hand pushes and
+  // turns the instrument and feels it (haptics/hub_device.hpp).
+  std::unique_ptr<haptics::HubDevice> hub_device;
+  try {
+    hub_device = haptics::HubDevice::fromScene(document, options.scene, *scene, duration);
+  } catch (const SceneError& e) {
+    log << "error: " << e.what() << '\n';
+    return kRunSceneError;
+  } catch (const std::exception& e) {
+    log << "error: " << options.scene << ": /navigation/device: " << e.what() << '\n';
+    return kRunSceneError;
+  }
+  if (haptic && hub_device) {
+    log << "error: " << options.scene << ": /navigation/device: expected one haptic device per run (the \"haptics\" "
+        << "block's or the hub's: both write haptics.csv), found both\n";
+    return kRunSceneError;
+  }
   if (navigation && instruments) {
     log << "error: " << options.scene << ": /navigation: expected either laparoscopic \"instruments\" or a catheter "
         << "\"navigation\" block (both write metrics.csv), found both\n";
@@ -224,9 +242,17 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     navigation->writeSummary(directory + "/metrics.json");
     log << navigation->text() << "  -> metrics.csv, metrics.json\n";
   };
+  // Forces off, haptics.csv written, the hub device's summary logged.
+  auto finishHubDevice = [&]() {
+    if (!hub_device) return;
+    hub_device->finish();
+    hub_device->writeCsv(directory + "/haptics.csv");
+    log << hub_device->summary() << " -> haptics.csv\n";
+  };
   // The run stops: what happened, the frames kept, the summary (exit 3).
   auto diverged = [&](const std::string& message) {
     if (haptic) finishHaptics(*haptic, directory, log);
+    finishHubDevice();
     finishNavigation();
     if (instruments) finishInstruments(*instruments, directory, log);
     else logRuptures(*scene, log);
@@ -254,14 +280,17 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     }
     auto last_progress = start;
     if (haptic) haptic->start();
+    if (hub_device) hub_device->start();
     if (instruments) instruments->start();
     const auto haptic_start = Clock::now();
     for (long k = 1; k <= steps; ++k) {
       // A device on the wall clock: the simulation keeps pace with it (never ahead of it).
-      if ((haptic && haptic->threaded()) || (instruments && instruments->threaded()))
+      if ((haptic && haptic->threaded()) || (instruments && instruments->threaded()) ||
+          (hub_device && hub_device->threaded()))
         std::this_thread::sleep_until(haptic_start + std::chrono::duration_cast<Clock::duration>(
                                                          std::chrono::duration<double>(scene->state().time)));
       if (haptic) haptic->beforeStep(*scene);
+      if (hub_device) hub_device->beforeStep(*scene);
       const auto before = Clock::now();
       if (instruments) instruments->beforeStep(*scene);
       const StepReport report = scene->step();
@@ -270,8 +299,11 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
       const auto after = Clock::now();
       if (!report.ok) return diverged(report.message);
       if (haptic) haptic->afterStep(*scene);
-      if ((haptic && haptic->interrupted()) || (instruments && instruments->interrupted())) {
+      if (hub_device) hub_device->afterStep(*scene);
+      if ((haptic && haptic->interrupted()) || (instruments && instruments->interrupted()) ||
+          (hub_device && hub_device->interrupted())) {
         if (haptic) finishHaptics(*haptic, directory, log);
+        finishHubDevice();
         finishNavigation();
         if (instruments) finishInstruments(*instruments, directory, log);
         log << "interrupted (Ctrl-C) at t = " << scene->state().time << " s: forces off\n";
@@ -300,6 +332,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
       }
     }
     if (haptic) finishHaptics(*haptic, directory, log);
+    finishHubDevice();
     finishNavigation();
     if (instruments) finishInstruments(*instruments, directory, log);
     else logRuptures(*scene, log);

@@ -19,6 +19,7 @@
 #include "filum/haptics/haptic_session.hpp"
 #include "filum/haptics/hub_control.hpp"
 #include "filum/haptics/instrument_set.hpp"
+#include "filum/haptics/hub_device.hpp"
 #include "filum/haptics/navigation_metrics.hpp"
 #include "filum/mechanics/dynamic_spline.hpp"
 #include "filum/run_command.hpp"
@@ -94,6 +95,7 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
   std::unique_ptr<haptics::InstrumentSet> instruments;  // on their scripts until a key gives one to the mouse
   std::unique_ptr<Scene> scene;
   std::unique_ptr<haptics::HubControl> hub;           // arrows: push, pull and turn the hub
+  std::unique_ptr<haptics::HubDevice> hub_device;     // or a haptic device at the hub (then no arrows)
   std::unique_ptr<haptics::FluoroscopyPedal> pedal;   // f: the X-ray pedal
   std::optional<visual::FluoroscopyView> fluoroscopy; // x: the fluoroscope's monitor instead of the 3D view
   nlohmann::json document;
@@ -114,8 +116,10 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
     if (instruments) instruments->start();  // devices on their own thread (a Phantom) start sampling
     // A catheter or guidewire ("navigation"): its hub to the arrow keys (a block that only
     // scores an aneurysm's coils has no instrument).
+    hub_device = haptics::HubDevice::fromScene(document, options.scene, *scene, 1.0);
+    if (hub_device) hub_device->start();
     if (const auto navigation = haptics::NavigationMetrics::fromScene(document, options.scene, *scene);
-        navigation && navigation->instrumentCount() > 0)
+        navigation && navigation->instrumentCount() > 0 && !hub_device)
       hub = haptics::HubControl::find(*scene, navigation->instrument(0).name);
     pedal = haptics::FluoroscopyPedal::fromScene(document, options.scene);
     fluoroscopy = visual::FluoroscopyView::fromScene(document, options.scene);
@@ -232,7 +236,7 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
                                        scene->state().time))
             log << "filum view: [ and ] turn a needle the mouse's instrument holds; '"
                 << instruments->instrument(selected).name() << "' holds none (or works through a trocar)\n";
-          if (e.key == "r" && (instruments || hub_moved)) {
+          if (e.key == "r" && (instruments || hub_moved || hub_device)) {
             // The instruments' holds, cuts and metrics are not rewound with the state.
             // The hand's strokes, the instruments' holds, cuts and metrics are not rewound with the state.
             log << "filum view: r does not restart a scene whose instruments or hub the hand has moved; quit and open it "
@@ -299,8 +303,10 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
             }
           }
           if (instruments) instruments->beforeStep(*scene);
+          if (hub_device) hub_device->beforeStep(*scene);
           const StepReport report = scene->step();
           if (instruments && report.ok) instruments->afterStep(*scene);
+          if (hub_device && report.ok) hub_device->afterStep(*scene);
           if (!report.ok) {
             log << "error: " << report.message << " (state rolled back; press r to restart)\n";
             paused = true;
@@ -337,6 +343,15 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
       if (selected >= 0)
         hud += " | mouse: " + instruments->instrument(selected).name() +
                (instruments->instrument(selected).jawsClosing() ? " (jaws closing)" : "");
+      if (hub_device) {  // what the hand on the hub feels
+        std::ostringstream felt;
+        felt.precision(3);
+        felt << " | hub " << 1e3 * hub_device->hub().insertion(*scene) << " mm, "
+             << hub_device->hub().roll(*scene) * 180.0 / std::numbers::pi << " deg"
+             << (hub_device->gripping() ? ", gripped" : "") << " | hand force " << hub_device->handForce().norm()
+             << " N, torque " << hub_device->handTorque() << " N m";
+        hud += felt.str();
+      }
       if (haptic) {  // what a device's hand would feel: the tool's reaction
         std::ostringstream force;
         force.precision(3);
@@ -346,7 +361,9 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
       visual::drawHeadsUp(frame, hud);
       visual::drawFooter(frame, instruments ? "1-9: instrument to the mouse, 0: probe | c/o: close/open jaws | [/]: turn needle | "
                                               "left: move | right: orbit | wheel: zoom | space | r | q"
-                                : hub       ? std::string("up/down: push/pull the hub | left/right: turn it") +
+                                : hub || hub_device
+                                            ? std::string(hub ? "up/down: push/pull the hub | left/right: turn it"
+                                                              : "the hub on the haptic device (grip: its button)") +
                                                   (fluoroscopy ? " | f: X-ray pedal | x: monitor/3D" : "") + " | space | q"
                                             : "left: push | shift+left or g: grab | right: orbit | wheel: zoom | space: pause | r | q");
       window.show(frame);

@@ -3,10 +3,13 @@
 
   /usr/bin/python3 apps/tools/plot_haptics.py out/haptic_grasp [--out haptics.png]
 
-haptics.csv (written by `filum run` for a scene with a "haptics" block) has one row per servo
-tick. The picture has two panels over time:
+haptics.csv (written by `filum run` for a scene with a "haptics" block, or a "navigation" block
+with a "device" on an instrument's hub) has one row per servo tick. The picture has panels over
+time:
   force   |F| commanded by the local model and |F| sent after the safety stage (clamp, slew,
           watchdog), with the device's button held shaded — where the two differ, a limit acted;
+  torque  (when one was commanded) the torque about the stylus's axis, commanded and sent (mN·m;
+          a device without a motor on its gimbal gets none), and the stylus's roll;
   period  the servo loop's period (ms): exactly 1 ms in lockstep, the wall clock's in thread mode.
 """
 import argparse
@@ -22,7 +25,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def read(path):
-    rows = {"time": [], "period": [], "commanded": [], "sent": [], "buttons": []}
+    rows = {"time": [], "period": [], "commanded": [], "sent": [], "buttons": [], "roll": [], "torque_commanded": [],
+            "torque_sent": []}
     with open(path, newline="") as f:
         for row in csv.DictReader(f):
             rows["time"].append(float(row["time"]))
@@ -32,6 +36,8 @@ def read(path):
             rows["commanded"].append(math.sqrt(sum(v * v for v in c)) if all(map(math.isfinite, c)) else float("nan"))
             rows["sent"].append(math.sqrt(sum(v * v for v in s)))
             rows["buttons"].append(int(row["buttons"]))
+            for key in ("roll", "torque_commanded", "torque_sent"):  # (older files have no such columns)
+                rows[key].append(float(row[key]) if row.get(key) not in (None, "") else 0.0)
     return rows
 
 
@@ -56,13 +62,28 @@ def main():
     r = read(path)
     if not r["time"]:
         sys.exit(f"{path}: no servo tick recorded")
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(9, 6), sharex=True, gridspec_kw={"height_ratios": [2, 1]})
+    torque = any(v != 0.0 for v in r["torque_commanded"])
+    ratios = [2, 1.5, 1] if torque else [2, 1]
+    fig, axes = plt.subplots(len(ratios), 1, figsize=(9, 6 + 2 * torque), sharex=True,
+                             gridspec_kw={"height_ratios": ratios})
+    top, bottom = axes[0], axes[-1]
     shade_buttons(top, r["time"], r["buttons"])
     top.plot(r["time"], r["commanded"], color="tab:blue", lw=1.2, label="commanded (local model)")
     top.plot(r["time"], r["sent"], color="tab:red", lw=1.2, ls="--", label="sent (after clamp, slew, watchdog)")
     top.set_ylabel("|F| on the stylus (N)")
     top.legend(loc="upper right", fontsize=8)
     top.set_title(f"{os.path.basename(os.path.normpath(args.folder))}: force at the stylus (grey: button held)")
+    if torque:
+        middle = axes[1]
+        shade_buttons(middle, r["time"], r["buttons"])
+        middle.plot(r["time"], [1e3 * v for v in r["torque_commanded"]], color="tab:blue", lw=1.2, label="commanded")
+        middle.plot(r["time"], [1e3 * v for v in r["torque_sent"]], color="tab:red", lw=1.2, ls="--", label="sent")
+        middle.set_ylabel("torque about the\nstylus (mN·m)")
+        roll = middle.twinx()
+        roll.plot(r["time"], [math.degrees(v) for v in r["roll"]], color="0.4", lw=0.8, label="stylus roll")
+        roll.set_ylabel("roll (°)")
+        middle.legend(loc="upper left", fontsize=8)
+        roll.legend(loc="upper right", fontsize=8)
     bottom.plot(r["time"], r["period"], color="tab:green", lw=0.8)
     bottom.set_ylim(0.0, max(2.0, 1.1 * max(r["period"])))  # from zero: jitter against the period itself
     bottom.set_ylabel("servo period (ms)")

@@ -34,6 +34,7 @@ DeviceLimits limitsFromParams(const Params& p, DeviceLimits base) {
   l.slew_rate = p.positive({"slew_rate", "N/s"}, l.slew_rate);
   l.workspace_min = p.vec3({"workspace_min", "m"}, l.workspace_min);
   l.workspace_max = p.vec3({"workspace_max", "m"}, l.workspace_max);
+  l.peak_torque = p.nonNegative({"peak_torque", "N·m"}, l.peak_torque);
   if (l.continuous_force > l.peak_force)
     p.fail("continuous_force", "a continuous force at most the peak force (" + std::to_string(l.peak_force) + " N)");
   if ((l.workspace_max - l.workspace_min).minCoeff() <= 0.0)

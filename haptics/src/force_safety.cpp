@@ -40,4 +40,12 @@ Vec3 ForceSafety::apply(const Vec3& commanded, double t, bool fresh) {
   return F;
 }
 
+double ForceSafety::applyTorque(double commanded) {
+  if (!std::isfinite(commanded)) {
+    ++non_finite_;
+    return 0.0;
+  }
+  return std::clamp(gain_ * commanded, -limits_.peak_torque, limits_.peak_torque);
+}
+
 }  // namespace filum::haptics

@@ -119,6 +119,11 @@ bool HapticSession::stylus(const Scene& scene, ServoSample& sample) {
   return true;
 }
 
+void HapticSession::publish(LocalLinearModel model) {
+  limitStiffness(model);
+  servo_->publish(model);
+}
+
 void HapticSession::publishInstrument(const Scene& scene, const Vec3& contact_force, const Vec3& position,
                                       const Vec3& velocity, bool mirrored) {
   const ToolReaction reaction = this->reaction(scene);
@@ -236,7 +241,8 @@ bool HapticSession::interrupted() const { return servo_->interrupted() || interr
 
 void HapticSession::writeCsv(const std::string& path) const {
   std::ofstream out(path);
-  out << "time,period,x,y,z,buttons,commanded_x,commanded_y,commanded_z,sent_x,sent_y,sent_z,watchdog_gain\n";
+  out << "time,period,x,y,z,buttons,commanded_x,commanded_y,commanded_z,sent_x,sent_y,sent_z,watchdog_gain,roll,"
+         "torque_commanded,torque_sent\n";
   out.precision(17);
   for (const ServoSample& s : servo_->log()) {
     out << s.time << ',' << s.period << ',' << s.position.x() << ',' << s.position.y() << ',' << s.position.z() << ','
@@ -245,7 +251,7 @@ void HapticSession::writeCsv(const std::string& path) const {
     // the plot shows the refusal; sent forces are finite by construction.
     for (int i = 0; i < 3; ++i) out << s.commanded[i] << ',';
     for (int i = 0; i < 3; ++i) out << s.sent[i] << ',';
-    out << s.watchdog_gain << '\n';
+    out << s.watchdog_gain << ',' << s.roll << ',' << s.torque_commanded << ',' << s.torque_sent << '\n';
   }
   out.close();
   if (!out) throw std::runtime_error(path + ": write failed (disk full or file size limit?)");
@@ -253,16 +259,19 @@ void HapticSession::writeCsv(const std::string& path) const {
 
 std::string HapticSession::summary() const {
   const auto& log = servo_->log();
-  double peak = 0.0, longest = 0.0;
+  double peak = 0.0, longest = 0.0, peak_torque = 0.0;
   for (const ServoSample& s : log) {
     peak = std::max(peak, s.sent.norm());
+    peak_torque = std::max(peak_torque, std::abs(s.torque_sent));
     longest = std::max(longest, s.period);
   }
   std::ostringstream out;
   out << "haptics: " << device_->name() << ", " << servo_->ticks() << " servo ticks at " << settings_.rate << " Hz ("
-      << (threaded_ ? "thread" : "lockstep") << "), coupling k = " << coupling_.stiffness
-      << " N/m, c = " << coupling_.damping << " N·s/m, largest force sent " << peak << " N, longest period "
+      << (threaded_ ? "thread" : "lockstep") << "), ";
+  if (coupling_used_) out << "coupling k = " << coupling_.stiffness << " N/m, c = " << coupling_.damping << " N·s/m, ";
+  out << "largest force sent " << peak << " N, longest period "
       << longest * 1e3 << " ms";
+  if (peak_torque > 0.0) out << ", largest torque sent " << peak_torque << " N·m";
   if (!drives_instrument_) out << ", " << grasps_ << " grasps";  // an instrument's are in its metrics
   if (servo_->safety().nonFiniteCount() > 0) out << ", " << servo_->safety().nonFiniteCount() << " non-finite forces refused";
   if (servo_->droppedSamples() > 0) out << ", " << servo_->droppedSamples() << " samples beyond the log dropped";

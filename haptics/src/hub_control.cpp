@@ -25,6 +25,7 @@ std::unique_ptr<HubControl> HubControl::find(Scene& scene, const std::string& pa
   const CurveBody& body = *node->mechanicalState()->curve();
   const Vec3 tangent = body.tangent(scene.state().q, 0.0);
   hub->axis_ = tangent.norm() > 0.0 ? Vec3(tangent.normalized()) : Vec3::UnitZ();
+  hub->start_ = hub->hub_->target().position(scene.state());
   return hub;
 }
 
@@ -48,6 +49,35 @@ void HubControl::update(Scene& scene) {
   if (push_end_ < 0.0 || scene.state().time < push_end_) return;
   constraints::steerTarget(*hub_, scene.state(), goal_, Vec3::Zero());
   push_end_ = -1.0;
+}
+
+void HubControl::steer(Scene& scene, double insertion, double speed) {
+  push_end_ = -1.0;
+  constraints::steerTarget(*hub_, scene.state(), start_ + insertion * axis_, speed * axis_);
+}
+
+bool HubControl::rollTo(const Scene& scene, double roll, double duration) {
+  if (!frame_) return false;
+  const double now = scene.state().time;
+  frame_->turn(roll - frame_->roll(now), now, now + duration);
+  return true;
+}
+
+double HubControl::insertion(const Scene& scene) const {
+  return (hub_->target().position(scene.state()) - start_).dot(axis_);
+}
+
+double HubControl::roll(const Scene& scene) const { return frame_ ? frame_->roll(scene.state().time) : 0.0; }
+
+Vec3 HubControl::force(const Scene& scene) const {
+  const Eigen::Ref<const VecX> lambda = scene.constraintMultipliers(*hub_);
+  Vec3 f = Vec3::Zero();
+  for (Eigen::Index i = 0; i < lambda.size(); ++i) f += lambda[i] * hub_->directions()[i];
+  return f;
+}
+
+double HubControl::torque(const Scene& scene) const {
+  return frame_ ? frame_->torqueOnRod(scene.state()).dot(axis_) : 0.0;
 }
 
 }  // namespace filum::haptics

@@ -96,6 +96,7 @@ std::unique_ptr<NavigationMetrics> NavigationMetrics::fromScene(const nlohmann::
   }
   metrics->force_limit_ = p.positive({"force_limit", "N"}, 0.5);
   if (p.has("aneurysm")) metrics->readAneurysm(scene, p.object("aneurysm"));
+  if (p.has("device")) p.raw("device");  // the hand's device at the hub: read by HubDevice
   p.finish();
   return metrics;
 }

@@ -27,6 +27,7 @@ bool ServoLoop::tick(double t) {
   if (interruptRequested()) {
     interrupted_.store(true);
     device_.write(Vec3::Zero());
+    device_.writeTorque(0.0);
     return false;
   }
   const DeviceState stylus = device_.read(t);
@@ -38,6 +39,7 @@ bool ServoLoop::tick(double t) {
   sample.position = settings_.frame.positionToScene(stylus.position);
   sample.velocity = settings_.frame.velocityToScene(stylus.velocity);
   sample.buttons = stylus.buttons;
+  sample.roll = stylus.roll;
   const bool fresh = models_.read() && models_.latest().sequence != last_sequence_;
   const LocalLinearModel& model = models_.latest();
   last_sequence_ = model.sequence;
@@ -46,7 +48,10 @@ bool ServoLoop::tick(double t) {
   sample.commanded = settings_.frame.forceToDevice(scene_force);
   sample.sent = safety_.apply(sample.commanded, t, fresh);
   sample.watchdog_gain = safety_.watchdogGain();
+  sample.torque_commanded = model.sequence == 0 ? 0.0 : settings_.frame.force_scale * model.torque;
+  sample.torque_sent = safety_.applyTorque(sample.torque_commanded);
   device_.write(sample.sent);
+  device_.writeTorque(sample.torque_sent);
   samples_.write(sample);
   if (log_.size() < log_capacity_) {
     log_.push_back(sample);
@@ -74,6 +79,7 @@ void ServoLoop::runLockstepUntil(double t) {
 void ServoLoop::stop() {
   if (running_.exchange(false)) device_.stop();  // joins the servo thread, leaves zero force
   device_.write(Vec3::Zero());
+  device_.writeTorque(0.0);
 }
 
 void ServoLoop::publish(LocalLinearModel model) {

@@ -45,6 +45,7 @@ DeviceState SimulatedDevice::read(double t) {
   state.velocity = read_once_ && t > last_read_time_ ? Vec3((x_ - last_read_position_) / (t - last_read_time_))
                                                     : Vec3::Zero();
   state.buttons = target_.buttons(t);
+  state.roll = target_.roll(t);  // the hand turns the stylus as scripted (its roll's dynamics are not simulated)
   last_read_position_ = x_;
   last_read_time_ = t;
   read_once_ = true;

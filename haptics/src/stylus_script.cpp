@@ -21,9 +21,10 @@ constexpr std::uintmax_t kMaxScriptBytes = 64u * kMaxWaypoints;
 struct Rows {
   std::vector<Keyframe> keyframes;
   std::vector<unsigned> buttons;
+  std::vector<double> rolls;
 };
 
-/// "time,x,y,z[,buttons]" rows; the first line may be a header.
+/// "time,x,y,z[,buttons[,roll]]" rows; the first line may be a header.
 Rows readCsv(const std::string& path) {
   if (const std::string problem = inputFileProblem(path, kMaxScriptBytes); !problem.empty())
     throw SceneError(path, "a CSV file of at most " + byteSize(kMaxScriptBytes) + " (time,x,y,z,buttons rows)", problem);
@@ -38,11 +39,14 @@ Rows readCsv(const std::string& path) {
     double t, x, y, z;
     if (!(fields >> t >> x >> y >> z)) {
       if (number == 1) continue;  // a header
-      throw SceneError(path + ":" + std::to_string(number), "a row time,x,y,z[,buttons] of numbers", "\"" + line + "\"");
+      throw SceneError(path + ":" + std::to_string(number), "a row time,x,y,z[,buttons[,roll]] of numbers",
+                       "\"" + line + "\"");
     }
-    // An optional fifth column, the buttons: a whole number, and nothing after it.
-    std::string buttons, rest;
+    // An optional fifth column, the buttons: a whole number; an optional sixth, the roll (rad);
+    // nothing after them.
+    std::string buttons, roll_text, rest;
     long b = 0;
+    double roll = 0.0;
     if (fields >> buttons) {
       std::size_t used = 0;
       try {
@@ -52,9 +56,18 @@ Rows readCsv(const std::string& path) {
       }
       if (used != buttons.size()) b = -1;
     }
+    if (fields >> roll_text) {
+      std::size_t used = 0;
+      try {
+        roll = std::stod(roll_text, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != roll_text.size()) roll = std::nan("");
+    }
     if (fields >> rest || b < 0 || b > 0xffff || !std::isfinite(t) || !std::isfinite(x) || !std::isfinite(y) ||
-        !std::isfinite(z))
-      throw SceneError(path + ":" + std::to_string(number), "finite time,x,y,z and buttons in [0, 65535]",
+        !std::isfinite(z) || !std::isfinite(roll))
+      throw SceneError(path + ":" + std::to_string(number), "finite time,x,y,z, buttons in [0, 65535] and a finite roll",
                        "\"" + line + "\"");
     if (t < 0.0 || (!rows.keyframes.empty() && !(t > rows.keyframes.back().time)))
       throw SceneError(path + ":" + std::to_string(number), "a time >= 0 later than the previous row's", "\"" + line + "\"");
@@ -63,6 +76,7 @@ Rows readCsv(const std::string& path) {
                        "more");
     rows.keyframes.push_back({t, Vec3(x, y, z)});
     rows.buttons.push_back(static_cast<unsigned>(b));
+    rows.rolls.push_back(roll);
   }
   if (rows.keyframes.empty()) throw SceneError(path, "at least one row time,x,y,z[,buttons]", "none");
   return rows;
@@ -80,6 +94,7 @@ Rows readWaypoints(const Params& p) {
       item.fail("time", "a time >= 0 (s) later than the previous waypoint's");
     rows.keyframes.push_back({t, item.vec3({"position", "m"})});
     rows.buttons.push_back(static_cast<unsigned>(item.integer("buttons", 0, 0xffff, 0, "a button mask")));
+    rows.rolls.push_back(item.number({"roll", "rad"}, rows.rolls.empty() ? 0.0 : rows.rolls.back()));
     item.finish();
   }
   return rows;
@@ -88,11 +103,17 @@ Rows readWaypoints(const Params& p) {
 }  // namespace
 
 StylusScript::StylusScript(std::vector<Keyframe> keyframes, std::vector<unsigned> buttons,
-                           geometry::ScriptedPath::Interpolation interpolation)
+                           geometry::ScriptedPath::Interpolation interpolation, std::vector<double> rolls)
     : buttons_(std::move(buttons)) {
   times_.reserve(keyframes.size());
-  for (const Keyframe& k : keyframes) times_.push_back(k.time);
+  std::vector<Keyframe> roll_keys;
+  roll_keys.reserve(keyframes.size());
+  for (std::size_t i = 0; i < keyframes.size(); ++i) {
+    times_.push_back(keyframes[i].time);
+    roll_keys.push_back({keyframes[i].time, Vec3(i < rolls.size() ? rolls[i] : 0.0, 0.0, 0.0)});
+  }
   path_ = geometry::ScriptedPath(std::move(keyframes), interpolation);
+  roll_path_ = geometry::ScriptedPath(std::move(roll_keys), interpolation);
 }
 
 StylusScript StylusScript::fromParams(const Params& p) {
@@ -109,7 +130,8 @@ StylusScript StylusScript::fromParams(const Params& p) {
   if (name != "linear" && name != "smooth") p.fail("interpolation", "\"linear\" or \"smooth\"");
   return StylusScript(std::move(rows.keyframes), std::move(rows.buttons),
                       name == "smooth" ? geometry::ScriptedPath::Interpolation::kSmooth
-                                       : geometry::ScriptedPath::Interpolation::kLinear);
+                                       : geometry::ScriptedPath::Interpolation::kLinear,
+                      std::move(rows.rolls));
 }
 
 unsigned StylusScript::buttons(double t) const {

@@ -101,19 +101,24 @@ Eigen::Quaterniond RodEndFrame::heldFrame(double t) const {
       .normalized();
 }
 
-double RodEndFrame::term(const SceneState& s, VecX* forces) const {
+double RodEndFrame::term(const SceneState& s, VecX* forces, Vec3* body_torque) const {
   const bool start = end_ == End::kStart;
   const Eigen::Quaterniond R = chain_->orientation(s.q, segment_), held = heldFrame(s.time);
   const Vec3 phi = geometry::rotationLog(start ? held.conjugate() * R : R.conjugate() * held);
   const Vec3 moment = stiffness_.cwiseProduct(phi - rest_);  // m = B (φ − φ̄) / ℓ
-  if (forces) {
-    auto torque = chain_->internalVelocities(*forces).segment<3>(3 * segment_);
-    if (start)
-      torque -= geometry::rightJacobianInverse(phi).transpose() * moment;
-    else
-      torque += geometry::leftJacobianInverse(phi).transpose() * moment;
+  if (forces || body_torque) {
+    const Vec3 torque = start ? Vec3(-geometry::rightJacobianInverse(phi).transpose() * moment)
+                              : Vec3(geometry::leftJacobianInverse(phi).transpose() * moment);
+    if (forces) chain_->internalVelocities(*forces).segment<3>(3 * segment_) += torque;
+    if (body_torque) *body_torque = torque;
   }
   return 0.5 * (phi - rest_).dot(moment);
+}
+
+Vec3 RodEndFrame::torqueOnRod(const SceneState& s) const {
+  Vec3 body = Vec3::Zero();
+  term(s, nullptr, &body);
+  return chain_->orientation(s.q, segment_) * body;  // the end segment's body frame → world
 }
 
 void RodEndFrame::addForce(const SceneState& s, VecX& B) const { term(s, &B); }

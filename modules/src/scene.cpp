@@ -2,6 +2,7 @@
 
 #include "filum/core/curve_body.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "filum/core/flush_denormals.hpp"
@@ -104,6 +105,7 @@ void Scene::init() {
   for (ForceField* f : force_fields_) bindBodyComponent(*f);
   for (Constraint* c : constraints_) bindBodyComponent(*c);
   for (LayoutController* l : layout_controllers_) bindBodyComponent(*l);
+  constraint_first_row_.assign(constraints_.size(), -1);
   setExtraIndices();
   setInternalOffsets();
   state_.q.conservativeResize(positionSize());
@@ -284,14 +286,28 @@ std::string Scene::addForces(const SceneState& s, VecX& B, bool name_non_finite)
   return name_non_finite ? "the forces are not finite, although no source alone made them so" : "";
 }
 
+Eigen::Ref<const VecX> Scene::constraintMultipliers(const Constraint& constraint) const {
+  static const VecX none;
+  if (!constraint_solver_) return none;
+  const auto found = std::find(constraints_.begin(), constraints_.end(), &constraint);
+  if (found == constraints_.end()) return none;
+  const int first = constraint_first_row_[found - constraints_.begin()];
+  const Eigen::Ref<const VecX> lambda = constraint_solver_->multipliers();
+  if (first < 0 || first + constraint.rowCount() > lambda.size()) return none;
+  return lambda.segment(first, constraint.rowCount());
+}
+
 void Scene::applyConstraints(const SceneState& s, const BlockInverse& inverse, VecX& a) {
   // Stage 3c: constrained accelerations (paper §4, acceleration decomposition): the active
   // constraints' rows, then the step's unilateral contacts as inequality rows, solved together
   // by the one constraint solver.
   if (!constraint_solver_) return;
   rows_.clear();
-  for (const Constraint* c : constraints_)
+  for (std::size_t i = 0; i < constraints_.size(); ++i) {
+    const Constraint* c = constraints_[i];
+    constraint_first_row_[i] = c->active() ? rows_.rows() : -1;
     if (c->active()) c->buildRows(s, rows_);
+  }
   const int first_contact_row = rows_.rows();
   const int contact_rows = collision_ ? collision_->addContactRows(s, rows_) : 0;
   if (rows_.rows() > 0) constraint_solver_->solve(constraintProblem(), rows_, inverse, a);

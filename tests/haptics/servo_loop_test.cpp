@@ -56,6 +56,54 @@ TEST(ServoLoop, TheModelsForceIsMappedBackToTheDevice) {
   EXPECT_EQ(device.lastForce(), Vec3::Zero());
 }
 
+TEST(ServoLoop, TheStylusRollIsReadAndTheModelsTorqueSentWithinThePeakTorque) {
+  // The roll turns 0.4 rad over 1 s; the model asks 0.02 N·m about the stylus's axis.
+  StylusScript script({{0.0, Vec3::Zero()}, {1.0, Vec3::Zero()}}, {0u, 0u}, geometry::ScriptedPath::Interpolation::kLinear,
+                      {0.0, 0.4});
+  DeviceLimits limits = devicePreset("Touch");
+  limits.peak_torque = 0.05;  // N·m: a gimbal with a motor
+  ScriptedDevice device(script, limits);
+  ServoSettings settings;
+  settings.frame.force_scale = 2.0;  // torques as forces: 2 device N·m per scene N·m
+  ServoLoop servo(device, settings, 1000);
+  LocalLinearModel model;
+  model.torque = 0.02;
+  servo.publish(model);
+  servo.runLockstepUntil(0.03);  // (within the watchdog's 50 ms of the model)
+  ServoSample s;
+  ASSERT_TRUE(servo.latestSample(s));
+  EXPECT_NEAR(s.roll, 0.012, 1e-15);  // linear: 0.4 · 0.03 (round-off of the interpolation)
+  EXPECT_DOUBLE_EQ(s.torque_commanded, 0.04);
+  EXPECT_DOUBLE_EQ(s.torque_sent, 0.04);
+  EXPECT_DOUBLE_EQ(device.lastTorque(), 0.04);
+  // Beyond the peak: clamped; not finite: zero, counted.
+  model.torque = -0.5;
+  servo.publish(model);
+  servo.runLockstepUntil(0.04);
+  EXPECT_DOUBLE_EQ(device.lastTorque(), -0.05);
+  model.torque = std::nan("");
+  servo.publish(model);
+  servo.runLockstepUntil(0.05);
+  EXPECT_EQ(device.lastTorque(), 0.0);
+  EXPECT_GE(servo.safety().nonFiniteCount(), 1);
+  servo.stop();
+  EXPECT_EQ(device.lastTorque(), 0.0);
+}
+
+TEST(ServoLoop, ADeviceWithoutTorqueGetsNone) {
+  ScriptedDevice device(line(), devicePreset("Touch"));  // peak_torque 0: no motor on the gimbal
+  ServoLoop servo(device, ServoSettings{}, 10);
+  LocalLinearModel model;
+  model.torque = 0.02;
+  servo.publish(model);
+  servo.runLockstepUntil(0.0);
+  ServoSample s;
+  ASSERT_TRUE(servo.latestSample(s));
+  EXPECT_DOUBLE_EQ(s.torque_commanded, 0.02);  // asked for (haptics.csv shows it) ...
+  EXPECT_EQ(s.torque_sent, 0.0);               // ... not sent
+  EXPECT_EQ(device.lastTorque(), 0.0);
+}
+
 TEST(ServoLoop, TheThreadTicksUntilStoppedAndLeavesZeroForce) {
   ScriptedDevice device(line(), devicePreset("Touch"));
   ServoSettings settings;
@@ -88,19 +136,34 @@ TEST(StylusScript, ReadsACsvAndRefusesABadRowAtItsLine) {
   const std::string dir = std::string(FILUM_BINARY_DIR) + "/test_output";
   std::filesystem::create_directories(dir);
   const std::string good = dir + "/stylus.csv", bad = dir + "/stylus_bad.csv";
-  std::ofstream(good) << "time,x,y,z,buttons\n0,0,0,0\n0.5,0.01,0,0,1\n1.0,0.02,0,0,0\n";
+  const std::string bad_roll = dir + "/stylus_bad_roll.csv";
+  std::ofstream(good) << "time,x,y,z,buttons,roll\n0,0,0,0\n0.5,0.01,0,0,1,0.2\n1.0,0.02,0,0,0,0.6\n";
   std::ofstream(bad) << "time,x,y,z,buttons\n0,0,0,0,0\n0.5,0.01,0,0,one\n";
-  const nlohmann::json p_good = {{"csv", good}}, p_bad = {{"csv", bad}};
+  std::ofstream(bad_roll) << "time,x,y,z,buttons,roll\n0,0,0,0,0,0\n0.5,0.01,0,0,1,nan\n";
+  const nlohmann::json p_good = {{"csv", good}}, p_bad = {{"csv", bad}}, p_bad_roll = {{"csv", bad_roll}};
   const StylusScript script = StylusScript::fromParams(Params(p_good, "scene.json", "/haptics/device"));
   EXPECT_TRUE(script.position(0.75).isApprox(Vec3(0.015, 0, 0), 1e-12));
   EXPECT_EQ(script.buttons(0.6), 1u);
   EXPECT_EQ(script.buttons(1.2), 0u);
-  try {
-    StylusScript::fromParams(Params(p_bad, "scene.json", "/haptics/device"));
-    FAIL() << "a button column 'one' was accepted";
-  } catch (const SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find(bad + ":3"), std::string::npos) << e.what();
+  EXPECT_NEAR(script.roll(0.75), 0.4, 1e-15);  // the sixth column, interpolated (0 in the row without it)
+  EXPECT_NEAR(script.roll(0.25), 0.1, 1e-15);
+  for (const auto& [file, params] : {std::pair{bad, p_bad}, std::pair{bad_roll, p_bad_roll}}) {
+    try {
+      StylusScript::fromParams(Params(params, "scene.json", "/haptics/device"));
+      FAIL() << file << " was accepted";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(file + ":3"), std::string::npos) << e.what();
+    }
   }
+}
+
+TEST(StylusScript, AWaypointsRollHoldsTillTheNextOneGivesAnother) {
+  const nlohmann::json p = {{"waypoints", {{{"time", 0.0}, {"position", {0, 0, 0}}},
+                                           {{"time", 1.0}, {"position", {0, 0, 0}}, {"roll", 1.0}},
+                                           {{"time", 2.0}, {"position", {0, 0, 0}}}}}};
+  const StylusScript script = StylusScript::fromParams(Params(p, "scene.json", "/haptics/device"));
+  EXPECT_NEAR(script.roll(0.5), 0.5, 1e-15);
+  EXPECT_NEAR(script.roll(1.5), 1.0, 1e-15);  // the third waypoint keeps the second's roll
 }
 
 }  // namespace

@@ -13,6 +13,7 @@ inline namespace FILUM_OPENHAPTICS_VARIANT {
 namespace {
 
 constexpr double kMillimetre = 1e-3;  // the HD API's lengths are in mm, forces in N
+constexpr double kMilli = 1e-3;       // and its gimbal torques in mN·m
 
 }  // namespace
 
@@ -56,6 +57,18 @@ OpenHapticsDevice::OpenHapticsDevice(const std::string& device_name, const Devic
     limits_.workspace_max = Vec3(box[3], box[4], box[5]) * kMillimetre;
   }
   check("hdGetDoublev (nominal limits)");
+  // Torque about the stylus's axis only on a device with six output axes (a Premium 6-DOF); its
+  // nominal largest gimbal torque in mN·m, as HD_CURRENT_GIMBAL_TORQUE takes it.
+  HDint output_axes = 3;
+  hdGetIntegerv(HD_OUTPUT_DOF, &output_axes);
+  check("hdGetIntegerv(HD_OUTPUT_DOF)");
+  limits_.peak_torque = 0.0;
+  if (output_axes >= 6) {
+    value = 0.0;
+    hdGetDoublev(HD_NOMINAL_MAX_TORQUE_FORCE, &value);
+    check("hdGetDoublev(HD_NOMINAL_MAX_TORQUE_FORCE)");
+    if (value > 0.0) limits_.peak_torque = value * kMilli;
+  }
   hdEnable(HD_FORCE_OUTPUT);
   check("hdEnable(HD_FORCE_OUTPUT)");
   force_output_ = true;
@@ -81,6 +94,9 @@ DeviceState OpenHapticsDevice::read(double) {
   hdGetDoublev(HD_CURRENT_POSITION, p);
   hdGetDoublev(HD_CURRENT_VELOCITY, v);
   hdGetIntegerv(HD_CURRENT_BUTTONS, &buttons);
+  HDdouble gimbal[3] = {0, 0, 0};
+  hdGetDoublev(HD_CURRENT_GIMBAL_ANGLES, gimbal);  // rad; the last joint turns the stylus about its axis
+  state.roll = gimbal[2];
   state.position = Vec3(p[0], p[1], p[2]) * kMillimetre;
   state.velocity = Vec3(v[0], v[1], v[2]) * kMillimetre;
   state.buttons = static_cast<unsigned>(buttons);
@@ -91,6 +107,12 @@ void OpenHapticsDevice::write(const Vec3& force) {
   if (!in_frame_) return;  // outside a frame the HD API refuses state calls; stop() zeroes the force
   const HDdouble f[3] = {force.x(), force.y(), force.z()};
   hdSetDoublev(HD_CURRENT_FORCE, f);
+}
+
+void OpenHapticsDevice::writeTorque(double torque) {
+  if (!in_frame_ || !(limits_.peak_torque > 0.0)) return;  // a 3-DOF gimbal has no motor
+  const HDdouble gimbal[3] = {0.0, 0.0, torque / kMilli};   // N·m → mN·m, on the last joint
+  hdSetDoublev(HD_CURRENT_GIMBAL_TORQUE, gimbal);
 }
 
 void OpenHapticsDevice::start(ServoTick tick, double rate) {
@@ -120,6 +142,7 @@ void OpenHapticsDevice::stop() {
     hdBeginFrame(handle_);
     in_frame_ = true;
     write(Vec3::Zero());
+    writeTorque(0.0);
     in_frame_ = false;
     hdEndFrame(handle_);
     hdDisable(HD_FORCE_OUTPUT);

@@ -19,6 +19,9 @@ struct Device {
   fake_hd::Record record;
   double position[3] = {0, 0, 0}, velocity[3] = {0, 0, 0};
   int buttons = 0;
+  double gimbal[3] = {0, 0, 0};
+  int output_axes = 3;
+  double max_torque = 0.0;  // mN·m
   double max_force = 3.3, continuous_force = 0.88, stiffness = 1.02;  // a Touch (N, N, N/mm)
   double box[6] = {-80, -60, -35, 80, 60, 35};                         // mm
   bool in_frame = false;
@@ -53,6 +56,16 @@ void setStylus(double x, double y, double z, double vx, double vy, double vz, in
   d.position[0] = x, d.position[1] = y, d.position[2] = z;
   d.velocity[0] = vx, d.velocity[1] = vy, d.velocity[2] = vz;
   d.buttons = buttons;
+}
+
+void setGimbal(double a, double b, double roll) {
+  Device& d = device();
+  d.gimbal[0] = a, d.gimbal[1] = b, d.gimbal[2] = roll;
+}
+
+void setOutputAxes(int axes, double max_torque_mnm) {
+  device().output_axes = axes;
+  device().max_torque = max_torque_mnm;
 }
 
 void setNominal(double max_force, double continuous_force, double stiffness, const double box[6]) {
@@ -136,6 +149,8 @@ void hdGetDoublev(HDenum pname, HDdouble* out) {
   switch (pname) {
     case HD_CURRENT_POSITION: requireFrame("hdGetDoublev(HD_CURRENT_POSITION)"); std::memcpy(out, d.position, 3 * sizeof(double)); break;
     case HD_CURRENT_VELOCITY: requireFrame("hdGetDoublev(HD_CURRENT_VELOCITY)"); std::memcpy(out, d.velocity, 3 * sizeof(double)); break;
+    case HD_CURRENT_GIMBAL_ANGLES: requireFrame("hdGetDoublev(HD_CURRENT_GIMBAL_ANGLES)"); std::memcpy(out, d.gimbal, 3 * sizeof(double)); break;
+    case HD_NOMINAL_MAX_TORQUE_FORCE: *out = d.max_torque; break;
     case HD_NOMINAL_MAX_FORCE: *out = d.max_force; break;
     case HD_NOMINAL_MAX_CONTINUOUS_FORCE: *out = d.continuous_force; break;
     case HD_NOMINAL_MAX_STIFFNESS: *out = d.stiffness; break;
@@ -145,6 +160,10 @@ void hdGetDoublev(HDenum pname, HDdouble* out) {
 }
 
 void hdGetIntegerv(HDenum pname, HDint* out) {
+  if (pname == HD_OUTPUT_DOF) {
+    *out = device().output_axes;
+    return;
+  }
   if (pname != HD_CURRENT_BUTTONS) return raise(HD_INVALID_OPERATION, "hdGetIntegerv of an unknown parameter");
   requireFrame("hdGetIntegerv(HD_CURRENT_BUTTONS)");
   *out = device().buttons;
@@ -152,6 +171,12 @@ void hdGetIntegerv(HDenum pname, HDint* out) {
 
 void hdSetDoublev(HDenum pname, const HDdouble* in) {
   Device& d = device();
+  if (pname == HD_CURRENT_GIMBAL_TORQUE) {
+    requireFrame("hdSetDoublev(HD_CURRENT_GIMBAL_TORQUE)");
+    if (d.output_axes < 6) raise(HD_INVALID_OPERATION, "a gimbal torque set on a device without torque output");
+    d.record.gimbal_torques.push_back({in[0], in[1], in[2]});
+    return;
+  }
   if (pname != HD_CURRENT_FORCE) return raise(HD_INVALID_OPERATION, "hdSetDoublev of an unknown parameter");
   requireFrame("hdSetDoublev(HD_CURRENT_FORCE)");
   if (!d.record.force_output) raise(HD_INVALID_OPERATION, "a force set with HD_FORCE_OUTPUT disabled");

@@ -97,5 +97,41 @@ TEST_F(OpenHapticsDeviceTest, TheServoLoopRunsInHDFramesWithSafeForcesInNewtons)
     EXPECT_LE(std::hypot(sent[0], sent[1], sent[2]), 3.3 + 1e-12);  // every force within the clamp
 }
 
+TEST_F(OpenHapticsDeviceTest, TheRollIsTheLastGimbalAngleAndATorqueGoesOnlyToASixAxisDevice) {
+  // A Touch (three output axes): the roll is read, a torque is never set.
+  {
+    OpenHapticsDevice device("", devicePreset("Touch"));
+    EXPECT_EQ(device.limits().peak_torque, 0.0);
+    ServoLoop servo(device, ServoSettings{}, 100);
+    servo.startThread();
+    fake_hd::setGimbal(0.1, 0.2, 0.7);
+    LocalLinearModel model;
+    model.torque = 0.01;
+    servo.publish(model);
+    fake_hd::runSchedulerTick();
+    ServoSample sample;
+    ASSERT_TRUE(servo.latestSample(sample));
+    EXPECT_EQ(sample.roll, 0.7);
+    EXPECT_EQ(sample.torque_sent, 0.0);
+    servo.stop();
+    EXPECT_TRUE(fake_hd::record().gimbal_torques.empty());
+  }
+  // Six output axes, 188 mN·m nominal: the torque set on the last joint in mN·m.
+  fake_hd::reset();
+  fake_hd::setOutputAxes(6, 188.0);
+  OpenHapticsDevice device("", devicePreset("Premium"));
+  EXPECT_DOUBLE_EQ(device.limits().peak_torque, 0.188);
+  ServoLoop servo(device, ServoSettings{}, 100);
+  servo.startThread();
+  LocalLinearModel model;
+  model.torque = -0.05;
+  servo.publish(model);
+  fake_hd::runSchedulerTick();
+  ASSERT_FALSE(fake_hd::record().gimbal_torques.empty());
+  EXPECT_EQ(fake_hd::record().gimbal_torques.back(), (std::vector<double>{0.0, 0.0, -50.0}));
+  servo.stop();
+  EXPECT_EQ(fake_hd::record().gimbal_torques.back(), (std::vector<double>{0.0, 0.0, 0.0}));  // left at zero
+}
+
 }  // namespace
 }  // namespace filum::haptics

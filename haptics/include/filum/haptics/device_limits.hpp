@@ -9,6 +9,8 @@
 //                     b > K T / 2 + |B| (Colgate & Schenkel 1997; coupling.hpp)
 //   stylus_mass       the apparent mass of the stylus tip (kg), for the SimulatedDevice
 //   workspace         the box the stylus reaches, in the device frame (m)
+//   peak_torque       the largest torque it sends about the stylus's own axis (N·m); 0 for the
+//                     devices whose gimbal has no motor (the Touch, the Premium 1.5: 3-DOF force)
 //
 // Presets (devicePreset): the nominal figures 3D Systems publishes for the Touch (formerly the
 // Phantom Omni) and the Phantom Premium 1.5: peak and continuous force, the lowest of the axes'
@@ -34,6 +36,7 @@ struct DeviceLimits {
   double slew_rate = 2000.0;         // N/s: the fastest change of force sent (3.3 N in 1.65 ms)
   Vec3 workspace_min{-0.08, -0.06, -0.035};  // m, device frame
   Vec3 workspace_max{0.08, 0.06, 0.035};
+  double peak_torque = 0.0;          // N·m (0: no torque rendered)
 };
 
 /// The nominal limits of a device model: "Touch" (alias "Omni"), "Premium" (Phantom Premium 1.5).
@@ -44,7 +47,7 @@ std::string devicePresetNames();
 
 /// Reads "limits" overrides from p (each key optional, starting from `base`): peak_force,
 /// continuous_force, continuous_window, max_stiffness, damping, stylus_mass, slew_rate,
-/// workspace_min, workspace_max. Throws SceneError at the faulty key (continuous above peak, a
+/// workspace_min, workspace_max, peak_torque. Throws SceneError at the faulty key (continuous above peak, a
 /// workspace box with min >= max).
 DeviceLimits limitsFromParams(const Params& p, DeviceLimits base);
 

@@ -12,6 +12,9 @@
 //      pass, a held force settles at the continuous limit (the motors' heating, I²t). The limits
 //      come last: they may cut a force faster than the slew rate, never let one through.
 // Steps 1, 2 and 4 scale the force's magnitude and keep its direction.
+// A torque about the stylus's axis (applyTorque, after apply at the same tick) goes through steps 1
+// and 2 (with the force's watchdog gain) and is clamped to ±peak_torque: 0 on a device that
+// renders none.
 #pragma once
 
 #include "filum/core/types.hpp"
@@ -31,6 +34,8 @@ class ForceSafety {
   /// The force to send for the commanded one at servo time t, `fresh` when a new model arrived
   /// at this tick.
   Vec3 apply(const Vec3& commanded, double t, bool fresh);
+  /// The torque to send for the commanded one (N·m), at the tick apply() has just run.
+  double applyTorque(double commanded);
 
   long nonFiniteCount() const { return non_finite_; }
   /// The watchdog's gain g ∈ [0, 1] at the last tick.

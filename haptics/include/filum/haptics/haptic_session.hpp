@@ -64,6 +64,9 @@ class HapticSession {
   /// `mirrored`: the stylus is the hand on the handle of an instrument through a trocar.
   void publishInstrument(const Scene& scene, const Vec3& contact_force, const Vec3& position, const Vec3& velocity,
                          bool mirrored);
+  /// For another driver of the device (an instrument's hub, hub_device.hpp), after a step: the
+  /// model the servo renders until the next, its stiffness limited as the hand feels it.
+  void publish(LocalLinearModel model);
   /// The force fields whose reaction the hand feels (an instrument's holds).
   void setFields(std::vector<const ToolForceField*> fields) { fields_ = std::move(fields); }
 
@@ -79,7 +82,8 @@ class HapticSession {
   bool threaded() const { return threaded_; }
 
   /// haptics.csv: time, period, stylus x y z (scene, m), buttons, commanded and sent force
-  /// (device frame, N), watchdog gain; one row per servo tick (the first kMaxLogSamples).
+  /// (device frame, N), watchdog gain, stylus roll (rad), commanded and sent torque about it
+  /// (N·m); one row per servo tick (the first kMaxLogSamples).
   void writeCsv(const std::string& path) const;
   /// One line for the run's log: ticks, rate, largest force, clamps, watchdog, dropped samples.
   std::string summary() const;
@@ -96,6 +100,9 @@ class HapticSession {
   /// How far from the thread a Grasper's jaws catch it (m).
   double capture() const { return capture_; }
   const CouplingGains& coupling() const { return coupling_; }
+  /// Whether the coupling gains act (false for a device that drives an instrument's hub in
+  /// position, hub_device.hpp): the summary then leaves them out.
+  void setCouplingUsed(bool used) { coupling_used_ = used; }
 
  private:
   HapticSession() = default;
@@ -114,6 +121,7 @@ class HapticSession {
   ServoSettings settings_;
   CouplingGains coupling_;
   bool threaded_ = false;
+  bool coupling_used_ = true;
   bool grasper_ = true;         // else an attachment
   unsigned button_mask_ = 1;
   double capture_ = 3e-3;

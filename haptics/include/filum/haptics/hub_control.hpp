@@ -6,6 +6,8 @@
 // strokes. The position goes through the constraint's steered target
 // (constraints/target_constraint.hpp: X(t) = X₀ + v (t − t₀)), the roll through
 // RodEndFrame::turn; the scene's scripted paths for them are dropped from the first press on.
+// A haptic device drives the same hub continuously (hub_device.hpp: steer, rollTo) and feels what
+// it takes (force, torque).
 #pragma once
 
 #include <memory>
@@ -37,6 +39,21 @@ class HubControl {
   /// Holds the hub where a push ended once its time is past: call between steps.
   void update(Scene& scene);
 
+  /// The hub held at `insertion` (m along a₀ from where it started) now and moving on at `speed`
+  /// (m/s): the hand's stroke as a device reads it. Ends a key's push.
+  void steer(Scene& scene, double insertion, double speed);
+  /// The hub turned to `roll` (rad) over `duration` (s) from now; false without a RodEndFrame.
+  bool rollTo(const Scene& scene, double roll, double duration);
+  /// How far the hub's target is along a₀ from where it started (m), and the roll it holds (rad;
+  /// 0 without a RodEndFrame).
+  double insertion(const Scene& scene) const;
+  double roll(const Scene& scene) const;
+  /// The force the hub's point constraint put on the instrument in the last constraint solve,
+  /// Σ λ_i d_i (N, zero before any): along a₀ the hand's push, across it the introducer's hold.
+  Vec3 force(const Scene& scene) const;
+  /// The torque the hub's RodEndFrame puts on the instrument about a₀ (N·m; 0 without one).
+  double torque(const Scene& scene) const;
+
   const std::string& name() const { return name_; }
   bool turns() const { return frame_ != nullptr; }
   const Vec3& axis() const { return axis_; }
@@ -46,6 +63,7 @@ class HubControl {
   constraints::ProjectedPointConstraint* hub_ = nullptr;
   mechanics::RodEndFrame* frame_ = nullptr;
   Vec3 axis_ = Vec3::UnitZ();
+  Vec3 start_ = Vec3::Zero();  // the hub's target at the start (insertion 0)
   Vec3 goal_ = Vec3::Zero();  // where the current push ends
   double push_end_ = -1.0;    // s; < 0: no push under way
 };

@@ -20,6 +20,7 @@ struct LocalLinearModel {
   Vec3 velocity = Vec3::Zero();  // v0 (m/s)
   Eigen::Matrix3d stiffness = Eigen::Matrix3d::Zero();  // K (N/m)
   Eigen::Matrix3d damping = Eigen::Matrix3d::Zero();    // D (N·s/m)
+  double torque = 0.0;  // τ0 about the stylus's own axis (N·m), held until the next model
   double time = 0.0;   // simulated time of the state it was taken at (s)
   long sequence = 0;   // 0: no model yet (the servo sends no force)
 

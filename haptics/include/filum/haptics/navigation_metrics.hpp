@@ -22,7 +22,8 @@
 //                  "force_limit": N (default 0.5),
 //                  "aneurysm": {"branches": [names of the vessel tree's branches: the sac, its
 //                               neck], "coils": [node paths of curve bodies],
-//                               "spacing": m (the volume grid's; default: coil_packing.hpp)}}
+//                               "spacing": m (the volume grid's; default: coil_packing.hpp)},
+//                  "device": a haptic device at an instrument's hub (hub_device.hpp)}
 //   "instruments" may be left out when an "aneurysm" is scored.
 // Outputs (filum run): metrics.csv (one row per step) and metrics.json (the summary).
 #pragma once

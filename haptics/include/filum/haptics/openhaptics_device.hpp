@@ -9,6 +9,9 @@
 //   - state (HD_CURRENT_POSITION in mm, HD_CURRENT_VELOCITY in mm/s, HD_CURRENT_BUTTONS) is read
 //     and HD_CURRENT_FORCE (N) is set only between hdBeginFrame and hdEndFrame, inside a callback
 //     of the HD scheduler (hdScheduleAsynchronous; hdStartScheduler runs it at hdSetSchedulerRate);
+//   - the stylus's roll is the last gimbal angle (HD_CURRENT_GIMBAL_ANGLES[2], rad); a torque
+//     about it is set as HD_CURRENT_GIMBAL_TORQUE (mN·m) and only on a device with six output
+//     axes (HD_OUTPUT_DOF; its HD_NOMINAL_MAX_TORQUE_FORCE, mN·m, is the peak torque);
 //   - the device's frame: x to the right, y up, z toward the user, origin near the workspace
 //     centre (DeviceFrame maps it into the scene).
 // The limits come from the device (HD_NOMINAL_MAX_FORCE, HD_NOMINAL_MAX_CONTINUOUS_FORCE,
@@ -43,6 +46,8 @@ class OpenHapticsDevice final : public HapticDevice {
   bool canRunLockstep() const override { return false; }
   DeviceState read(double t) override;
   void write(const Vec3& force) override;
+  /// On the gimbal's last joint (HD_CURRENT_GIMBAL_TORQUE, mN·m) of a device with six output axes.
+  void writeTorque(double torque) override;
   void start(ServoTick tick, double rate) override;
   void stop() override;
 

@@ -6,6 +6,8 @@
 //      tick never waits for a step);
 //   3. F_scene = F0 + K (x − x0) + D (v − v0) (LocalLinearModel), F_device = DeviceFrame's map;
 //   4. ForceSafety: non-finite → 0, watchdog fade, slew rate, peak and continuous limits;
+//      The model's torque about the stylus's axis goes the same way (force_scale, ForceSafety's
+//      applyTorque) to writeTorque;
 //   5. write F_device; publish the sample (stylus, buttons, forces, period) to the simulation
 //      and append it to the log (preallocated: a full log drops samples and counts them).
 // The simulation thread calls publish() after each step and latestSample() before the next.
@@ -32,8 +34,11 @@ struct ServoSample {
   Vec3 position = Vec3::Zero();  // stylus, scene frame (m)
   Vec3 velocity = Vec3::Zero();  // stylus, scene frame (m/s)
   unsigned buttons = 0;
+  double roll = 0.0;              // stylus roll about its own axis (rad)
   Vec3 commanded = Vec3::Zero();  // the local model's force, device frame (N)
   Vec3 sent = Vec3::Zero();       // after ForceSafety, device frame (N)
+  double torque_commanded = 0.0;  // the model's torque, device side (N·m)
+  double torque_sent = 0.0;       // after ForceSafety (N·m)
   double watchdog_gain = 1.0;
   long tick = 0;                  // index since start (1 for the first)
 };

@@ -10,7 +10,8 @@
 // resolved 20 times finer than the servo samples it), and reports the velocity as a real device
 // does, by backward difference of the sampled positions, (x_k − x_{k−1}) / (t_k − t_{k−1}) —
 // the estimate Colgate's passivity condition assumes. k_h = 0 lets the stylus go: a free
-// stylus against the virtual environment, the test of passivity.
+// stylus against the virtual environment, the test of passivity. The stylus's roll is the
+// script's, as the hand turns it: the torque sent is recorded (lastTorque), not integrated.
 #pragma once
 
 #include "filum/haptics/haptic_device.hpp"
@@ -35,6 +36,8 @@ class SimulatedDevice final : public HapticDevice {
   bool canRunLockstep() const override { return true; }
   DeviceState read(double t) override;
   void write(const Vec3& force) override { force_ = force; }
+  void writeTorque(double torque) override { torque_ = torque; }
+  double lastTorque() const { return torque_; }
   void start(ServoTick tick, double rate) override { thread_.start(std::move(tick), rate); }
   void stop() override {
     thread_.stop();
@@ -56,6 +59,7 @@ class SimulatedDevice final : public HapticDevice {
   HandModel hand_;
   Vec3 x_ = Vec3::Zero(), v_ = Vec3::Zero();
   Vec3 force_ = Vec3::Zero();
+  double torque_ = 0.0;
   Vec3 last_read_position_ = Vec3::Zero();
   double time_ = 0.0, last_read_time_ = 0.0;
   double work_ = 0.0;

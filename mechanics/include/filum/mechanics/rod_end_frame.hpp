@@ -64,11 +64,15 @@ class RodEndFrame final : public ForceField {
   /// linearly to roll(t0) + angle at t1 > t0 and is held there, the direction held as at t0. The
   /// path given in the scene is dropped from t0 on.
   void turn(double angle, double t0, double t1);
+  /// The torque the held frame puts on the rod at state s (N·m, world frame): what the hand at a
+  /// hub turns it with (haptics/hub_device.hpp feeds its part about the shaft back to the stylus).
+  Vec3 torqueOnRod(const SceneState& s) const;
 
  private:
   void init(const Scene& scene) override;
-  /// The energy at s; with forces != nullptr the torque added into B.
-  double term(const SceneState& s, VecX* forces) const;
+  /// The energy at s; with forces != nullptr the torque added into B, with body_torque != nullptr
+  /// that torque (the end segment's body frame) written there.
+  double term(const SceneState& s, VecX* forces, Vec3* body_torque = nullptr) const;
   /// (direction, roll) at time t.
   std::pair<Vec3, double> poseAt(double t) const;
 

@@ -198,6 +198,10 @@ class Scene {
   long adaptiveRemovals() const { return adaptive_removals_; }
   Integrator& integrator() const { return *integrator_; }
   ConstraintSolver* constraintSolver() const { return constraint_solver_; }
+  /// The multipliers of `constraint`'s rows in the last constraint solve (Lᵀλ is its force on the
+  /// bodies: for a point constraint Σ λ_i d_i, N); empty when it was not active then, or without
+  /// a solve.
+  Eigen::Ref<const VecX> constraintMultipliers(const Constraint& constraint) const;
   /// The collision pipeline, or nullptr when the scene holds no CollisionModel (collision is
   /// then skipped entirely).
   CollisionPipeline* collisionPipeline() const { return collision_; }
@@ -310,6 +314,7 @@ class Scene {
   // Workspace of computeAcceleration (allocated once in init).
   VecX force_;
   ConstraintRows rows_;
+  std::vector<int> constraint_first_row_;  // each constraint's first row in rows_ (−1: inactive)
   std::string fault_;  // first component that produced non-finite values in this step
 };
 

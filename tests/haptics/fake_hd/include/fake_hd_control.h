@@ -15,6 +15,7 @@ struct Record {
   unsigned long scheduler_rate = 0;   // Hz
   int frames = 0;                     // completed hdBeginFrame/hdEndFrame pairs
   std::vector<std::vector<double>> forces;  // every HD_CURRENT_FORCE set (N), in order
+  std::vector<std::vector<double>> gimbal_torques;  // every HD_CURRENT_GIMBAL_TORQUE set (mN·m), in order
   std::vector<std::string> misuse;          // calls the HD API forbids (state outside a frame, ...)
 };
 
@@ -25,6 +26,11 @@ const Record& record();
 void setStylus(double x_mm, double y_mm, double z_mm, double vx, double vy, double vz, int buttons);
 /// The nominal limits the device reports (N, N, N/mm, workspace box in mm).
 void setNominal(double max_force, double continuous_force, double stiffness_n_per_mm, const double box_mm[6]);
+/// The gimbal's angles the device reports (rad; the last one is the stylus's roll).
+void setGimbal(double a, double b, double roll);
+/// The output axes the device reports (3: force only, the default; 6: with gimbal torques) and
+/// its nominal largest gimbal torque (mN·m).
+void setOutputAxes(int axes, double max_torque_mnm);
 /// The next hdInitDevice fails (no such device).
 void failNextInit();
 /// Runs the scheduled callbacks once each, as one scheduler tick (only while it runs); returns
