@@ -11,6 +11,7 @@ packages=(
   libsuitesparse-dev             # CHOLMOD for sparse implicit steps (CMake option FILUM_WITH_SUITESPARSE)
   nlohmann-json3-dev             # scene files
   libcgal-dev                    # triangle-mesh obstacles: AABB tree, inside test, mesh readers (FILUM_WITH_CGAL)
+  zlib1g-dev                     # compressed VTK meshes (.vtp as VTK and ParaView save them by default)
   libcli11-dev                   # the filum command line
   libopencv-viz-dev libopencv-imgcodecs-dev libopencv-videoio-dev libopencv-imgproc-dev
                                  # off-screen 3D pictures, PNG, video, text overlay (FILUM_WITH_OPENCV)

@@ -8,17 +8,22 @@
 // of a header, the byte count as UInt32 or UInt64 by the file's header_type, then the values in
 // the file's byte_order), of types Float32/Float64 (points) and Int8..UInt64 (indices); elements
 // after the data inside a DataArray (VTK's <InformationKey> of the array's ranges) are skipped.
-// VTK's writers save appended, zlib-compressed data by default: a "compressor" attribute and
-// format="appended" are refused with how to save the file instead (ascii, or binary without
-// compression). Verts and lines are ignored (a surface is its polys and strips).
+// Or format="appended" (VTK's writers' default): the array's data at its offset="n" in the file's
+// <AppendedData encoding="raw" | "base64">, after the XML. Either binary kind may be compressed
+// by zlib (compressor="vtkZLibDataCompressor", VTK's default: the header then lists the blocks and
+// their compressed sizes, arrayBytes); other compressors (LZ4, LZMA) are refused with how to save
+// the file instead. Verts and lines are ignored (a surface is its polys and strips).
 // The XML is scanned, not validated: only the elements above are looked for.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstring>
 #include <string>
 #include <vector>
+
+#include <zlib.h>
 
 #include "mesh_parsing.hpp"
 
@@ -111,7 +116,141 @@ class VtpScanner {
 struct Encoding {
   bool big_endian = false;
   bool header64 = false;
+  bool zlib = false;                   // compressor="vtkZLibDataCompressor"
+  std::size_t appended = std::string_view::npos;  // where <AppendedData>'s data starts (after its '_')
+  bool appended_base64 = false;        // <AppendedData encoding="base64"> (else "raw")
+  int word() const { return header64 ? 8 : 4; }
 };
+
+/// Binary data read in order: raw bytes, or base64 (RFC 4648) decoded as it goes. VTK encodes a
+/// header and the data after it as separate base64 pieces, each padded: '=' ends a group.
+class ByteSource {
+ public:
+  ByteSource(const VtpScanner& scan, std::string_view text, std::size_t at, bool base64, std::string what)
+      : scan_(scan), text_(text), at_(at), base64_(base64), what_(std::move(what)) {}
+  /// Appends the next n bytes to out; fails naming the array when the data ends first.
+  void take(std::size_t n, std::vector<unsigned char>& out) {
+    if (!base64_) {
+      if (at_ > text_.size() || n > text_.size() - at_)
+        scan_.failAt(std::min(at_, text_.size()), what_ + ": " + std::to_string(n) + " more bytes of data",
+                     std::to_string(at_ > text_.size() ? 0 : text_.size() - at_));
+      out.insert(out.end(), text_.begin() + static_cast<std::ptrdiff_t>(at_),
+                 text_.begin() + static_cast<std::ptrdiff_t>(at_ + n));
+      at_ += n;
+      return;
+    }
+    for (std::size_t got = 0; got < n;) {
+      if (pending_ == pending_size_ && !decodeGroup())
+        scan_.failAt(std::min(at_, text_.size()), what_ + ": " + std::to_string(n) + " bytes of base64 data",
+                     std::to_string(got));
+      for (; pending_ < pending_size_ && got < n; ++got) out.push_back(group_[pending_++]);
+    }
+  }
+
+ private:
+  /// The next group of up to 4 characters into 1 to 3 bytes; false at the end of the text or of
+  /// the data (a '<').
+  bool decodeGroup() {
+    std::array<int, 4> quad{};
+    int filled = 0;
+    for (; at_ < text_.size() && filled < 4; ++at_) {
+      const char c = text_[at_];
+      int v;
+      if (c >= 'A' && c <= 'Z') v = c - 'A';
+      else if (c >= 'a' && c <= 'z') v = c - 'a' + 26;
+      else if (c >= '0' && c <= '9') v = c - '0' + 52;
+      else if (c == '+') v = 62;
+      else if (c == '/') v = 63;
+      else if (c == ' ' || c == '\n' || c == '\r' || c == '\t') continue;
+      else if (c == '=' || c == '<') {
+        if (filled == 0) {
+          if (c == '<') return false;
+          continue;  // the rest of a group's padding
+        }
+        break;  // the group ends (padding, or the data's end)
+      } else {
+        scan_.failAt(at_, what_ + ": base64 data", quoted(std::string_view(&c, 1)));
+      }
+      quad[filled++] = v;
+    }
+    if (filled == 0) return false;
+    if (filled == 1) scan_.failAt(at_, what_ + ": base64 groups of 2 to 4 characters", "1");
+    pending_ = 0;
+    pending_size_ = filled - 1;
+    group_[0] = static_cast<unsigned char>((quad[0] << 2) | (quad[1] >> 4));
+    group_[1] = static_cast<unsigned char>(((quad[1] & 15) << 4) | (quad[2] >> 2));
+    group_[2] = static_cast<unsigned char>(((quad[2] & 3) << 6) | quad[3]);
+    return true;
+  }
+
+  const VtpScanner& scan_;
+  std::string_view text_;
+  std::size_t at_;
+  bool base64_;
+  std::string what_;
+  std::array<unsigned char, 3> group_{};
+  int pending_ = 0, pending_size_ = 0;
+};
+
+/// An unsigned integer of `size` bytes at `at` in the file's byte order.
+unsigned long long unsignedAt(const std::vector<unsigned char>& bytes, std::size_t at, int size, bool big_endian) {
+  unsigned long long value = 0;
+  for (int b = 0; b < size; ++b) value = (value << 8) | bytes[at + (big_endian ? b : size - 1 - b)];
+  return value;
+}
+
+/// A DataArray's bytes after its header: `header` + the values, or zlib blocks inflated. VTK's
+/// compressed layout (vtkZLibDataCompressor): a header of words [blocks, block size, last block's
+/// size (0: a full one), compressed size of each block], then the compressed blocks. The size the
+/// data will have is checked against `max_bytes` before anything is allocated for it.
+std::vector<unsigned char> arrayBytes(const VtpScanner& scan, ByteSource& source, const Encoding& encoding,
+                                      unsigned long long max_bytes, std::size_t where, const std::string& what) {
+  const int w = encoding.word();
+  std::vector<unsigned char> header;
+  source.take(static_cast<std::size_t>(w), header);
+  const unsigned long long first = unsignedAt(header, 0, w, encoding.big_endian);
+  std::vector<unsigned char> data;
+  if (!encoding.zlib) {
+    if (first > max_bytes)
+      scan.failAt(where, what + " of at most " + std::to_string(max_bytes) + " bytes (as the Piece's counts say)",
+                  std::to_string(first));
+    source.take(static_cast<std::size_t>(first), data);
+    return data;
+  }
+  const unsigned long long blocks = first;
+  // Every block but an empty array's compresses to at least a byte: no more blocks than bytes.
+  if (blocks > max_bytes + 1)
+    scan.failAt(where, what + ": at most " + std::to_string(max_bytes + 1) + " compressed blocks", std::to_string(blocks));
+  source.take(static_cast<std::size_t>(w) * static_cast<std::size_t>(2 + blocks), header);
+  const unsigned long long block_size = unsignedAt(header, static_cast<std::size_t>(w), w, encoding.big_endian);
+  const unsigned long long last = unsignedAt(header, 2 * static_cast<std::size_t>(w), w, encoding.big_endian);
+  if (blocks > 0 && (block_size == 0 || last > block_size))
+    scan.failAt(where, what + ": a block size > 0 and a last block no larger", std::to_string(block_size) + " and " +
+                                                                                  std::to_string(last));
+  const unsigned long long final_size = last == 0 ? block_size : last;
+  const long double total = blocks == 0 ? 0.0L : static_cast<long double>(blocks - 1) * block_size + final_size;
+  if (total > static_cast<long double>(max_bytes))
+    scan.failAt(where, what + " of at most " + std::to_string(max_bytes) + " bytes (as the Piece's counts say)",
+                std::to_string(static_cast<unsigned long long>(total)) + " once inflated");
+  data.resize(static_cast<std::size_t>(total));
+  std::vector<unsigned char> compressed;
+  std::size_t filled = 0;
+  for (unsigned long long b = 0; b < blocks; ++b) {
+    const unsigned long long size = unsignedAt(header, static_cast<std::size_t>(w) * (3 + b), w, encoding.big_endian);
+    if (size > max_bytes + 64)  // zlib adds at most a few bytes to what it cannot compress
+      scan.failAt(where, what + ": compressed blocks no larger than the data", std::to_string(size) + " bytes");
+    compressed.clear();
+    source.take(static_cast<std::size_t>(size), compressed);
+    uLongf out = static_cast<uLongf>(b + 1 == blocks ? final_size : block_size);
+    const uLongf expected = out;
+    const int status = uncompress(data.data() + filled, &out, compressed.data(), static_cast<uLong>(compressed.size()));
+    if (status != Z_OK || out != expected)
+      scan.failAt(where, what + ": zlib block " + std::to_string(b) + " inflating to " + std::to_string(expected) + " bytes",
+                  status == Z_OK ? std::to_string(out) + " bytes" : std::string("zlib error ") + std::to_string(status));
+    filled += out;
+  }
+  return data;
+}
 
 /// The values of one DataArray as doubles (indices too: exact below 2^53, and checked as
 /// integers by the caller), at most `limit` of them.
@@ -125,10 +264,6 @@ std::vector<double> dataArray(const VtpScanner& scan, const Tag& tag, const Enco
                                                              scan.bytes().find('<', tag.content));
   const std::string_view text = scan.bytes().substr(tag.content, stop - tag.content);
   std::vector<double> out;
-  if (format == "appended")
-    scan.failAt(tag.content, what + " inline (format \"ascii\" or \"binary\"; ParaView: save with Data Mode Ascii or "
-                                    "Binary and no compression)",
-                "format=\"appended\"");
   if (format == "ascii") {
     Cursor words(text, scan.cursor().name(), true, scan.lineOf(tag.content));  // messages at the value's line
     std::string_view word;
@@ -141,56 +276,9 @@ std::vector<double> dataArray(const VtpScanner& scan, const Tag& tag, const Enco
     }
     return out;
   }
-  if (format != "binary")
-    scan.failAt(tag.content, what + " in format \"ascii\" or \"binary\"", quoted(format.empty() ? "none" : format));
-  // Base64 (RFC 4648) of the whole array: header, then the values.
-  std::vector<unsigned char> raw;
-  raw.reserve(text.size() / 4 * 3);
-  std::array<int, 4> quad{};
-  int filled = 0;
-  for (const char c : text) {
-    int v;
-    if (c >= 'A' && c <= 'Z') v = c - 'A';
-    else if (c >= 'a' && c <= 'z') v = c - 'a' + 26;
-    else if (c >= '0' && c <= '9') v = c - '0' + 52;
-    else if (c == '+') v = 62;
-    else if (c == '/') v = 63;
-    else if (c == ' ' || c == '\n' || c == '\r' || c == '\t') continue;
-    else if (c == '=') {  // padding: the group ends here (pieces may be encoded one after another)
-      if (filled >= 2) raw.push_back(static_cast<unsigned char>((quad[0] << 2) | (quad[1] >> 4)));
-      if (filled == 3) raw.push_back(static_cast<unsigned char>(((quad[1] & 15) << 4) | (quad[2] >> 2)));
-      if (filled == 1) scan.failAt(scan.firstValue(tag.content), what + ": base64 groups of 2 to 4 characters", "1");
-      filled = 0;
-      continue;
-    } else {
-      scan.failAt(scan.firstValue(tag.content), what + ": base64 data", quoted(std::string_view(&c, 1)));
-    }
-    quad[filled++] = v;
-    if (filled == 4) {
-      raw.push_back(static_cast<unsigned char>((quad[0] << 2) | (quad[1] >> 4)));
-      raw.push_back(static_cast<unsigned char>(((quad[1] & 15) << 4) | (quad[2] >> 2)));
-      raw.push_back(static_cast<unsigned char>(((quad[2] & 3) << 6) | quad[3]));
-      filled = 0;
-    }
-  }
-  if (filled == 1) scan.failAt(scan.firstValue(tag.content), what + ": base64 groups of 2 to 4 characters", "1");
-  if (filled >= 2) raw.push_back(static_cast<unsigned char>((quad[0] << 2) | (quad[1] >> 4)));
-  if (filled == 3) raw.push_back(static_cast<unsigned char>(((quad[1] & 15) << 4) | (quad[2] >> 2)));
-  const auto unsignedAt = [&](std::size_t at, int size) {
-    unsigned long long value = 0;
-    for (int b = 0; b < size; ++b) {
-      const unsigned long long byte = raw[at + (encoding.big_endian ? b : size - 1 - b)];
-      value = (value << 8) | byte;
-    }
-    return value;
-  };
-  const int header = encoding.header64 ? 8 : 4;
-  if (raw.size() < static_cast<std::size_t>(header))
-    scan.failAt(tag.content, what + ": a " + std::to_string(header) + "-byte header of the data's size", "less");
-  const unsigned long long count_bytes = unsignedAt(0, header);
-  if (count_bytes > raw.size() - header)
-    scan.failAt(tag.content, what + ": " + std::to_string(count_bytes) + " bytes of data as its header says",
-                std::to_string(raw.size() - header));
+  if (format != "binary" && format != "appended")
+    scan.failAt(tag.content, what + " in format \"ascii\", \"binary\" or \"appended\"",
+                quoted(format.empty() ? "none" : format));
   struct Type {
     const char* name;
     int size;
@@ -204,16 +292,32 @@ std::vector<double> dataArray(const VtpScanner& scan, const Tag& tag, const Enco
   for (const Type& k : kTypes)
     if (type == k.name) t = &k;
   if (!t) scan.failAt(tag.content, what + " of a numeric type (Float32, Float64, Int8 ... UInt64)", quoted(type));
-  if (count_bytes % static_cast<unsigned long long>(t->size) != 0)
+  const unsigned long long max_bytes = static_cast<unsigned long long>(limit) * static_cast<unsigned long long>(t->size);
+  std::vector<unsigned char> bytes;
+  if (format == "binary") {  // inline base64: the header, then the values (or the zlib blocks)
+    ByteSource source(scan, scan.bytes().substr(0, stop), tag.content, true, what);
+    bytes = arrayBytes(scan, source, encoding, max_bytes, tag.content, what);
+  } else {  // in <AppendedData>, at the array's offset from the '_' that starts its data
+    if (encoding.appended == std::string_view::npos)
+      scan.failAt(tag.start, what + " in the file's <AppendedData> (format=\"appended\")", "no <AppendedData>");
+    long long offset = -1;
+    const std::string_view offset_text = VtpScanner::attribute(tag.attributes, "offset");
+    if (!parseInteger(offset_text, offset) || offset < 0 ||
+        static_cast<unsigned long long>(offset) > scan.bytes().size() - encoding.appended)
+      scan.failAt(tag.start, what + ": an offset=\"n\" into the appended data (0 to " +
+                                 std::to_string(scan.bytes().size() - encoding.appended) + ")",
+                  quoted(offset_text.empty() ? "none" : offset_text));
+    ByteSource source(scan, scan.bytes(), encoding.appended + static_cast<std::size_t>(offset), encoding.appended_base64,
+                      what);
+    bytes = arrayBytes(scan, source, encoding, max_bytes, tag.start, what);
+  }
+  if (bytes.size() % static_cast<std::size_t>(t->size) != 0)
     scan.failAt(tag.content, what + ": a byte count that is a multiple of " + std::to_string(t->size) + " (" + t->name + ")",
-                std::to_string(count_bytes));
-  const unsigned long long n = count_bytes / static_cast<unsigned long long>(t->size);
-  if (static_cast<long long>(n) > limit || n > static_cast<unsigned long long>(limit))
-    scan.failAt(tag.content, what + " of at most " + std::to_string(limit) + " values", std::to_string(n));
-  out.reserve(static_cast<std::size_t>(n));
-  for (unsigned long long i = 0; i < n; ++i) {
-    const std::size_t at = header + static_cast<std::size_t>(i) * t->size;
-    const unsigned long long bits = unsignedAt(at, t->size);
+                std::to_string(bytes.size()));
+  const std::size_t n = bytes.size() / static_cast<std::size_t>(t->size);
+  out.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const unsigned long long bits = unsignedAt(bytes, i * static_cast<std::size_t>(t->size), t->size, encoding.big_endian);
     double value;
     if (t->floating && t->size == 4) {
       float f;
@@ -312,12 +416,14 @@ PolygonSoup readVtp(std::string_view bytes, const std::string& name) {
   if (VtpScanner::attribute(file.attributes, "type") != "PolyData")
     scan.failAt(file.start, "a PolyData file (<VTKFile type=\"PolyData\">)",
                 quoted(VtpScanner::attribute(file.attributes, "type")));
-  if (!VtpScanner::attribute(file.attributes, "compressor").empty())
-    scan.failAt(file.start,
-                "uncompressed data (ParaView: save with Data Mode Ascii, or Binary with Compressor None; VTK: "
-                "SetDataModeToAscii, or SetCompressorTypeToNone and SetDataModeToBinary)",
-                "compressor=\"" + std::string(VtpScanner::attribute(file.attributes, "compressor")) + "\"");
   Encoding encoding;
+  const std::string_view compressor = VtpScanner::attribute(file.attributes, "compressor");
+  if (!compressor.empty() && compressor != "vtkZLibDataCompressor")
+    scan.failAt(file.start,
+                "data compressed by zlib (vtkZLibDataCompressor, VTK's default) or not at all (ParaView: save with "
+                "Compressor ZLib or None; VTK: SetCompressorTypeToZLib)",
+                "compressor=\"" + std::string(compressor) + "\"");
+  encoding.zlib = !compressor.empty();
   const std::string_view byte_order = VtpScanner::attribute(file.attributes, "byte_order");
   if (!byte_order.empty() && byte_order != "LittleEndian" && byte_order != "BigEndian")
     scan.failAt(file.start, "byte_order \"LittleEndian\" or \"BigEndian\"", quoted(byte_order));
@@ -327,9 +433,23 @@ PolygonSoup readVtp(std::string_view bytes, const std::string& name) {
     scan.failAt(file.start, "header_type \"UInt32\" or \"UInt64\"", quoted(header_type));
   encoding.header64 = header_type == "UInt64";
 
-  const Tag piece = scan.tag("Piece", file.content, all, "a <Piece NumberOfPoints=... NumberOfPolys=...>");
+  // Appended data (VTK's default): after the XML, in <AppendedData encoding="raw" | "base64">,
+  // from the '_' that marks its start. Everything of the XML is looked for before it.
+  std::size_t xml_end = all;
+  if (const std::size_t at = bytes.find("<AppendedData"); at != std::string_view::npos) {
+    const Tag appended = scan.tag("AppendedData", at, all, "<AppendedData>");
+    const std::string_view kind = VtpScanner::attribute(appended.attributes, "encoding");
+    if (kind != "raw" && kind != "base64")
+      scan.failAt(appended.start, "<AppendedData encoding=\"raw\"> or \"base64\"", quoted(kind.empty() ? "none" : kind));
+    const std::size_t mark = bytes.find('_', appended.content);
+    if (mark == std::string_view::npos) scan.failAt(appended.content, "the '_' that starts the appended data", "none");
+    encoding.appended = mark + 1;
+    encoding.appended_base64 = kind == "base64";
+    xml_end = at;
+  }
+  const Tag piece = scan.tag("Piece", file.content, xml_end, "a <Piece NumberOfPoints=... NumberOfPolys=...>");
   const std::size_t piece_end = scan.end("Piece", piece.content);
-  if (bytes.find("<Piece", piece_end) != std::string_view::npos)
+  if (bytes.substr(0, xml_end).find("<Piece", piece_end) != std::string_view::npos)
     scan.failAt(piece_end, "one Piece (a surface merged into one: VTK's vtkAppendPolyData)", "more than one");
   const long long vertex_count = count(scan, piece, "NumberOfPoints");
   const long long polygon_count = count(scan, piece, "NumberOfPolys");

@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include <nlohmann/json.hpp>
+#include <zlib.h>
 
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/mesh_file.hpp"
@@ -315,6 +316,129 @@ TEST(MeshFile, VtpAsciiAndBinaryGiveTheSurfaceOfTheOff) {
     }
 }
 
+// The cube again, as VTK's writers save it by default: the arrays' data after the XML in
+// <AppendedData> (raw bytes, or base64), each array at its offset, compressed by zlib in blocks
+// (vtkZLibDataCompressor: a header [blocks, block size, last block's size, compressed sizes], then
+// the blocks). `block` bytes a block (small: several blocks, a partial last one). Inline binary
+// arrays (format="binary") compressed the same way too. zlib's own compress2 is the encoder.
+std::string compressedVtpCube(const PolygonSoup& cube, bool big, bool header64, const std::string& layout,
+                              std::size_t block, bool zlib = true) {
+  const auto word = [&](std::string& out, std::uint64_t v) {
+    if (header64)
+      put<std::uint64_t>(out, v, big);
+    else
+      put<std::uint32_t>(out, static_cast<std::uint32_t>(v), big);
+  };
+  // One array: header and data, as its two pieces (base64 encodes each apart, as VTK does).
+  const auto pieces = [&](const std::string& values) {
+    std::string header, data;
+    if (!zlib) {
+      word(header, values.size());
+      return std::pair{header, values};
+    }
+    const std::size_t blocks = (values.size() + block - 1) / block;
+    word(header, blocks);
+    word(header, block);
+    word(header, values.size() % block);
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const std::string part = values.substr(b * block, block);
+      uLongf size = compressBound(static_cast<uLong>(part.size()));
+      std::string packed(size, '\0');
+      EXPECT_EQ(compress2(reinterpret_cast<Bytef*>(packed.data()), &size,
+                          reinterpret_cast<const Bytef*>(part.data()), static_cast<uLong>(part.size()), 6), Z_OK);
+      packed.resize(size);
+      word(header, size);
+      data += packed;
+    }
+    return std::pair{header, data};
+  };
+  std::string points, connectivity, offsets;
+  for (int v = 0; v < 8; ++v)
+    for (int k = 0; k < 3; ++k) put<double>(points, cube.vertices(v, k), big);
+  const int quads[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  for (int f = 0; f < 6; ++f) {
+    for (int index : quads[f]) put<std::int64_t>(connectivity, index, big);
+    put<std::int64_t>(offsets, 4 * (f + 1), big);
+  }
+  std::string appended;
+  const auto array = [&](const std::string& attributes, const std::string& values) {
+    const auto [header, data] = pieces(values);
+    if (layout == "binary") return "<DataArray " + attributes + " format=\"binary\">\n" + base64(header) + base64(data) +
+                                   "\n</DataArray>\n";
+    const std::string at = std::to_string(appended.size());
+    appended += layout == "base64" ? base64(header) + base64(data) : header + data;
+    return "<DataArray " + attributes + " format=\"appended\" offset=\"" + at + "\"/>\n";
+  };
+  const std::string xml =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"" +
+      std::string(big ? "BigEndian" : "LittleEndian") + "\" header_type=\"" + (header64 ? "UInt64" : "UInt32") + "\"" +
+      (zlib ? " compressor=\"vtkZLibDataCompressor\"" : "") +
+      ">\n<PolyData>\n<Piece NumberOfPoints=\"8\" NumberOfPolys=\"6\">\n<Points>\n" +
+      array("type=\"Float64\" NumberOfComponents=\"3\"", points) + "</Points>\n<Polys>\n" +
+      array("type=\"Int64\" Name=\"connectivity\"", connectivity) + array("type=\"Int64\" Name=\"offsets\"", offsets) +
+      "</Polys>\n</Piece>\n</PolyData>\n";
+  if (layout == "binary") return xml + "</VTKFile>\n";
+  return xml + "<AppendedData encoding=\"" + (layout == "base64" ? "base64" : "raw") + "\">\n   _" + appended +
+         "\n</AppendedData>\n</VTKFile>\n";
+}
+
+TEST(MeshFile, VtpAsVtkSavesItByDefaultAppendedAndCompressedGivesTheSurfaceOfTheOff) {
+  const PolygonSoup cube = readMeshFile(kData + "cube.off");
+  for (const std::string layout : {"raw", "base64", "binary"})
+    for (const bool big : {false, true})
+      for (const bool header64 : {false, true})
+        for (const std::size_t block : {std::size_t{40}, std::size_t{32768}}) {  // several blocks; VTK's default size
+          const std::string what = layout + (big ? ", big" : ", little") + "-endian, " + (header64 ? "UInt64" : "UInt32") +
+                                   " header, blocks of " + std::to_string(block) + " bytes";
+          const PolygonSoup soup =
+              readMesh(compressedVtpCube(cube, big, header64, layout, block), MeshFormat::kVtp, "cube.vtp");
+          expectSameSurface(soup, cube, what);
+          EXPECT_TRUE(soup.vertices == cube.vertices) << what;  // Float64 round trip: exact
+        }
+  // Appended but not compressed (ParaView's Compressor None).
+  for (const std::string layout : {"raw", "base64"}) {
+    const PolygonSoup soup = readMesh(compressedVtpCube(cube, false, false, layout, 0, false), MeshFormat::kVtp, "cube.vtp");
+    expectSameSurface(soup, cube, layout + ", uncompressed");
+  }
+}
+
+TEST(MeshFile, ABrokenCompressedOrAppendedVtpIsRefusedBeforeItsDataIsAllocated) {
+  const PolygonSoup cube = readMeshFile(kData + "cube.off");
+  const std::string good = compressedVtpCube(cube, false, false, "raw", 40);
+  const auto refusal = [](const std::string& text) {
+    try {
+      readMesh(text, MeshFormat::kVtp, "vessel.vtp");
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(read)");
+  };
+  ASSERT_EQ(refusal(good), "(read)");
+  const std::size_t data = good.find('_', good.find("<AppendedData")) + 1;
+  // A compressed byte flipped: zlib's check fails, named. (The array at offset 0 has blocks of
+  // 40 bytes: a header of 3 + 2 or more words, then its first block.)
+  std::string flipped = good;
+  flipped[data + 20 + 8 + 4] = static_cast<char>(flipped[data + 20 + 8 + 4] ^ 0x55);
+  EXPECT_NE(refusal(flipped).find("zlib block"), std::string::npos) << refusal(flipped);
+  // A header announcing a huge array (blocks of 2^31 − 1 bytes, at offset 0): refused from the
+  // Piece's counts, before anything of that size is allocated.
+  std::string huge = good;
+  const char big_block[4] = {'\xff', '\xff', '\xff', '\x7f'};
+  std::memcpy(&huge[data + 4], big_block, 4);
+  EXPECT_NE(refusal(huge).find("bytes (as the Piece's counts say), found 2147483"), std::string::npos) << refusal(huge);
+  // An offset beyond the appended data.
+  std::string far = good;
+  far.replace(far.find("offset=\"0\""), 10, "offset=\"99999\"");
+  EXPECT_NE(refusal(far).find("an offset=\"n\" into the appended data"), std::string::npos) << refusal(far);
+  // The data cut short: the last block's bytes end early.
+  const std::string cut = good.substr(0, good.find("\n</AppendedData>") - 10);
+  EXPECT_NE(refusal(cut).find("more bytes of data"), std::string::npos) << refusal(cut);
+  // An unknown appended encoding.
+  std::string encoding = good;
+  encoding.replace(encoding.find("encoding=\"raw\""), 14, "encoding=\"hex\"");
+  EXPECT_NE(refusal(encoding).find("expected <AppendedData encoding=\"raw\">"), std::string::npos) << refusal(encoding);
+}
+
 TEST(MeshFile, VtpStripsKeepOneOrientation) {
   // Triangle strips (VTK's vtkStripper): triangle k of p_0 p_1 ... is (p_k, p_k+1, p_k+2) for
   // even k and (p_k+1, p_k, p_k+2) for odd k, so that neighbours share an edge in opposite
@@ -344,14 +468,13 @@ TEST(MeshFile, VtpThatCannotBeReadSaysWhatToSaveInstead) {
   const auto lineOf = [&](const std::string& text) {
     return std::to_string(1 + std::count(ascii.begin(), ascii.begin() + static_cast<long>(ascii.find(text)), '\n'));
   };
-  std::string compressed = ascii;
-  compressed.replace(compressed.find("header_type"), 0, "compressor=\"vtkZLibDataCompressor\" ");
-  EXPECT_NE(refusal(compressed).find("vessel.vtp:" + lineOf("<VTKFile") + ": expected uncompressed data"), std::string::npos)
-      << refusal(compressed);
-  std::string appended = ascii;
-  appended.replace(appended.find("format=\"ascii\" RangeMin=\"0\" RangeMax=\"1.73"), 14, "format=\"appended\"");
-  EXPECT_NE(refusal(appended).find("format=\"appended\""), std::string::npos) << refusal(appended);
-  EXPECT_NE(refusal(appended).find("inline"), std::string::npos) << refusal(appended);
+  std::string lz4 = ascii;
+  lz4.replace(lz4.find("header_type"), 0, "compressor=\"vtkLZ4DataCompressor\" ");
+  EXPECT_NE(refusal(lz4).find("vessel.vtp:" + lineOf("<VTKFile") + ": expected data compressed by zlib"), std::string::npos)
+      << refusal(lz4);
+  std::string appended = ascii;  // an appended array in a file without <AppendedData>
+  appended.replace(appended.find("format=\"ascii\" RangeMin=\"0\" RangeMax=\"1.73"), 14, "format=\"appended\" offset=\"0\"");
+  EXPECT_NE(refusal(appended).find("no <AppendedData>"), std::string::npos) << refusal(appended);
   // A point that is not there: named at the line of the connectivity's values.
   std::string outside = ascii;
   outside.replace(outside.find("3 0 4 7"), 7, "3 0 4 8");
