@@ -26,10 +26,10 @@ int checkScene(const std::string& path, std::ostream& out) {
     visual::readCamera(document, path);  // read by --render and `filum view`
     visual::FluoroscopyView::fromScene(document, path);    // the C-arm's view, read by --render
     haptics::FluoroscopyPedal::fromScene(document, path);  // and its pedal (also the metrics')
+    haptics::HubDevice::fromScene(document, path, *scene, 0.0);  // a device at a catheter's hub ("navigation")
     // The "haptics" block, read by `filum run` (a Phantom is opened, then closed, to check it).
     haptics::HapticSession::fromScene(document, path, *scene, 0.0);  // (no run: the shortest servo log)
     haptics::InstrumentSet::fromScene(document, path, *scene);  // the "instruments", read by `filum run`
-    haptics::HubDevice::fromScene(document, path, *scene, 0.0);  // a device at a catheter's hub ("navigation")
     visual::VisualScene visuals(*scene);  // binds what the visual models follow (--meshes, --render, view)
     visuals.update(scene->state());
     // Physics mistakes: what is well-formed but cannot run as written (physics_check.hpp).

@@ -114,6 +114,19 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   const std::string directory =
       options.out.empty() ? "out/" + std::filesystem::path(options.scene).stem().string() : options.out;
 
+  // A haptic device on an instrument's hub (the navigation block's "device"): the hand pushes and
+  // turns the instrument and feels it (haptics/hub_device.hpp). Read first: a scene with a
+  // "haptics" block too is refused before either device is opened.
+  std::unique_ptr<haptics::HubDevice> hub_device;
+  try {
+    hub_device = haptics::HubDevice::fromScene(document, options.scene, *scene, duration);
+  } catch (const SceneError& e) {
+    log << "error: " << e.what() << '\n';
+    return kRunSceneError;
+  } catch (const std::exception& e) {
+    log << "error: " << options.scene << ": /navigation/device: " << e.what() << '\n';
+    return kRunSceneError;
+  }
   // A haptic device and its tool (the scene's "haptics" block): the servo loop runs beside the
   // steps (haptics/haptic_session.hpp).
   std::unique_ptr<haptics::HapticSession> haptic;
@@ -149,23 +162,6 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     return kRunSceneError;
   } catch (const std::exception& e) {
     log << "error: " << options.scene << ": /navigation: " << e.what() << '\n';
-    return kRunSceneError;
-  }
-  // A haptic device on an instrument's hub (the navigation block's "device"): the hand pushes and
-  // turns the instrument and feels it (haptics/hub_device.hpp).
-  std::unique_ptr<haptics::HubDevice> hub_device;
-  try {
-    hub_device = haptics::HubDevice::fromScene(document, options.scene, *scene, duration);
-  } catch (const SceneError& e) {
-    log << "error: " << e.what() << '\n';
-    return kRunSceneError;
-  } catch (const std::exception& e) {
-    log << "error: " << options.scene << ": /navigation/device: " << e.what() << '\n';
-    return kRunSceneError;
-  }
-  if (haptic && hub_device) {
-    log << "error: " << options.scene << ": /navigation/device: expected one haptic device per run (the \"haptics\" "
-        << "block's or the hub's: both write haptics.csv), found both\n";
     return kRunSceneError;
   }
   if (navigation && instruments) {

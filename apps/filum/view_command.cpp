@@ -96,6 +96,7 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
   std::unique_ptr<Scene> scene;
   std::unique_ptr<haptics::HubControl> hub;           // arrows: push, pull and turn the hub
   std::unique_ptr<haptics::HubDevice> hub_device;     // or a haptic device at the hub (then no arrows)
+  bool hub_lost_logged = false;
   std::unique_ptr<haptics::FluoroscopyPedal> pedal;   // f: the X-ray pedal
   std::optional<visual::FluoroscopyView> fluoroscopy; // x: the fluoroscope's monitor instead of the 3D view
   nlohmann::json document;
@@ -103,6 +104,8 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
   try {
     document = readJsonFile(options.scene);
     scene = loadScene(document, options.scene, makeFactory());
+    hub_device = haptics::HubDevice::fromScene(document, options.scene, *scene, 1.0);  // (before: one device)
+    if (hub_device) hub_device->start();
     haptic = haptics::HapticSession::fromScene(document, options.scene, *scene, 1.0);
     if (haptic) {
       probe = haptic->sharedTool();
@@ -116,8 +119,6 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
     if (instruments) instruments->start();  // devices on their own thread (a Phantom) start sampling
     // A catheter or guidewire ("navigation"): its hub to the arrow keys (a block that only
     // scores an aneurysm's coils has no instrument).
-    hub_device = haptics::HubDevice::fromScene(document, options.scene, *scene, 1.0);
-    if (hub_device) hub_device->start();
     if (const auto navigation = haptics::NavigationMetrics::fromScene(document, options.scene, *scene);
         navigation && navigation->instrumentCount() > 0 && !hub_device)
       hub = haptics::HubControl::find(*scene, navigation->instrument(0).name);
@@ -307,6 +308,10 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
           const StepReport report = scene->step();
           if (instruments && report.ok) instruments->afterStep(*scene);
           if (hub_device && report.ok) hub_device->afterStep(*scene);
+          if (hub_device && !hub_device->lost().empty() && !hub_lost_logged) {
+            log << "filum view: " << hub_device->lost() << '\n';
+            hub_lost_logged = true;
+          }
           if (!report.ok) {
             log << "error: " << report.message << " (state rolled back; press r to restart)\n";
             paused = true;

@@ -13,18 +13,17 @@ ForceSafety::ForceSafety(const DeviceLimits& limits, SafetySettings settings, do
 }
 
 Vec3 ForceSafety::apply(const Vec3& commanded, double t, bool fresh) {
+  // 2. watchdog (its gain first: the torque of this tick takes it even when the force is refused)
+  if (fresh) last_model_time_ = t;
+  const double rate = period_ / settings_.fade;
+  gain_ = t - last_model_time_ > settings_.watchdog ? std::max(0.0, gain_ - rate) : std::min(1.0, gain_ + rate);
   Vec3 F = commanded;
   if (!F.allFinite()) {  // 1. at once: no slew toward a force that no longer means anything
     ++non_finite_;
-    if (fresh) last_model_time_ = t;
     mean_square_ *= 1.0 - alpha_;
     last_.setZero();
     return last_;
   }
-  // 2. watchdog
-  if (fresh) last_model_time_ = t;
-  const double rate = period_ / settings_.fade;
-  gain_ = t - last_model_time_ > settings_.watchdog ? std::max(0.0, gain_ - rate) : std::min(1.0, gain_ + rate);
   F *= gain_;
   // 3. slew rate (before the limits: a limit may cut the force faster than the slew rate, never raise it)
   const Vec3 change = F - last_;
@@ -41,11 +40,17 @@ Vec3 ForceSafety::apply(const Vec3& commanded, double t, bool fresh) {
 }
 
 double ForceSafety::applyTorque(double commanded) {
+  if (!(limits_.peak_torque > 0.0)) return 0.0;  // no motor on the gimbal
   if (!std::isfinite(commanded)) {
-    ++non_finite_;
+    ++non_finite_torques_;
+    last_torque_ = 0.0;
     return 0.0;
   }
-  return std::clamp(gain_ * commanded, -limits_.peak_torque, limits_.peak_torque);
+  // The force's rise time, peak / slew rate, for the torque too: no jolt at a grip or a release.
+  const double max_change = limits_.peak_torque * limits_.slew_rate / limits_.peak_force * period_;
+  const double target = std::clamp(gain_ * commanded, -limits_.peak_torque, limits_.peak_torque);
+  last_torque_ = std::clamp(target, last_torque_ - max_change, last_torque_ + max_change);
+  return last_torque_;
 }
 
 }  // namespace filum::haptics

@@ -274,6 +274,8 @@ std::string HapticSession::summary() const {
   if (peak_torque > 0.0) out << ", largest torque sent " << peak_torque << " N·m";
   if (!drives_instrument_) out << ", " << grasps_ << " grasps";  // an instrument's are in its metrics
   if (servo_->safety().nonFiniteCount() > 0) out << ", " << servo_->safety().nonFiniteCount() << " non-finite forces refused";
+  if (servo_->safety().nonFiniteTorqueCount() > 0)
+    out << ", " << servo_->safety().nonFiniteTorqueCount() << " non-finite torques refused";
   if (servo_->droppedSamples() > 0) out << ", " << servo_->droppedSamples() << " samples beyond the log dropped";
   if (const std::string note = device_->schedulingNote(); !note.empty()) out << "\n  note: " << note;
   return out.str();

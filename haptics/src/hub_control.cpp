@@ -18,7 +18,9 @@ std::unique_ptr<HubControl> HubControl::find(Scene& scene, const std::string& pa
   for (const auto& c : node->components()) {
     if (auto* point = dynamic_cast<constraints::ProjectedPointConstraint*>(c.get()); point && point->abscissa() == 0.0)
       hub->hub_ = point;
-    if (auto* frame = dynamic_cast<mechanics::RodEndFrame*>(c.get())) hub->frame_ = frame;
+    if (auto* frame = dynamic_cast<mechanics::RodEndFrame*>(c.get());
+        frame && frame->end() == mechanics::RodEndFrame::End::kStart)  // the hub's, not a held tip's
+      hub->frame_ = frame;
   }
   if (!hub->hub_) return nullptr;
   // The introducer's axis: the hub's tangent now (at the start, before any push).

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "filum/core/params.hpp"
+#include "filum/core/scene_error.hpp"
 
 namespace filum::haptics {
 
@@ -16,23 +17,31 @@ std::unique_ptr<HubDevice> HubDevice::fromScene(const nlohmann::json& document, 
   const Params top(document, source, "");
   const Params navigation = top.object("navigation").withOwner("navigation");
   const Params p = navigation.object("device").withOwner("navigation device");
+  // One device a run, refused before either is opened (both would write haptics.csv).
+  if (document.contains("haptics"))
+    p.fail("device", "one haptic device a scene: the \"haptics\" block's tool or this one at the hub",
+           "both (a \"haptics\" block too)");
   std::unique_ptr<HubDevice> hub(new HubDevice());
-  // The instrument: named, or the navigation block's first.
-  std::string name;
+  // The instrument: named here, or the navigation block's (first); a refusal names the key it came from.
+  const Params* owner = &p;
+  std::string key = "instrument", name;
   if (p.has("instrument")) {
     name = p.string("instrument");
   } else if (navigation.has("instrument")) {
+    owner = &navigation;
     name = navigation.string("instrument");
   } else if (navigation.has("instruments") && navigation.raw("instruments").is_array() &&
              !navigation.raw("instruments").empty() && navigation.raw("instruments")[0].is_string()) {
+    owner = &navigation;
+    key = "instruments";
     name = navigation.raw("instruments")[0].get<std::string>();
   } else {
     p.fail("instrument", "the node path of the instrument whose hub the device drives");
   }
   hub->hub_ = HubControl::find(scene, name);
   if (!hub->hub_)
-    p.fail("instrument", "an instrument (curve body) whose s = 0 a FixedPointConstraint holds: its hub",
-           "\"" + name + "\"");
+    owner->fail(key, "an instrument (curve body) held at s = 0 by a point constraint (a FixedPointConstraint): its hub",
+                "\"" + name + "\"");
   hub->button_mask_ = 1u << (p.integer("button", 1, 16, 1, "a button of the stylus, 1 to 16") - 1);
   hub->roll_scale_ = p.number({"roll_scale", "1"}, 1.0);
   if (!(std::abs(hub->roll_scale_) > 0.0) || !std::isfinite(hub->roll_scale_) || std::abs(hub->roll_scale_) > 100.0)
@@ -46,8 +55,33 @@ std::unique_ptr<HubDevice> HubDevice::fromScene(const nlohmann::json& document, 
 }
 
 void HubDevice::beforeStep(Scene& scene) {
+  if (!lost_.empty()) {  // the hub let go: the servo ticks on, the hand feels nothing
+    ServoSample ignored;
+    session_->stylus(scene, ignored);
+    return;
+  }
+  try {
+    drive(scene);
+  } catch (const SceneError& e) {  // the hub's constraint released or cut: nothing to push any more
+    lost_ = "t = " + std::to_string(scene.state().time) + " s: the hub cannot be driven any more: " + e.what();
+    gripping_ = false;
+  }
+}
+
+void HubDevice::drive(Scene& scene) {
   ServoSample sample;
-  if (!session_->stylus(scene, sample)) return;  // no tick since the last step: the hub goes on
+  if (!session_->stylus(scene, sample)) {
+    // No tick since the last step. A stylus gone quiet for longer than the watchdog (a device
+    // fault, a stalled servo thread) leaves the hub where it is rather than moving on at the last
+    // stroke's speed.
+    if (gripping_ && scene.state().time - last_sample_time_ > session_->watchdog() && !held_still_) {
+      hub_->steer(scene, hub_->insertion(scene), 0.0);
+      held_still_ = true;
+    }
+    return;
+  }
+  last_sample_time_ = sample.time;
+  held_still_ = false;
   const bool pressed = (sample.buttons & button_mask_) != 0;
   if (pressed && !gripping_) {  // the hand closes on the hub
     grip_stylus_ = sample.position;
@@ -84,6 +118,7 @@ std::string HubDevice::summary() const {
   std::ostringstream out;
   out << session_->summary() << "\n  hub of " << hub_->name() << ": " << strokes_ << " strokes, largest force on the hand "
       << largest_force_ << " N along the introducer, largest torque " << largest_torque_ << " N·m";
+  if (!lost_.empty()) out << "\n  " << lost_;
   return out.str();
 }
 

@@ -72,7 +72,10 @@ std::unique_ptr<NavigationMetrics> NavigationMetrics::fromScene(const nlohmann::
     Instrument m;
     m.name = name;
     m.body = body->curve();
-    m.hub_frame = componentOf<mechanics::RodEndFrame>(*node);
+    for (const auto& c : node->components())  // the hub's frame (s = 0), not a held tip's
+      if (const auto* frame = dynamic_cast<const mechanics::RodEndFrame*>(c.get());
+          frame && frame->end() == mechanics::RodEndFrame::End::kStart)
+        m.hub_frame = frame;
     metrics->instruments_.push_back(m);
   }
   Node* vessels = nodeAt(scene, p, "vessels", p.string("vessels"));

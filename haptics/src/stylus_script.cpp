@@ -46,7 +46,7 @@ Rows readCsv(const std::string& path) {
     // nothing after them.
     std::string buttons, roll_text, rest;
     long b = 0;
-    double roll = 0.0;
+    double roll = rows.rolls.empty() ? 0.0 : rows.rolls.back();  // as a waypoint's: the previous row's
     if (fields >> buttons) {
       std::size_t used = 0;
       try {

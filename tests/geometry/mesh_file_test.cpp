@@ -395,6 +395,9 @@ TEST(MeshFile, VtpAsVtkSavesItByDefaultAppendedAndCompressedGivesTheSurfaceOfThe
           expectSameSurface(soup, cube, what);
           EXPECT_TRUE(soup.vertices == cube.vertices) << what;  // Float64 round trip: exact
         }
+  // The same as files written by another encoder (Python's zlib): the fuzz target's seeds too.
+  for (const std::string kind : {"raw", "base64"})
+    expectSameSurface(readMeshFile(kData + "cube_zlib_" + kind + ".vtp"), cube, "cube_zlib_" + kind + ".vtp");
   // Appended but not compressed (ParaView's Compressor None).
   for (const std::string layout : {"raw", "base64"}) {
     const PolygonSoup soup = readMesh(compressedVtpCube(cube, false, false, layout, 0, false), MeshFormat::kVtp, "cube.vtp");

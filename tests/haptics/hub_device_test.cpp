@@ -13,6 +13,7 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/haptics/hub_device.hpp"
+#include "filum/mechanics/framed_chain.hpp"
 #include "filum/mechanics/register_components.hpp"
 
 namespace filum::haptics {
@@ -79,18 +80,31 @@ struct HubRun {
 
 TEST(HubDevice, ATwistedRodGivesTheHandItsTorqueAboutTheStylusAxis) {
   // Grip from the start; the stylus turned by ψ = 0.5 rad over 0.1–0.5 s, then held: the hub turns
-  // the rod's start by ψ against its clamped end. The discrete rod's twist compliance is exact
-  // for a uniform twist (its nodes' lengths add up to L, docs/rods.md), so at rest the held frame
-  // bears T = G J ψ / L. What is left after 0.5 s at rest: the transient, damped by backward Euler
-  // (|amplification| <= 1/sqrt(1 + (ω h)²) per step, ω h ≈ 2 for the lowest twist mode) far below
-  // round-off, and the round-off of log(Rᵀ R) (ε ψ). The tolerance, 1e-9 relative, is above both.
+  // the rod's start by ψ against its clamped end (which has a RodEndFrame of its own: the device
+  // must turn the start's). The discrete rod's twist compliance is exact for a uniform twist (the
+  // end half-segments and the interior nodes' lengths add up to L, docs/rods.md), so at rest the
+  // held frame bears T = G J ψ / L, and segment j's frame has turned by ψ (1 − (j + ½)/n), n = 20
+  // segments. What is left after 0.5 s at rest: the transient of the twist modes, whose lowest,
+  // ω = (π/L)√(G/ρ) ≈ 6.9e3 rad/s, backward Euler damps by 1/sqrt(1 + (ω h)²) ≈ 0.14 a step (h = 1 ms),
+  // far below round-off after 500 steps, and the round-off of log(Rᵀ R) (ε ψ). The tolerance,
+  // 1e-9 relative, is above both (measured: 2e-15).
   const double psi = 0.5;
   HubRun run(rodScene(Vec3::UnitZ(), true, {0, 0, 0},
                       scripted({{{"time", 0.0}, {"position", {0, 0, 0}}, {"buttons", 1}},
                                 {{"time", 0.1}, {"position", {0, 0, 0}}, {"buttons", 1}},
                                 {{"time", 0.5}, {"position", {0, 0, 0}}, {"buttons", 1}, {"roll", psi}},
                                 {{"time", 1.0}, {"position", {0, 0, 0}}, {"buttons", 1}}})));
+  const auto& chain = dynamic_cast<const mechanics::FramedChain&>(*run.scene->bodies().front()->curve());
+  const Eigen::Quaterniond first0 = chain.orientation(run.scene->state().q, 0);
+  const Eigen::Quaterniond last0 = chain.orientation(run.scene->state().q, 19);
   ASSERT_TRUE(run.runUntil(1.0));
+  // The turn of a segment's frame about the rod's axis (+z) since the start.
+  const auto turned = [&](const Eigen::Quaterniond& now, const Eigen::Quaterniond& before) {
+    const Eigen::Quaterniond r = now * before.conjugate();
+    return 2.0 * std::atan2(r.z(), r.w());
+  };
+  EXPECT_NEAR(turned(chain.orientation(run.scene->state().q, 0), first0), psi * (1.0 - 0.5 / 20), 1e-9 * psi);
+  EXPECT_NEAR(turned(chain.orientation(run.scene->state().q, 19), last0), psi * 0.5 / 20, 1e-9 * psi);
   const double G = kModulus / (2.0 * (1.0 + kPoisson)), J = M_PI * std::pow(kRadius, 4) / 2.0;
   const double expected = G * J * psi / kLength;  // N·m
   EXPECT_NEAR(run.hub->hub().roll(*run.scene), psi, 1e-15);
@@ -105,9 +119,11 @@ TEST(HubDevice, ATwistedRodGivesTheHandItsTorqueAboutTheStylusAxis) {
 
 TEST(HubDevice, ARodHangingFromItsHubPullsTheHandDownWithItsWeight) {
   // The rod hangs from its hub along a₀ = −z: at rest the hub bears its whole weight m g, m = ρ A L
-  // (the chain's point masses add up to it), and the hand feels F = −(f·a₀) a₀ = −m g ẑ. Left: the
-  // transient of the axial and bending modes after 0.8 s at rest under ViscousDamping 20/s and
-  // backward Euler, e^(−20·0.8) ≈ 1e-7 of the start's swing at most: tolerance 1e-6 relative.
+  // (the chain's point masses add up to it), and the hand feels F = −(f·a₀) a₀ = −m g ẑ. Left after
+  // 1 s: the transient of the axial modes that the weight excites (the rod starts straight along
+  // gravity: the bending modes are not excited but by round-off), the lowest at
+  // ω = (π/2L)√(E/ρ) ≈ 5.6e3 rad/s, which backward Euler damps by 1/sqrt(1 + (ω h)²) ≈ 0.18 a step:
+  // nothing after a thousand. Tolerance 1e-6 relative, far above that (measured: 3e-13).
   HubRun run(rodScene(-Vec3::UnitZ(), false, {0, 0, -9.81},
                       scripted({{{"time", 0.0}, {"position", {0, 0, 0}}, {"buttons", 1}},
                                 {{"time", 1.0}, {"position", {0, 0, 0}}, {"buttons", 1}}})));
@@ -155,7 +171,10 @@ TEST(HubDevice, EveryFieldIsRefusedAtItsJsonPath) {
   refused(unknown, "/navigation/device/instrument");
   json no_hub = rodScene(Vec3::UnitZ(), false, {0, 0, 0}, device);
   no_hub["nodes"][0]["components"].erase(3);  // the FixedPointConstraint at s = 0
-  refused(no_hub, "/navigation/device/instrument");
+  refused(no_hub, "/navigation/instrument");   // where the instrument was named
+  json two = rodScene(Vec3::UnitZ(), false, {0, 0, 0}, device);
+  two["haptics"] = {{"device", {{"type", "ScriptedDevice"}}}};
+  refused(two, "/navigation/device/device");  // "expected one haptic device a scene ..."
   json button = rodScene(Vec3::UnitZ(), false, {0, 0, 0}, device);
   button["navigation"]["device"]["button"] = 17;
   refused(button, "/navigation/device/button");
@@ -168,6 +187,21 @@ TEST(HubDevice, EveryFieldIsRefusedAtItsJsonPath) {
   json torque = rodScene(Vec3::UnitZ(), false, {0, 0, 0}, device);
   torque["navigation"]["device"]["limits"]["peak_torque"] = -1.0;
   refused(torque, "/navigation/device/limits/peak_torque");
+}
+
+TEST(HubDevice, AHubThatLetsGoIsDrivenNoMoreAndTheRunGoesOn) {
+  // The hub's constraint released at 0.3 s (its "release_at"): the next steps cannot steer it; the
+  // device says so once and the run goes on, the hand feeling nothing.
+  json document = rodScene(Vec3::UnitZ(), false, {0, 0, 0},
+                           scripted({{{"time", 0.0}, {"position", {0, 0, 0}}, {"buttons", 1}},
+                                     {{"time", 1.0}, {"position", {0, 0, 0.02}}, {"buttons", 1}}}));
+  document["nodes"][0]["components"][3]["release_at"] = 0.3;
+  HubRun run(document);
+  ASSERT_TRUE(run.runUntil(0.6));
+  EXPECT_NE(run.hub->lost().find("the hub cannot be driven any more"), std::string::npos) << run.hub->lost();
+  EXPECT_NE(run.hub->summary().find("cannot be driven"), std::string::npos);
+  EXPECT_FALSE(run.hub->gripping());
+  EXPECT_EQ(run.hub->handForce(), Vec3::Zero());
 }
 
 }  // namespace

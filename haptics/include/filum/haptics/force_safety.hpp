@@ -12,9 +12,11 @@
 //      pass, a held force settles at the continuous limit (the motors' heating, I²t). The limits
 //      come last: they may cut a force faster than the slew rate, never let one through.
 // Steps 1, 2 and 4 scale the force's magnitude and keep its direction.
-// A torque about the stylus's axis (applyTorque, after apply at the same tick) goes through steps 1
-// and 2 (with the force's watchdog gain) and is clamped to ±peak_torque: 0 on a device that
-// renders none.
+// A torque about the stylus's axis (applyTorque, after apply at the same tick): 0 on a device that
+// renders none (peak_torque 0); else a non-finite one is 0 at once (counted apart), the force's
+// watchdog gain scales it, it is clamped to ±peak_torque and slewed over the force's rise time
+// (peak_torque · slew_rate / peak_force per second). No continuous limit: the makers publish
+// none for the gimbal's motor that this reads (HD_NOMINAL_MAX_TORQUE_FORCE is a peak).
 #pragma once
 
 #include "filum/core/types.hpp"
@@ -38,6 +40,7 @@ class ForceSafety {
   double applyTorque(double commanded);
 
   long nonFiniteCount() const { return non_finite_; }
+  long nonFiniteTorqueCount() const { return non_finite_torques_; }
   /// The watchdog's gain g ∈ [0, 1] at the last tick.
   double watchdogGain() const { return gain_; }
   /// Whether the watchdog held the force below the command at the last tick.
@@ -54,6 +57,8 @@ class ForceSafety {
   double gain_ = 1.0;
   Vec3 last_ = Vec3::Zero();
   long non_finite_ = 0;
+  long non_finite_torques_ = 0;
+  double last_torque_ = 0.0;
 };
 
 }  // namespace filum::haptics

@@ -100,6 +100,8 @@ class HapticSession {
   /// How far from the thread a Grasper's jaws catch it (m).
   double capture() const { return capture_; }
   const CouplingGains& coupling() const { return coupling_; }
+  /// Seconds without a new model before the servo fades the force (the block's "watchdog").
+  double watchdog() const { return settings_.safety.watchdog; }
   /// Whether the coupling gains act (false for a device that drives an instrument's hub in
   /// position, hub_device.hpp): the summary then leaves them out.
   void setCouplingUsed(bool used) { coupling_used_ = used; }

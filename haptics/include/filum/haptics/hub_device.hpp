@@ -48,7 +48,8 @@ class HubDevice {
  public:
   /// The device of document["navigation"]["device"] on its instrument's hub, nullptr when the
   /// block has none. Throws SceneError at the faulty JSON path (an unknown instrument, one whose
-  /// s = 0 no FixedPointConstraint holds, a bad button or roll scale, the device block's errors).
+  /// s = 0 no point constraint holds, a bad button or roll scale, the device block's errors, a
+  /// scene with a "haptics" block too: one device a run).
   static std::unique_ptr<HubDevice> fromScene(const nlohmann::json& document, const std::string& source, Scene& scene,
                                               double duration);
 
@@ -56,6 +57,8 @@ class HubDevice {
   void start() { session_->start(); }
   /// Before a step: the ticks due (lockstep), the grip, the hub driven to the stylus.
   void beforeStep(Scene& scene);
+  /// Why the hub is no longer driven ("" while it is).
+  const std::string& lost() const { return lost_; }
   /// After a step: the force and torque on the hand published to the servo loop.
   void afterStep(const Scene& scene);
   /// Forces off. Idempotent.
@@ -81,6 +84,8 @@ class HubDevice {
 
  private:
   HubDevice() = default;
+  /// beforeStep's work; throws SceneError when the hub's constraint holds nothing any more.
+  void drive(Scene& scene);
 
   std::unique_ptr<HapticSession> session_;
   std::unique_ptr<HubControl> hub_;
@@ -91,6 +96,9 @@ class HubDevice {
   int strokes_ = 0;
   Vec3 grip_stylus_ = Vec3::Zero();
   double grip_roll_ = 0.0, grip_insertion_ = 0.0, grip_hub_roll_ = 0.0;
+  double last_sample_time_ = 0.0;  // s, of the newest stylus sample
+  bool held_still_ = false;        // the hub stopped for want of samples
+  std::string lost_;               // why the hub is driven no more
   // What the hand feels.
   Vec3 hand_force_ = Vec3::Zero();
   double hand_torque_ = 0.0, largest_force_ = 0.0, largest_torque_ = 0.0;

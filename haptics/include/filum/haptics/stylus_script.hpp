@@ -5,7 +5,8 @@
 //                          (device frame, m, s; "roll", the stylus turned about its own axis,
 //                          defaults to the previous waypoint's, 0 at the first)
 //   "csv": "file.csv"      the same as rows "time,x,y,z[,buttons[,roll]]" (a header line is
-//                          allowed), relative to the scene file
+//                          allowed; a row without a roll keeps the previous row's), relative to
+//                          the scene file
 //   "interpolation": "linear" | "smooth"   between waypoints (geometry::ScriptedPath)
 // Buttons hold from their waypoint until the next (bit 0: the first button, the grasper's
 // jaws by default); "buttons" may be omitted (0). At most kMaxWaypoints, times increasing.

@@ -56,6 +56,8 @@ class RodEndFrame final : public ForceField {
   void addJacobian(const SceneState& s, double k_factor, double d_factor, JacobianAccumulator& out) const override;
   bool hasJacobian() const override { return true; }
 
+  /// Which end it holds.
+  End end() const { return end_; }
   /// The held frame at time t.
   Eigen::Quaterniond heldFrame(double t) const;
   /// The roll ψ(t) the path holds the end at (rad): how far the hand has turned the hub.

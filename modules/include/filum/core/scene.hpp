@@ -200,7 +200,8 @@ class Scene {
   ConstraintSolver* constraintSolver() const { return constraint_solver_; }
   /// The multipliers of `constraint`'s rows in the last constraint solve (Lᵀλ is its force on the
   /// bodies: for a point constraint Σ λ_i d_i, N); empty when it was not active then, or without
-  /// a solve.
+  /// a solve. The last solve is the integrator's: an implicit step's accepted iterate; an explicit
+  /// one's at its last stage's state (RK4: the fourth, not the step's weighted force).
   Eigen::Ref<const VecX> constraintMultipliers(const Constraint& constraint) const;
   /// The collision pipeline, or nullptr when the scene holds no CollisionModel (collision is
   /// then skipped entirely).
