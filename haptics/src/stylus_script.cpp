@@ -24,6 +24,24 @@ struct Rows {
   std::vector<double> rolls;
 };
 
+/// The whole of `text` as a number (NaN when it is not one, or has more after it).
+double numberOf(const std::string& text) {
+  std::size_t used = 0;
+  double value = std::nan("");
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return std::nan("");
+  }
+  return used == text.size() ? value : std::nan("");
+}
+
+/// The whole of `text` as a whole number (NaN when it is not one).
+double wholeNumber(const std::string& text) {
+  const double value = numberOf(text);
+  return value == std::floor(value) && text.find_first_of(".eE") == std::string::npos ? value : std::nan("");
+}
+
 /// "time,x,y,z[,buttons[,roll]]" rows; the first line may be a header.
 Rows readCsv(const std::string& path) {
   if (const std::string problem = inputFileProblem(path, kMaxScriptBytes); !problem.empty())
@@ -45,27 +63,11 @@ Rows readCsv(const std::string& path) {
     // An optional fifth column, the buttons: a whole number; an optional sixth, the roll (rad);
     // nothing after them.
     std::string buttons, roll_text, rest;
-    long b = 0;
+    double b = 0.0;
     double roll = rows.rolls.empty() ? 0.0 : rows.rolls.back();  // as a waypoint's: the previous row's
-    if (fields >> buttons) {
-      std::size_t used = 0;
-      try {
-        b = std::stol(buttons, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != buttons.size()) b = -1;
-    }
-    if (fields >> roll_text) {
-      std::size_t used = 0;
-      try {
-        roll = std::stod(roll_text, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != roll_text.size()) roll = std::nan("");
-    }
-    if (fields >> rest || b < 0 || b > 0xffff || !std::isfinite(t) || !std::isfinite(x) || !std::isfinite(y) ||
+    if (fields >> buttons) b = wholeNumber(buttons);
+    if (fields >> roll_text) roll = numberOf(roll_text);
+    if (fields >> rest || !(b >= 0 && b <= 0xffff) || !std::isfinite(t) || !std::isfinite(x) || !std::isfinite(y) ||
         !std::isfinite(z) || !std::isfinite(roll))
       throw SceneError(path + ":" + std::to_string(number), "finite time,x,y,z, buttons in [0, 65535] and a finite roll",
                        "\"" + line + "\"");

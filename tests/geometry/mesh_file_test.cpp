@@ -316,6 +316,16 @@ TEST(MeshFile, VtpAsciiAndBinaryGiveTheSurfaceOfTheOff) {
     }
 }
 
+/// What reading `text` as "vessel.vtp" says: the refusal's message, or "(read)".
+std::string vtpRefusal(const std::string& text) {
+  try {
+    readMesh(text, MeshFormat::kVtp, "vessel.vtp");
+  } catch (const std::runtime_error& e) {
+    return std::string(e.what());
+  }
+  return std::string("(read)");
+}
+
 // The cube again, as VTK's writers save it by default: the arrays' data after the XML in
 // <AppendedData> (raw bytes, or base64), each array at its offset, compressed by zlib in blocks
 // (vtkZLibDataCompressor: a header [blocks, block size, last block's size, compressed sizes], then
@@ -408,38 +418,30 @@ TEST(MeshFile, VtpAsVtkSavesItByDefaultAppendedAndCompressedGivesTheSurfaceOfThe
 TEST(MeshFile, ABrokenCompressedOrAppendedVtpIsRefusedBeforeItsDataIsAllocated) {
   const PolygonSoup cube = readMeshFile(kData + "cube.off");
   const std::string good = compressedVtpCube(cube, false, false, "raw", 40);
-  const auto refusal = [](const std::string& text) {
-    try {
-      readMesh(text, MeshFormat::kVtp, "vessel.vtp");
-    } catch (const std::runtime_error& e) {
-      return std::string(e.what());
-    }
-    return std::string("(read)");
-  };
-  ASSERT_EQ(refusal(good), "(read)");
+  ASSERT_EQ(vtpRefusal(good), "(read)");
   const std::size_t data = good.find('_', good.find("<AppendedData")) + 1;
   // A compressed byte flipped: zlib's check fails, named. (The array at offset 0 has blocks of
   // 40 bytes: a header of 3 + 2 or more words, then its first block.)
   std::string flipped = good;
   flipped[data + 20 + 8 + 4] = static_cast<char>(flipped[data + 20 + 8 + 4] ^ 0x55);
-  EXPECT_NE(refusal(flipped).find("zlib block"), std::string::npos) << refusal(flipped);
+  EXPECT_NE(vtpRefusal(flipped).find("zlib block"), std::string::npos) << vtpRefusal(flipped);
   // A header announcing a huge array (blocks of 2^31 − 1 bytes, at offset 0): refused from the
   // Piece's counts, before anything of that size is allocated.
   std::string huge = good;
   const char big_block[4] = {'\xff', '\xff', '\xff', '\x7f'};
   std::memcpy(&huge[data + 4], big_block, 4);
-  EXPECT_NE(refusal(huge).find("bytes (as the Piece's counts say), found 2147483"), std::string::npos) << refusal(huge);
+  EXPECT_NE(vtpRefusal(huge).find("bytes (as the Piece's counts say), found 2147483"), std::string::npos) << vtpRefusal(huge);
   // An offset beyond the appended data.
   std::string far = good;
   far.replace(far.find("offset=\"0\""), 10, "offset=\"99999\"");
-  EXPECT_NE(refusal(far).find("an offset=\"n\" into the appended data"), std::string::npos) << refusal(far);
+  EXPECT_NE(vtpRefusal(far).find("an offset=\"n\" into the appended data"), std::string::npos) << vtpRefusal(far);
   // The data cut short: the last block's bytes end early.
   const std::string cut = good.substr(0, good.find("\n</AppendedData>") - 10);
-  EXPECT_NE(refusal(cut).find("more bytes of data"), std::string::npos) << refusal(cut);
+  EXPECT_NE(vtpRefusal(cut).find("more bytes of data"), std::string::npos) << vtpRefusal(cut);
   // An unknown appended encoding.
   std::string encoding = good;
   encoding.replace(encoding.find("encoding=\"raw\""), 14, "encoding=\"hex\"");
-  EXPECT_NE(refusal(encoding).find("expected <AppendedData encoding=\"raw\">"), std::string::npos) << refusal(encoding);
+  EXPECT_NE(vtpRefusal(encoding).find("expected <AppendedData encoding=\"raw\">"), std::string::npos) << vtpRefusal(encoding);
 }
 
 TEST(MeshFile, VtpStripsKeepOneOrientation) {
@@ -459,43 +461,35 @@ TEST(MeshFile, VtpStripsKeepOneOrientation) {
 
 TEST(MeshFile, VtpThatCannotBeReadSaysWhatToSaveInstead) {
   const std::string ascii = fileBytes(kData + "cube.vtp");
-  const auto refusal = [](const std::string& text) {
-    try {
-      readMesh(text, MeshFormat::kVtp, "vessel.vtp");
-    } catch (const std::runtime_error& e) {
-      return std::string(e.what());
-    }
-    return std::string("(read)");
-  };
   // The line of a text in the file (1-based), where a message must point.
   const auto lineOf = [&](const std::string& text) {
     return std::to_string(1 + std::count(ascii.begin(), ascii.begin() + static_cast<long>(ascii.find(text)), '\n'));
   };
   std::string lz4 = ascii;
   lz4.replace(lz4.find("header_type"), 0, "compressor=\"vtkLZ4DataCompressor\" ");
-  EXPECT_NE(refusal(lz4).find("vessel.vtp:" + lineOf("<VTKFile") + ": expected data compressed by zlib"), std::string::npos)
-      << refusal(lz4);
+  EXPECT_NE(vtpRefusal(lz4).find("vessel.vtp:" + lineOf("<VTKFile") + ": expected data compressed by zlib"), std::string::npos)
+      << vtpRefusal(lz4);
   std::string appended = ascii;  // an appended array in a file without <AppendedData>
   appended.replace(appended.find("format=\"ascii\" RangeMin=\"0\" RangeMax=\"1.73"), 14, "format=\"appended\" offset=\"0\"");
-  EXPECT_NE(refusal(appended).find("no <AppendedData>"), std::string::npos) << refusal(appended);
+  EXPECT_NE(vtpRefusal(appended).find("no <AppendedData>"), std::string::npos) << vtpRefusal(appended);
   // A point that is not there: named at the line of the connectivity's values.
   std::string outside = ascii;
   outside.replace(outside.find("3 0 4 7"), 7, "3 0 4 8");
-  EXPECT_NE(refusal(outside).find("vessel.vtp:" + lineOf("0 3 2 1") + ": expected indices of points"), std::string::npos)
-      << refusal(outside);
+  EXPECT_NE(vtpRefusal(outside).find("vessel.vtp:" + lineOf("0 3 2 1") + ": expected indices of points"), std::string::npos)
+      << vtpRefusal(outside);
   std::string not_a_number = ascii;
   not_a_number.replace(not_a_number.find("0 1 1\n"), 5, "0 1 x");
-  EXPECT_NE(refusal(not_a_number).find("vessel.vtp:" + lineOf("0 0 1  1 0 1") + ": expected the points: numbers"),
+  EXPECT_NE(vtpRefusal(not_a_number).find("vessel.vtp:" + lineOf("0 0 1  1 0 1") + ": expected the points: numbers"),
             std::string::npos)
-      << refusal(not_a_number);
+      << vtpRefusal(not_a_number);
   std::string short_offsets = ascii;
   short_offsets.replace(short_offsets.find("4 8 12 16 20 24"), 15, "4 8 12 16 20 22");
-  EXPECT_NE(refusal(short_offsets).find("vessel.vtp:" + lineOf("4 8 12 16 20 24") +
+  EXPECT_NE(vtpRefusal(short_offsets).find("vessel.vtp:" + lineOf("4 8 12 16 20 24") +
                                    ": expected offsets that are whole numbers growing by at least 3 (a cell of 3 or "
-                                   "more points), found offset 5 = 22 after 20"), std::string::npos) << refusal(short_offsets);
+                                   "more points), found offset 5 = 22 after 20"), std::string::npos) << vtpRefusal(short_offsets);
   std::string image = ascii;
   image.replace(image.find("type=\"PolyData\""), 16, "type=\"ImageData\"");
-  EXPECT_NE(refusal(image).find("expected a PolyData file"), std::string::npos) << refusal(image);
+  EXPECT_NE(vtpRefusal(image).find("expected a PolyData file"), std::string::npos) << vtpRefusal(image);
 }
 
 // ---- Refusals: the file, the line, what was expected, what was found -------------------------
