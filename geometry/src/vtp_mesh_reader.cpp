@@ -117,7 +117,8 @@ struct Encoding {
   bool big_endian = false;
   bool header64 = false;
   bool zlib = false;                   // compressor="vtkZLibDataCompressor"
-  std::size_t appended = std::string_view::npos;  // where <AppendedData>'s data starts (after its '_')
+  std::string_view whole;              // the whole file (appended data lies after the XML)
+  std::size_t appended = std::string_view::npos;  // where <AppendedData>'s data starts in it (after its '_')
   bool appended_base64 = false;        // <AppendedData encoding="base64"> (else "raw")
   int word() const { return header64 ? 8 : 4; }
 };
@@ -126,13 +127,15 @@ struct Encoding {
 /// header and the data after it as separate base64 pieces, each padded: '=' ends a group.
 class ByteSource {
  public:
-  ByteSource(const VtpScanner& scan, std::string_view text, std::size_t at, bool base64, std::string what)
-      : scan_(scan), text_(text), at_(at), base64_(base64), what_(std::move(what)) {}
+  /// Messages name `where` (an offset of the XML: the array's tag or its inline data) and `what`.
+  ByteSource(const VtpScanner& scan, std::string_view text, std::size_t at, bool base64, std::size_t where,
+             std::string what)
+      : scan_(scan), text_(text), at_(at), base64_(base64), where_(where), what_(std::move(what)) {}
   /// Appends the next n bytes to out; fails naming the array when the data ends first.
   void take(std::size_t n, std::vector<unsigned char>& out) {
     if (!base64_) {
       if (at_ > text_.size() || n > text_.size() - at_)
-        scan_.failAt(std::min(at_, text_.size()), what_ + ": " + std::to_string(n) + " more bytes of data",
+        scan_.failAt(where_, what_ + ": " + std::to_string(n) + " more bytes of data",
                      std::to_string(at_ > text_.size() ? 0 : text_.size() - at_));
       out.insert(out.end(), text_.begin() + static_cast<std::ptrdiff_t>(at_),
                  text_.begin() + static_cast<std::ptrdiff_t>(at_ + n));
@@ -141,7 +144,7 @@ class ByteSource {
     }
     for (std::size_t got = 0; got < n;) {
       if (pending_ == pending_size_ && !decodeGroup())
-        scan_.failAt(std::min(at_, text_.size()), what_ + ": " + std::to_string(n) + " bytes of base64 data",
+        scan_.failAt(where_, what_ + ": " + std::to_string(n) + " bytes of base64 data",
                      std::to_string(got));
       for (; pending_ < pending_size_ && got < n; ++got) out.push_back(group_[pending_++]);
     }
@@ -169,12 +172,12 @@ class ByteSource {
         }
         break;  // the group ends (padding, or the data's end)
       } else {
-        scan_.failAt(at_, what_ + ": base64 data", quoted(std::string_view(&c, 1)));
+        scan_.failAt(where_, what_ + ": base64 data", quoted(std::string_view(&c, 1)));
       }
       quad[filled++] = v;
     }
     if (filled == 0) return false;
-    if (filled == 1) scan_.failAt(at_, what_ + ": base64 groups of 2 to 4 characters", "1");
+    if (filled == 1) scan_.failAt(where_, what_ + ": base64 groups of 2 to 4 characters", "1");
     pending_ = 0;
     pending_size_ = filled - 1;
     group_[0] = static_cast<unsigned char>((quad[0] << 2) | (quad[1] >> 4));
@@ -187,6 +190,7 @@ class ByteSource {
   std::string_view text_;
   std::size_t at_;
   bool base64_;
+  std::size_t where_;
   std::string what_;
   std::array<unsigned char, 3> group_{};
   int pending_ = 0, pending_size_ = 0;
@@ -228,26 +232,29 @@ std::vector<unsigned char> arrayBytes(const VtpScanner& scan, ByteSource& source
     scan.failAt(where, what + ": a block size > 0 and a last block no larger", std::to_string(block_size) + " and " +
                                                                                   std::to_string(last));
   const unsigned long long final_size = last == 0 ? block_size : last;
-  const long double total = blocks == 0 ? 0.0L : static_cast<long double>(blocks - 1) * block_size + final_size;
-  if (total > static_cast<long double>(max_bytes))
+  // The inflated size, (blocks − 1) block_size + final_size, against max_bytes without overflow.
+  if (blocks > 0 && (final_size > max_bytes || blocks - 1 > (max_bytes - final_size) / block_size))
     scan.failAt(where, what + " of at most " + std::to_string(max_bytes) + " bytes (as the Piece's counts say)",
-                std::to_string(static_cast<unsigned long long>(total)) + " once inflated");
-  data.resize(static_cast<std::size_t>(total));
+                std::to_string(blocks) + " blocks of " + std::to_string(block_size) + " bytes once inflated");
+  // Block by block: its compressed bytes taken (they exist) before its inflated size is allocated,
+  // which deflate bounds at about 1032 times them.
   std::vector<unsigned char> compressed;
-  std::size_t filled = 0;
   for (unsigned long long b = 0; b < blocks; ++b) {
     const unsigned long long size = unsignedAt(header, static_cast<std::size_t>(w) * (3 + b), w, encoding.big_endian);
-    if (size > max_bytes + 64)  // zlib adds at most a few bytes to what it cannot compress
-      scan.failAt(where, what + ": compressed blocks no larger than the data", std::to_string(size) + " bytes");
+    const uLong expected = static_cast<uLong>(b + 1 == blocks ? final_size : block_size);  // <= max_bytes
+    if (size > compressBound(expected))
+      scan.failAt(where, what + ": zlib block " + std::to_string(b) + " of at most " + std::to_string(compressBound(expected)) +
+                             " bytes (zlib's bound for " + std::to_string(expected) + ")",
+                  std::to_string(size));
     compressed.clear();
     source.take(static_cast<std::size_t>(size), compressed);
-    uLongf out = static_cast<uLongf>(b + 1 == blocks ? final_size : block_size);
-    const uLongf expected = out;
+    const std::size_t filled = data.size();
+    data.resize(filled + expected);
+    uLongf out = expected;
     const int status = uncompress(data.data() + filled, &out, compressed.data(), static_cast<uLong>(compressed.size()));
     if (status != Z_OK || out != expected)
       scan.failAt(where, what + ": zlib block " + std::to_string(b) + " inflating to " + std::to_string(expected) + " bytes",
                   status == Z_OK ? std::to_string(out) + " bytes" : std::string("zlib error ") + std::to_string(status));
-    filled += out;
   }
   return data;
 }
@@ -295,20 +302,19 @@ std::vector<double> dataArray(const VtpScanner& scan, const Tag& tag, const Enco
   const unsigned long long max_bytes = static_cast<unsigned long long>(limit) * static_cast<unsigned long long>(t->size);
   std::vector<unsigned char> bytes;
   if (format == "binary") {  // inline base64: the header, then the values (or the zlib blocks)
-    ByteSource source(scan, scan.bytes().substr(0, stop), tag.content, true, what);
+    ByteSource source(scan, scan.bytes().substr(0, stop), tag.content, true, tag.content, what);
     bytes = arrayBytes(scan, source, encoding, max_bytes, tag.content, what);
   } else {  // in <AppendedData>, at the array's offset from the '_' that starts its data
     if (encoding.appended == std::string_view::npos)
       scan.failAt(tag.start, what + " in the file's <AppendedData> (format=\"appended\")", "no <AppendedData>");
     long long offset = -1;
     const std::string_view offset_text = VtpScanner::attribute(tag.attributes, "offset");
-    if (!parseInteger(offset_text, offset) || offset < 0 ||
-        static_cast<unsigned long long>(offset) > scan.bytes().size() - encoding.appended)
-      scan.failAt(tag.start, what + ": an offset=\"n\" into the appended data (0 to " +
-                                 std::to_string(scan.bytes().size() - encoding.appended) + ")",
+    const std::size_t available = encoding.whole.size() - encoding.appended;
+    if (!parseInteger(offset_text, offset) || offset < 0 || static_cast<unsigned long long>(offset) > available)
+      scan.failAt(tag.start, what + ": an offset=\"n\" into the appended data (0 to " + std::to_string(available) + ")",
                   quoted(offset_text.empty() ? "none" : offset_text));
-    ByteSource source(scan, scan.bytes(), encoding.appended + static_cast<std::size_t>(offset), encoding.appended_base64,
-                      what);
+    ByteSource source(scan, encoding.whole, encoding.appended + static_cast<std::size_t>(offset), encoding.appended_base64,
+                      tag.start, what);
     bytes = arrayBytes(scan, source, encoding, max_bytes, tag.start, what);
   }
   if (bytes.size() % static_cast<std::size_t>(t->size) != 0)
@@ -409,7 +415,10 @@ Cells readCells(const VtpScanner& scan, const std::string& element, std::size_t 
 }  // namespace
 
 PolygonSoup readVtp(std::string_view bytes, const std::string& name) {
-  const VtpScanner scan(bytes, name);
+  // The XML is all before <AppendedData> (VTK writes it last, its binary data after it): it alone
+  // is scanned for elements, so that no search runs into binary bytes.
+  const std::size_t appended_at = bytes.find("<AppendedData");
+  const VtpScanner scan(bytes.substr(0, appended_at), name);
   SoupBuilder soup(scan.cursor());  // every check it makes is made before, at its place
   const std::size_t all = bytes.size();
   const Tag file = scan.tag("VTKFile", 0, all, "a VTK XML file (<VTKFile type=\"PolyData\" ...>)");
@@ -434,19 +443,21 @@ PolygonSoup readVtp(std::string_view bytes, const std::string& name) {
   encoding.header64 = header_type == "UInt64";
 
   // Appended data (VTK's default): after the XML, in <AppendedData encoding="raw" | "base64">,
-  // from the '_' that marks its start. Everything of the XML is looked for before it.
-  std::size_t xml_end = all;
-  if (const std::size_t at = bytes.find("<AppendedData"); at != std::string_view::npos) {
-    const Tag appended = scan.tag("AppendedData", at, all, "<AppendedData>");
+  // from the '_' that marks its start (after white space).
+  if (appended_at != std::string_view::npos) {
+    const VtpScanner whole(bytes, name);
+    const Tag appended = whole.tag("AppendedData", appended_at, all, "<AppendedData>");
     const std::string_view kind = VtpScanner::attribute(appended.attributes, "encoding");
     if (kind != "raw" && kind != "base64")
-      scan.failAt(appended.start, "<AppendedData encoding=\"raw\"> or \"base64\"", quoted(kind.empty() ? "none" : kind));
-    const std::size_t mark = bytes.find('_', appended.content);
-    if (mark == std::string_view::npos) scan.failAt(appended.content, "the '_' that starts the appended data", "none");
+      whole.failAt(appended.start, "<AppendedData encoding=\"raw\"> or \"base64\"", quoted(kind.empty() ? "none" : kind));
+    const std::size_t mark = whole.firstValue(appended.content);
+    if (mark >= all || bytes[mark] != '_')
+      whole.failAt(appended.content, "the '_' that starts the appended data", mark >= all ? "the end of the file" : "other bytes");
+    encoding.whole = bytes;
     encoding.appended = mark + 1;
     encoding.appended_base64 = kind == "base64";
-    xml_end = at;
   }
+  const std::size_t xml_end = scan.bytes().size();
   const Tag piece = scan.tag("Piece", file.content, xml_end, "a <Piece NumberOfPoints=... NumberOfPolys=...>");
   const std::size_t piece_end = scan.end("Piece", piece.content);
   if (bytes.substr(0, xml_end).find("<Piece", piece_end) != std::string_view::npos)

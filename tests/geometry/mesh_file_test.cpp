@@ -379,14 +379,17 @@ std::string compressedVtpCube(const PolygonSoup& cube, bool big, bool header64, 
     appended += layout == "base64" ? base64(header) + base64(data) : header + data;
     return "<DataArray " + attributes + " format=\"appended\" offset=\"" + at + "\"/>\n";
   };
+  // The arrays in a fixed order (points, connectivity, offsets: offset 0 is the points'), each
+  // built in a statement of its own.
+  const std::string points_array = array("type=\"Float64\" NumberOfComponents=\"3\"", points);
+  const std::string connectivity_array = array("type=\"Int64\" Name=\"connectivity\"", connectivity);
+  const std::string offsets_array = array("type=\"Int64\" Name=\"offsets\"", offsets);
   const std::string xml =
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"" +
       std::string(big ? "BigEndian" : "LittleEndian") + "\" header_type=\"" + (header64 ? "UInt64" : "UInt32") + "\"" +
       (zlib ? " compressor=\"vtkZLibDataCompressor\"" : "") +
-      ">\n<PolyData>\n<Piece NumberOfPoints=\"8\" NumberOfPolys=\"6\">\n<Points>\n" +
-      array("type=\"Float64\" NumberOfComponents=\"3\"", points) + "</Points>\n<Polys>\n" +
-      array("type=\"Int64\" Name=\"connectivity\"", connectivity) + array("type=\"Int64\" Name=\"offsets\"", offsets) +
-      "</Polys>\n</Piece>\n</PolyData>\n";
+      ">\n<PolyData>\n<Piece NumberOfPoints=\"8\" NumberOfPolys=\"6\">\n<Points>\n" + points_array +
+      "</Points>\n<Polys>\n" + connectivity_array + offsets_array + "</Polys>\n</Piece>\n</PolyData>\n";
   if (layout == "binary") return xml + "</VTKFile>\n";
   return xml + "<AppendedData encoding=\"" + (layout == "base64" ? "base64" : "raw") + "\">\n   _" + appended +
          "\n</AppendedData>\n</VTKFile>\n";
@@ -420,17 +423,37 @@ TEST(MeshFile, ABrokenCompressedOrAppendedVtpIsRefusedBeforeItsDataIsAllocated) 
   const std::string good = compressedVtpCube(cube, false, false, "raw", 40);
   ASSERT_EQ(vtpRefusal(good), "(read)");
   const std::size_t data = good.find('_', good.find("<AppendedData")) + 1;
-  // A compressed byte flipped: zlib's check fails, named. (The array at offset 0 has blocks of
-  // 40 bytes: a header of 3 + 2 or more words, then its first block.)
+  // At offset 0: the points, 192 bytes in blocks of 40: a header of 3 + 5 UInt32 words, then the
+  // blocks. A compressed byte flipped: zlib's check fails, named.
   std::string flipped = good;
-  flipped[data + 20 + 8 + 4] = static_cast<char>(flipped[data + 20 + 8 + 4] ^ 0x55);
-  EXPECT_NE(vtpRefusal(flipped).find("zlib block"), std::string::npos) << vtpRefusal(flipped);
-  // A header announcing a huge array (blocks of 2^31 − 1 bytes, at offset 0): refused from the
-  // Piece's counts, before anything of that size is allocated.
+  flipped[data + 32 + 6] = static_cast<char>(flipped[data + 32 + 6] ^ 0x55);  // inside the first block
+  EXPECT_NE(vtpRefusal(flipped).find("zlib block 0"), std::string::npos) << vtpRefusal(flipped);
+  // A header announcing a huge array (blocks of 2^31 − 1 bytes): refused from the Piece's counts,
+  // before anything of that size is allocated.
   std::string huge = good;
   const char big_block[4] = {'\xff', '\xff', '\xff', '\x7f'};
   std::memcpy(&huge[data + 4], big_block, 4);
-  EXPECT_NE(vtpRefusal(huge).find("bytes (as the Piece's counts say), found 2147483"), std::string::npos) << vtpRefusal(huge);
+  EXPECT_NE(vtpRefusal(huge).find("the points of at most 192 bytes (as the Piece's counts say), found 5 blocks of "
+                                  "2147483647 bytes once inflated"),
+            std::string::npos)
+      << vtpRefusal(huge);
+  // With a UInt64 header the product would pass 2^64 (2 blocks of 2^64 − 1): refused the same way,
+  // in integers.
+  std::string huge64 = compressedVtpCube(cube, false, true, "raw", 40);
+  const std::size_t data64 = huge64.find('_', huge64.find("<AppendedData")) + 1;
+  const std::uint64_t words[3] = {2, ~std::uint64_t{0}, 1};
+  std::memcpy(&huge64[data64], words, sizeof words);
+  EXPECT_NE(vtpRefusal(huge64).find("found 2 blocks of 18446744073709551615 bytes once inflated"), std::string::npos)
+      << vtpRefusal(huge64);
+  // A block size of 0, a last block larger than the others.
+  std::string zero = good;
+  std::memset(&zero[data + 4], 0, 4);
+  EXPECT_NE(vtpRefusal(zero).find("a block size > 0 and a last block no larger"), std::string::npos) << vtpRefusal(zero);
+  // A compressed size above zlib's bound for its block.
+  std::string loose = good;
+  const char large[4] = {'\x00', '\x01', '\x00', '\x00'};  // 256 bytes for a block of 40
+  std::memcpy(&loose[data + 12], large, 4);
+  EXPECT_NE(vtpRefusal(loose).find("zlib block 0 of at most"), std::string::npos) << vtpRefusal(loose);
   // An offset beyond the appended data.
   std::string far = good;
   far.replace(far.find("offset=\"0\""), 10, "offset=\"99999\"");

@@ -18,15 +18,17 @@
 //   - VTP (vtp_mesh_reader.cpp): VTK XML PolyData, the format of 3D Slicer, VMTK and ParaView:
 //     one Piece, its Points, Polys and triangle Strips (connectivity and offsets), inline in
 //     format "ascii" or "binary" (base64, UInt32 or UInt64 header, either byte order, any numeric
-//     type). VTK's default, appended zlib-compressed data, is refused with how to save the file
-//     instead (ParaView: Data Mode Ascii, or Binary with Compressor None).
+//     type), or "appended" (VTK's default: raw or base64 after the XML); binary data compressed
+//     by zlib or not (other compressors are refused with how to save the file instead).
 // Every format: lines may end in LF, CRLF or CR; words may be separated by any run of spaces and
 // tabs; polygons are fanned into triangles (v0, v_k, v_{k+1}); coordinates are in the file's own
 // units (the scene's "units" and "scale" turn them into metres: mesh_units.hpp).
 //
 // Robustness (the parser sees untrusted bytes, and is fuzzed): no input crashes it, hangs it or
 // makes it allocate beyond the limits below. Counts announced by a header are checked against
-// the bytes that follow before anything is allocated for them; integers are parsed with overflow
+// the bytes that follow before anything is allocated for them (compressed data: each block's
+// compressed bytes are read before its inflated size, which zlib bounds, is allocated, and the
+// whole is checked against the Piece's counts first); integers are parsed with overflow
 // checks; indices are checked against the vertices; non-finite coordinates are refused. Every
 // refusal is a std::runtime_error "name:line: expected ..., found ..." (binary data: "name: byte
 // N: ...").
