@@ -74,14 +74,15 @@ void HubDevice::drive(Scene& scene) {
     // No tick since the last step. A stylus gone quiet for longer than the watchdog (a device
     // fault, a stalled servo thread) leaves the hub where it is rather than moving on at the last
     // stroke's speed.
-    if (gripping_ && scene.state().time - last_sample_time_ > session_->watchdog() && !held_still_) {
+    // The grip ends there: when samples come back, a held button is a new grip from where the
+    // stylus then is, not a jump to where the old one would put the hub.
+    if (gripping_ && scene.state().time - last_sample_time_ > session_->watchdog()) {
       hub_->steer(scene, hub_->insertion(scene), 0.0);
-      held_still_ = true;
+      gripping_ = false;
     }
     return;
   }
   last_sample_time_ = sample.time;
-  held_still_ = false;
   const bool pressed = (sample.buttons & button_mask_) != 0;
   if (pressed && !gripping_) {  // the hand closes on the hub
     grip_stylus_ = sample.position;

@@ -204,5 +204,24 @@ TEST(HubDevice, AHubThatLetsGoIsDrivenNoMoreAndTheRunGoesOn) {
   EXPECT_EQ(run.hub->handForce(), Vec3::Zero());
 }
 
+TEST(HubDevice, AStylusGoneQuietLeavesTheHubWhereItIs) {
+  // A servo at 100 Hz with a watchdog of 5 ms: after each sample the hub moves on at the stylus's
+  // speed, and once the stylus has been quiet for longer than the watchdog (at the step 5 to 6 ms
+  // after the sample) it is held where it is and the grip ends; the next sample, 10 ms after the
+  // last, is a new grip from where the stylus then is. The stylus moves 2 cm in 1 s with the
+  // button held: the hub follows for 5 to 6 ms of every 10, 1 to 1.2 cm; with samples at every
+  // step it would follow all 2 cm. Asked between 40 % and 70 % of it.
+  json document = rodScene(Vec3::UnitZ(), false, {0, 0, 0},
+                           scripted({{{"time", 0.0}, {"position", {0, 0, 0}}, {"buttons", 1}},
+                                     {{"time", 1.0}, {"position", {0, 0, 0.02}}, {"buttons", 1}}}));
+  document["navigation"]["device"]["rate"] = 100;
+  document["navigation"]["device"]["watchdog"] = 0.005;
+  HubRun run(document);
+  ASSERT_TRUE(run.runUntil(1.0));
+  EXPECT_GT(run.hub->hub().insertion(*run.scene), 0.4 * 0.02);
+  EXPECT_LT(run.hub->hub().insertion(*run.scene), 0.7 * 0.02);
+  EXPECT_GT(run.hub->strokes(), 90);  // a new grip at (nearly) every one of the 100 samples
+}
+
 }  // namespace
 }  // namespace filum::haptics

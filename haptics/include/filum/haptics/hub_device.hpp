@@ -28,9 +28,13 @@
 //     τ = −r (t·a₀),    t the RodEndFrame's torque on the instrument (HubControl::torque);
 // the introducer takes f's part across a₀. After each step they become the servo's model (F0 = F,
 // τ0 = τ, K = D = 0), held until the next one: the hub is driven in position, so the instrument's
-// resistance comes back sampled at the step rate (a zero-order hold), through ForceSafety's slew,
-// peak and continuous limits. A wire jammed against a wall is stiff: it is felt only as stiff as
-// the slew rate lets it change within a step, not rendered as a passive spring.
+// resistance comes back sampled at the step rate (a zero-order hold), through ForceSafety (the
+// force: slew, peak and continuous limits; the torque: slew and peak). A wire jammed against a
+// wall is stiff: it is felt only as stiff as the slew rate lets the force change within a step,
+// not rendered as a passive spring.
+// A stylus that sends nothing for longer than the watchdog leaves the hub where it is (the grip
+// ends: a button still held when samples come back is a new grip). A hub whose constraint lets go
+// (released, cut) is driven no more, and the summary says when (lost()).
 #pragma once
 
 #include <memory>
@@ -97,7 +101,6 @@ class HubDevice {
   Vec3 grip_stylus_ = Vec3::Zero();
   double grip_roll_ = 0.0, grip_insertion_ = 0.0, grip_hub_roll_ = 0.0;
   double last_sample_time_ = 0.0;  // s, of the newest stylus sample
-  bool held_still_ = false;        // the hub stopped for want of samples
   std::string lost_;               // why the hub is driven no more
   // What the hand feels.
   Vec3 hand_force_ = Vec3::Zero();
