@@ -15,13 +15,10 @@ std::unique_ptr<HubControl> HubControl::find(Scene& scene, const std::string& pa
   if (!node || !node->mechanicalState() || !node->mechanicalState()->curve()) return nullptr;
   std::unique_ptr<HubControl> hub(new HubControl());
   hub->name_ = path;
-  for (const auto& c : node->components()) {
+  for (const auto& c : node->components())
     if (auto* point = dynamic_cast<constraints::ProjectedPointConstraint*>(c.get()); point && point->abscissa() == 0.0)
       hub->hub_ = point;
-    if (auto* frame = dynamic_cast<mechanics::RodEndFrame*>(c.get());
-        frame && frame->end() == mechanics::RodEndFrame::End::kStart)  // the hub's, not a held tip's
-      hub->frame_ = frame;
-  }
+  hub->frame_ = mechanics::RodEndFrame::atStartOf(*node);  // the hub's, not a held tip's
   if (!hub->hub_) return nullptr;
   // The introducer's axis: the hub's tangent now (at the start, before any push).
   const CurveBody& body = *node->mechanicalState()->curve();

@@ -72,10 +72,7 @@ std::unique_ptr<NavigationMetrics> NavigationMetrics::fromScene(const nlohmann::
     Instrument m;
     m.name = name;
     m.body = body->curve();
-    for (const auto& c : node->components())  // the hub's frame (s = 0), not a held tip's
-      if (const auto* frame = dynamic_cast<const mechanics::RodEndFrame*>(c.get());
-          frame && frame->end() == mechanics::RodEndFrame::End::kStart)
-        m.hub_frame = frame;
+    m.hub_frame = mechanics::RodEndFrame::atStartOf(*node);  // the hub's, not a held tip's
     metrics->instruments_.push_back(m);
   }
   Node* vessels = nodeAt(scene, p, "vessels", p.string("vessels"));

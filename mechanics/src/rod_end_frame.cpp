@@ -1,5 +1,6 @@
 #include "filum/mechanics/rod_end_frame.hpp"
 
+#include "filum/core/node.hpp"
 #include "filum/core/scene.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/geometry/rotation_vector.hpp"
@@ -47,6 +48,13 @@ std::unique_ptr<RodEndFrame> RodEndFrame::fromParams(const Params& p) {
     keyframes.push_back(poseFromParams(p));
   }
   return std::make_unique<RodEndFrame>(end == "start" ? End::kStart : End::kFinish, std::move(keyframes));
+}
+
+RodEndFrame* RodEndFrame::atStartOf(const Node& node) {
+  RodEndFrame* found = nullptr;
+  for (const auto& c : node.components())
+    if (auto* frame = dynamic_cast<RodEndFrame*>(c.get()); frame && frame->end() == End::kStart) found = frame;
+  return found;
 }
 
 void RodEndFrame::init(const Scene& scene) {

@@ -58,6 +58,9 @@ class RodEndFrame final : public ForceField {
 
   /// Which end it holds.
   End end() const { return end_; }
+  /// The node's RodEndFrame at the start (s = 0: a hub's), not one holding the far end (a tip);
+  /// nullptr when it has none.
+  static RodEndFrame* atStartOf(const Node& node);
   /// The held frame at time t.
   Eigen::Quaterniond heldFrame(double t) const;
   /// The roll ψ(t) the path holds the end at (rad): how far the hand has turned the hub.
