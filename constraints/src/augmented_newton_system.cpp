@@ -1,6 +1,7 @@
 #include "filum/constraints/augmented_newton_system.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "filum/core/growing_vector.hpp"
 
@@ -13,7 +14,50 @@ int AugmentedNewtonSystem::groupOfPoint(int p) const {
   return base + bands_[body].point_group[p - problem_->bodies[body].offset()];
 }
 
-int AugmentedNewtonSystem::groupPosition(int g) const { return 3 * g + rows_before_[g]; }
+int AugmentedNewtonSystem::groupPosition(int rank) const { return 3 * rank + rows_before_[rank]; }
+
+void AugmentedNewtonSystem::orderGroups() {
+  const ConstraintRows& rows = *rows_;
+  constexpr double kUnkeyed = std::numeric_limits<double>::infinity();
+  resizeGrowing(key_, groups_);
+  std::fill(key_.begin(), key_.end(), kUnkeyed);
+  double next = 0.0;  // a key beyond every key given so far
+  for (std::size_t t_index = 0; t_index < touched_.size(); ++t_index) {
+    const int body = touched_[t_index], base = body_base_[body], count = bands_[body].groups;
+    // Rows between this body and the bodies before it: each of its groups takes the smallest key
+    // the row reaches in them.
+    if (t_index > 0)
+      for (int r : *solved_) {
+        double earlier = kUnkeyed;
+        for (int t = rows.begin(r); t < rows.end(r); ++t) {
+          const int g = groupOfPoint(rows.point(t));
+          if (g < base) earlier = std::min(earlier, key_[g]);
+        }
+        if (earlier == kUnkeyed) continue;
+        for (int t = rows.begin(r); t < rows.end(r); ++t) {
+          const int g = groupOfPoint(rows.point(t));
+          if (g >= base && g < base + count) key_[g] = std::min(key_[g], earlier);
+        }
+      }
+    // The other groups take the key of the nearest keyed group before them along the body (the
+    // first keyed one for those before it); a body no row joins to earlier ones comes after them.
+    int first_keyed = base;
+    while (first_keyed < base + count && key_[first_keyed] == kUnkeyed) ++first_keyed;
+    if (first_keyed == base + count) {
+      for (int I = 0; I < count; ++I) key_[base + I] = next + I;
+    } else {
+      for (int g = base; g < base + count; ++g)
+        if (key_[g] == kUnkeyed) key_[g] = g < first_keyed ? key_[first_keyed] : key_[g - 1];
+    }
+    for (int g = base; g < base + count; ++g) next = std::max(next, key_[g] + 1.0);
+  }
+  // Sorted by key, ties in the bodies' order and along each body (g is both).
+  resizeGrowing(by_key_, groups_);
+  for (int g = 0; g < groups_; ++g) by_key_[g] = {key_[g], g};
+  std::sort(by_key_.begin(), by_key_.end());
+  resizeGrowing(rank_, groups_);
+  for (int place = 0; place < groups_; ++place) rank_[by_key_[place].second] = place;
+}
 
 bool AugmentedNewtonSystem::build(const ConstraintRows& rows, const std::vector<int>& solved,
                                   const std::vector<int>& row_position, const std::vector<NewtonRowForm>& forms,
@@ -35,12 +79,15 @@ bool AugmentedNewtonSystem::build(const ConstraintRows& rows, const std::vector<
   for (int r : solved)
     for (int t = rows.begin(r); t < rows.end(r); ++t) body_base_[point_body[rows.point(t)]] = 0;
   groups_ = 0;
+  touched_.clear();
   for (int b = 0; b < bodies; ++b) {
     if (body_base_[b] < 0) continue;
     if (!inverse.bandBlocks(b, bands_[b])) return false;
     body_base_[b] = groups_;
     groups_ += bands_[b].groups;
+    touched_.push_back(b);
   }
+  orderGroups();
   // Each row after the last group it acts on (through its own terms and those of the rows its
   // form combines, which share its points for contact rows).
   resizeGrowing(by_anchor_, s);
@@ -49,7 +96,7 @@ bool AugmentedNewtonSystem::build(const ConstraintRows& rows, const std::vector<
     const NewtonRowForm& form = forms[r];
     int anchor = -1;
     auto reach = [&](int row) {
-      for (int t = rows.begin(row); t < rows.end(row); ++t) anchor = std::max(anchor, groupOfPoint(rows.point(t)));
+      for (int t = rows.begin(row); t < rows.end(row); ++t) anchor = std::max(anchor, rankOfPoint(rows.point(t)));
     };
     reach(r);
     for (int j = 0; j < form.nb; ++j) {
@@ -76,15 +123,19 @@ bool AugmentedNewtonSystem::build(const ConstraintRows& rows, const std::vector<
     if (body_base_[b] < 0) continue;
     const BandBlocks& band = bands_[b];
     for (int I = 0; I < band.groups; ++I)
-      for (int a = 0; a < 3; ++a) lu_.widen(groupPosition(body_base_[b] + I) + a, groupPosition(body_base_[b] + std::max(0, I - band.range)));
+      for (int J = std::max(0, I - band.range); J <= I; ++J) {
+        // Block (I, J) and its transpose, wherever the order put the two groups.
+        const int pi = groupPosition(rank_[body_base_[b] + I]), pj = groupPosition(rank_[body_base_[b] + J]);
+        for (int a = 0; a < 3; ++a) lu_.widen(std::max(pi, pj) + a, std::min(pi, pj));
+      }
   }
   for (int i = 0; i < s; ++i) {
     const int r = solved[i], position = row_unknown_[i];
     const NewtonRowForm& form = forms[r];
-    for (int t = rows.begin(r); t < rows.end(r); ++t) lu_.widen(position, groupPosition(groupOfPoint(rows.point(t))));
+    for (int t = rows.begin(r); t < rows.end(r); ++t) lu_.widen(position, groupPosition(rankOfPoint(rows.point(t))));
     for (int j = 0; j < form.nb; ++j)
       for (int t = rows.begin(form.bk[j]); t < rows.end(form.bk[j]); ++t)
-        lu_.widen(position, groupPosition(groupOfPoint(rows.point(t))));
+        lu_.widen(position, groupPosition(rankOfPoint(rows.point(t))));
     for (int j = 0; j < form.nc; ++j) lu_.widen(position, row_unknown_[row_position[form.ck[j]]]);
   }
   if (x_.size() < n) x_.resize(2 * n);  // grows only
@@ -99,9 +150,9 @@ bool AugmentedNewtonSystem::factor() {
     if (body_base_[b] < 0) continue;
     const BandBlocks& band = bands_[b];
     for (int I = 0; I < band.groups; ++I) {
-      const int pi = groupPosition(body_base_[b] + I);
+      const int pi = groupPosition(rank_[body_base_[b] + I]);
       for (int J = std::max(0, I - band.range); J <= I; ++J) {
-        const int pj = groupPosition(body_base_[b] + J);
+        const int pj = groupPosition(rank_[body_base_[b] + J]);
         const Eigen::Matrix3d& block = band.block(I, J);
         for (int a = 0; a < 3; ++a)
           for (int c = 0; c < 3; ++c) {
@@ -117,12 +168,12 @@ bool AugmentedNewtonSystem::factor() {
     const int r = (*solved_)[i], position = row_unknown_[i];
     const NewtonRowForm& form = (*forms_)[r];
     for (int t = rows.begin(r); t < rows.end(r); ++t) {
-      const int pg = groupPosition(groupOfPoint(rows.point(t)));
+      const int pg = groupPosition(rankOfPoint(rows.point(t)));
       for (int a = 0; a < 3; ++a) lu_.at(pg + a, position) -= rows.coeff(t)[a];
     }
     for (int j = 0; j < form.nb; ++j)
       for (int t = rows.begin(form.bk[j]); t < rows.end(form.bk[j]); ++t) {
-        const int pg = groupPosition(groupOfPoint(rows.point(t)));
+        const int pg = groupPosition(rankOfPoint(rows.point(t)));
         for (int a = 0; a < 3; ++a) lu_.at(position, pg + a) += form.b[j] * rows.coeff(t)[a];
       }
     for (int j = 0; j < form.nc; ++j) lu_.at(position, row_unknown_[(*row_position_)[form.ck[j]]]) += form.c[j];

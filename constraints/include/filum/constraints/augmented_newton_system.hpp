@@ -12,9 +12,20 @@
 // neighbours), a row acts on a few points. Its unknowns are ordered along each body — every
 // point's three coordinates, then the rows whose last point it is — so that each row follows the
 // points it acts on: a row against an obstacle adds a few entries to the band; a contact between
-// far parts of one thread (a knot's self-contacts) or two threads widens the envelope from its
-// first point to itself. The envelope LU (ProfileLu) then costs Σ_i (envelope width)² instead of
-// |S|³/3, and the caller takes the dense LU when that is cheaper.
+// far parts of one thread (a knot's self-contacts) widens the envelope from its first point to
+// itself. The envelope LU (ProfileLu) then costs Σ_i (envelope width)² instead of |S|³/3, and the
+// caller takes the dense LU when that is cheaper.
+//
+// Bodies that touch each other are merged along each other (orderGroups): a wire inside a
+// catheter, or a thread lying along another, touches it all along, and with the bodies one after
+// the other every row between them would reach back across the whole first body. Each group of
+// a later body takes the key of the earliest group of the bodies before it that a row joins it to
+// (the nearest keyed group along its own body where no row does), and the groups are sorted by
+// key, ties in the bodies' order: the wire's point lands beside the catheter's point it lies on,
+// and the envelope stays a few groups wide. A body that touches no earlier one keeps its place
+// after them, so one body, or bodies that only meet obstacles, keep the order along each body.
+// The order is a permutation of whole groups: A's band stays symmetric in it (both triangles are
+// widened), and a row still follows every point it acts on.
 //
 // Pivots. Eliminated in this order, a row's pivot is c_rr + δ + (the row's own J_rr given the
 // points before it): the size of J's diagonal (unit, by ρ), not the small compliance alone; a
@@ -79,9 +90,15 @@ class AugmentedNewtonSystem {
   void solve(Eigen::Ref<VecX> rhs);
 
  private:
-  int groupPosition(int global_group) const;
-  /// The global group (over the touched bodies' bands) of point p, −1 if its body is not touched.
+  /// Sets rank_ (group → place in the order) from the rows between bodies (header).
+  void orderGroups();
+  /// The first unknown of the group at place `rank`.
+  int groupPosition(int rank) const;
+  /// The global group (over the touched bodies' bands, bodies one after the other) of point p,
+  /// −1 if its body is not touched.
   int groupOfPoint(int p) const;
+  /// The place in the order of point p's group.
+  int rankOfPoint(int p) const { return rank_[groupOfPoint(p)]; }
 
   const ConstraintRows* rows_ = nullptr;
   const std::vector<int>* solved_ = nullptr;
@@ -95,8 +112,11 @@ class AugmentedNewtonSystem {
   std::vector<BandBlocks> bands_;       // per problem body (valid where body_base_ >= 0)
   std::vector<int> touched_;            // touched bodies in order
   int groups_ = 0;                      // global groups
+  std::vector<double> key_;             // per global group: its sort key (orderGroups)
+  std::vector<std::pair<double, int>> by_key_;  // (key, global group), sorted
+  std::vector<int> rank_;               // per global group: its place in the order
   std::vector<std::pair<int, int>> by_anchor_;  // (anchor group, solved index), sorted
-  std::vector<int> rows_before_;        // per global group g: solved rows placed before g's coordinates
+  std::vector<int> rows_before_;        // per place in the order: solved rows placed before its coordinates
   std::vector<int> row_unknown_;        // per solved index: its unknown's position
   ProfileLu lu_;
   VecX x_;
