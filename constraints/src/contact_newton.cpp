@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "filum/core/growing_vector.hpp"
+
 namespace filum::constraints {
 
 namespace {
@@ -217,9 +219,19 @@ bool ContactNewton::step(double damping, const ConstraintRows& rows, int& struct
   for (int i = 0; i < s; ++i) row_position_[solved_[i]] = i;
   // −F_S − J_SI Δ_I: J_SI Δ_I = Σ_k b_k (W Δ_I)_k + the unit terms on free rows; W Δ_I over the
   // free rows that move (most have λ = 0 and Δ = 0), a column of W each (W is symmetric).
-  w_free_.head(c).setZero();
+  int moving = 0;
   for (int k : free_)
-    if (delta_[k] != 0.0) w_free_.head(c).noalias() += delta_[k] * w_matrix_->col(k).head(c);
+    if (delta_[k] != 0.0) ++moving;
+  if (band_product_ && static_cast<double>(moving) * c > band_product_cost_) {
+    // (trial_ is free until the line search.)
+    trial_.head(c).setZero();
+    for (int k : free_) trial_[k] = delta_[k];
+    multiplyW(rows, trial_.head(c), w_free_.head(c));
+  } else {
+    w_free_.head(c).setZero();
+    for (int k : free_)
+      if (delta_[k] != 0.0) w_free_.head(c).noalias() += delta_[k] * w_matrix_->col(k).head(c);
+  }
   for (int i = 0; i < s; ++i) {
     const NewtonRowForm& form = forms_[solved_[i]];
     double sum = -f_[solved_[i]];
@@ -240,6 +252,62 @@ bool ContactNewton::step(double damping, const ConstraintRows& rows, int& struct
   return delta_.head(c).allFinite();
 }
 
+void ContactNewton::chooseProduct(const ConstraintRows& rows) {
+  band_product_ = false;
+  const int c = c_;
+  if (!structured_ || !structure_ || !structure_->inverse || !structure_->problem || !structure_->point_body ||
+      structure_->inverse->coupled() || c == 0)
+    return;
+  const ConstraintProblem& problem = *structure_->problem;
+  const std::vector<int>& point_body = *structure_->point_body;
+  resizeGrowing(body_seen_, problem.bodies.size());
+  std::fill(body_seen_.begin(), body_seen_.end(), 0);
+  product_bodies_.clear();
+  const int terms = rows.end(c - 1);
+  for (int t = 0; t < terms; ++t) {
+    const int b = point_body[rows.point(t)];
+    if (!body_seen_[b]) {
+      body_seen_[b] = 1;
+      product_bodies_.push_back(b);
+    }
+  }
+  // Scatter and gather, 3 multiply-adds a term each; a band solve, forward and back, 9 (range + 1)
+  // a group each way (block_band_ldlt.hpp). The dense product's c² run as long vectorized dot
+  // products, about twice the band sweeps' rate (the same ratio as structuredStep's).
+  constexpr double kDenseRateRatio = 2.0;
+  double cost = 6.0 * terms;
+  for (int b : product_bodies_) {
+    BandBlocks band;
+    if (!structure_->inverse->bandBlocks(b, band)) return;
+    cost += 18.0 * band.groups * (band.range + 1);
+  }
+  band_product_cost_ = cost;
+  band_product_ = kDenseRateRatio * cost < static_cast<double>(c) * c;
+  if (band_product_ && point_vector_.size() < 3 * problem.dof_points) point_vector_.resize(3 * problem.dof_points);
+}
+
+void ContactNewton::multiplyW(const ConstraintRows& rows, const Eigen::Ref<const VecX>& x, Eigen::Ref<VecX> out) {
+  const int c = c_;
+  if (!band_product_) {
+    out.noalias() = w_matrix_->topLeftCorner(c, c) * x;
+    return;
+  }
+  // W x = L A⁻¹ (Lᵀ x): the rows' forces on their points, A⁻¹ body by body (A is block diagonal
+  // over the bodies: !coupled()), and each row's reading of the response.
+  const ConstraintProblem& problem = *structure_->problem;
+  for (int b : product_bodies_) {
+    const BodyBlock& body = problem.bodies[b];
+    point_vector_.segment(3 * body.offset(), 3 * body.pointCount()).setZero();
+  }
+  for (int r = 0; r < c; ++r)
+    if (x[r] != 0.0) rows.addTransposed(r, x[r], point_vector_);
+  for (int b : product_bodies_) {
+    const BodyBlock& body = problem.bodies[b];
+    structure_->inverse->solveBlock(b, point_vector_.segment(3 * body.offset(), 3 * body.pointCount()));
+  }
+  for (int r = 0; r < c; ++r) out[r] = rows.dot(r, point_vector_);
+}
+
 ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const VecX>& beta,
                                            const Eigen::Ref<const VecX>& compliance, const ConstraintRows& rows,
                                            const Settings& settings, double tolerance, Eigen::Ref<VecX> lambda,
@@ -255,9 +323,10 @@ ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const
   scale(diagonal_.head(c), rows);
   for (int r = 0; r < c; ++r)
     if (!(rho_[r] > 0.0)) lambda[r] = 0.0;
+  chooseProduct(rows);
   // F (and with the matrix, J) at x: w_ = W x − β first.
   auto at = [&](const Eigen::Ref<const VecX>& x, bool jacobian) {
-    wl_.head(c).noalias() = w.topLeftCorner(c, c) * x;
+    multiplyW(rows, x, wl_.head(c));
     wl_.head(c) += compliance_.head(c).cwiseProduct(x) - beta;
     return evaluate(jacobian ? &w : nullptr, rows, x);
   };
@@ -299,7 +368,7 @@ ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const
     const double shift = std::clamp(relative, settings.damping, settings.max_damping);
     if (!step(shift, rows, result.structured_steps)) break;
     wl_base_.head(c) = wl_.head(c);
-    w_delta_.head(c).noalias() = w.topLeftCorner(c, c) * delta_.head(c);
+    multiplyW(rows, delta_.head(c), w_delta_.head(c));
     w_delta_.head(c) += compliance_.head(c).cwiseProduct(delta_.head(c));
     // Armijo: θ(λ + αΔ) <= (1 − 2σα) θ(λ) (θ = |F|², its slope along a Newton step is −2θ).
     double alpha = 1.0;
@@ -329,8 +398,6 @@ ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const
       break;
     }
   }
-  structure_ = nullptr;  // (the caller's, valid during this call only)
-  w_matrix_ = nullptr;
   // The last evaluation may have been a rejected trial: measure the iterate itself.
   at(lambda, false);
   result.converged = max_abs_residual_ <= threshold();
@@ -339,6 +406,9 @@ ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const
     at(lambda, false);
     result.converged = max_abs_residual_ <= threshold();
   }
+  structure_ = nullptr;  // (the caller's, valid during this call only)
+  w_matrix_ = nullptr;
+  band_product_ = false;
   result.residual = max_abs_residual_;
   result.threshold = threshold();
   return result;

@@ -26,8 +26,8 @@
 namespace filum::constraints {
 namespace {
 
-/// Block band matrices A_b, one per body, exposed as BandBlocks (no solves: ContactNewton only
-/// reads the bands). A body with internal groups interleaves them with its points (point k at
+/// Block band matrices A_b, one per body, exposed as BandBlocks, with solves by their dense
+/// inverses. A body with internal groups interleaves them with its points (point k at
 /// group 2k, an internal triple at 2k + 1), as a rod's step matrix does.
 class BandMatrix final : public BlockInverse {
  public:
@@ -62,7 +62,12 @@ class BandMatrix final : public BlockInverse {
       bands_.push_back(std::move(band));
     }
   }
-  void solveBlock(int, Eigen::Ref<VecX>) const override {}
+  /// x := (A_b⁻¹)_pp x, by the dense inverse (the products with W through the band take it).
+  void solveBlock(int body, Eigen::Ref<VecX> x) const override {
+    const Band& band = bands_[body];
+    if (band.point_inverse.size() == 0) band.point_inverse = pointInverse(body);
+    x = band.point_inverse * x;
+  }
   bool bandBlocks(int body, BandBlocks& out) const override {
     if (body < 0 || body >= static_cast<int>(bands_.size())) return false;
     const Band& band = bands_[body];
@@ -90,6 +95,7 @@ class BandMatrix final : public BlockInverse {
     std::vector<Eigen::Matrix3d> blocks;
     std::vector<int> point_group;
     MatX dense;
+    mutable MatX point_inverse;  // (A⁻¹)_pp, formed on the first solve
   };
   std::vector<Band> bands_;
 };

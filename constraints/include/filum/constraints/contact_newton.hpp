@@ -49,7 +49,10 @@
 // free: by a dense LU (3 |S|² to form it from the forms, |S|³/3 to factor it), or — given the
 // matrix A that W was formed with (Structure) — through A's band and the rows' sparsity without
 // W (AugmentedNewtonSystem: Σ envelope² multiply-adds, a few hundred per row against an
-// obstacle), whichever is cheaper.
+// obstacle), whichever is cheaper. With the Structure the products with W are also taken as
+// L (A⁻¹ (Lᵀ x)) — the rows' forces on their points, a band solve per body, the rows' reading of
+// the response: O(terms + Σ_b groups_b · range_b) against c² — when that is cheaper (many rows
+// on few points: a wire lying along a catheter, a rod on a table).
 // The workspace only grows: a steady step allocates nothing.
 #pragma once
 
@@ -118,6 +121,10 @@ class ContactNewton {
   bool structuredStep(double damping, const ConstraintRows& rows);
   /// J_SS + δ I into lu_ from the forms (the dense step).
   void denseSystem(int s, double damping);
+  /// Whether products with W go through A's band in this solve (bandProduct_), by their cost.
+  void chooseProduct(const ConstraintRows& rows);
+  /// out := W x (c values), by W or through A's band.
+  void multiplyW(const ConstraintRows& rows, const Eigen::Ref<const VecX>& x, Eigen::Ref<VecX> out);
   /// In-place LU with partial pivoting of lu_'s leading s × s block; false if singular.
   bool factor(int s);
   void substitute(int s, Eigen::Ref<VecX> x) const;
@@ -135,6 +142,11 @@ class ContactNewton {
   std::vector<int> row_position_;     // row → its index in solved_ (−1: free)
   const Structure* structure_ = nullptr;
   bool structured_ = true;
+  bool band_product_ = false;          // W x as L A⁻¹ Lᵀ x (chooseProduct)
+  double band_product_cost_ = 0.0;     // its multiply-adds
+  std::vector<int> product_bodies_;    // the bodies the rows act on
+  std::vector<char> body_seen_;        // per problem body
+  VecX point_vector_;                  // Lᵀ x, then A⁻¹ Lᵀ x (3 per point)
   AugmentedNewtonSystem augmented_;
   double max_abs_residual_ = 0.0;
   double force_scale_ = 0.0;  // max_r |λ_r|/ρ_r of the last evaluation (m/s²)
