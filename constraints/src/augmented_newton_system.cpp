@@ -1,6 +1,7 @@
 #include "filum/constraints/augmented_newton_system.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <limits>
 
 #include "filum/core/growing_vector.hpp"
@@ -16,7 +17,7 @@ int AugmentedNewtonSystem::groupOfPoint(int p) const {
 
 int AugmentedNewtonSystem::groupPosition(int rank) const { return 3 * rank + rows_before_[rank]; }
 
-void AugmentedNewtonSystem::orderGroups() {
+bool AugmentedNewtonSystem::orderGroups(bool merge) {
   const ConstraintRows& rows = *rows_;
   constexpr double kUnkeyed = std::numeric_limits<double>::infinity();
   resizeGrowing(key_, groups_);
@@ -26,11 +27,12 @@ void AugmentedNewtonSystem::orderGroups() {
     const int body = touched_[t_index], base = body_base_[body], count = bands_[body].groups;
     // Rows between this body and the bodies before it: each of its groups takes the smallest key
     // the row reaches in them.
-    if (t_index > 0)
+    if (merge && t_index > 0)
       for (int r : *solved_) {
         double earlier = kUnkeyed;
         for (int t = rows.begin(r); t < rows.end(r); ++t) {
           const int g = groupOfPoint(rows.point(t));
+          assert(g >= 0 && "a solved row's points are on touched bodies");
           if (g < base) earlier = std::min(earlier, key_[g]);
         }
         if (earlier == kUnkeyed) continue;
@@ -56,7 +58,12 @@ void AugmentedNewtonSystem::orderGroups() {
   for (int g = 0; g < groups_; ++g) by_key_[g] = {key_[g], g};
   std::sort(by_key_.begin(), by_key_.end());
   resizeGrowing(rank_, groups_);
-  for (int place = 0; place < groups_; ++place) rank_[by_key_[place].second] = place;
+  bool moved = false;
+  for (int place = 0; place < groups_; ++place) {
+    rank_[by_key_[place].second] = place;
+    moved = moved || by_key_[place].second != place;
+  }
+  return moved;
 }
 
 bool AugmentedNewtonSystem::build(const ConstraintRows& rows, const std::vector<int>& solved,
@@ -71,7 +78,6 @@ bool AugmentedNewtonSystem::build(const ConstraintRows& rows, const std::vector<
   point_body_ = &point_body;
   damping_ = damping;
   const int bodies = static_cast<int>(problem.bodies.size());
-  const int s = static_cast<int>(solved.size());
   // The bodies the rows act on, each with its band.
   resizeGrowing(body_base_, bodies);
   resizeGrowing(bands_, bodies);
@@ -87,7 +93,29 @@ bool AugmentedNewtonSystem::build(const ConstraintRows& rows, const std::vector<
     groups_ += bands_[b].groups;
     touched_.push_back(b);
   }
-  orderGroups();
+  // The merged order where it is cheaper than the bodies one after the other (a single crossing
+  // of two threads would pull the whole second one into the middle of the first): both laid out,
+  // the cheaper kept.
+  const bool merged = orderGroups(true);
+  if (!layOut()) return false;
+  if (merged) {
+    const double merged_cost = lu_.cost();
+    orderGroups(false);
+    layOut();
+    if (merged_cost < lu_.cost()) {
+      orderGroups(true);
+      layOut();
+    }
+  }
+  return true;
+}
+
+bool AugmentedNewtonSystem::layOut() {
+  const ConstraintRows& rows = *rows_;
+  const std::vector<int>& solved = *solved_;
+  const std::vector<NewtonRowForm>& forms = *forms_;
+  const std::vector<int>& row_position = *row_position_;
+  const int s = static_cast<int>(solved.size());
   // Each row after the last group it acts on (through its own terms and those of the rows its
   // form combines, which share its points for contact rows).
   resizeGrowing(by_anchor_, s);
@@ -119,8 +147,7 @@ bool AugmentedNewtonSystem::build(const ConstraintRows& rows, const std::vector<
   const int n = 3 * groups_ + s;
   // The envelope: A's bands, each row's points and the rows its form names.
   lu_.reset(n);
-  for (int b = 0; b < bodies; ++b) {
-    if (body_base_[b] < 0) continue;
+  for (int b : touched_) {
     const BandBlocks& band = bands_[b];
     for (int I = 0; I < band.groups; ++I)
       for (int J = std::max(0, I - band.range); J <= I; ++J) {

@@ -203,6 +203,7 @@ TEST(StructuredNewtonStep, TheAugmentedSystemsSolutionIsJssInverseTimesTheRightH
 /// its solution against the dense J_SS + δ I.
 struct CoaxialPair {
   double cost = 0.0;
+  bool factored = false;
   double error = 0.0, bound = 0.0;  // |Δ − Δ_dense|∞ and ε cond(J_SS) |Δ_dense|∞ · 1e3
 };
 
@@ -260,6 +261,7 @@ CoaxialPair coaxialPair(int segments, bool compare) {
   for (int r = 0; r < c; ++r) rhs[r] = normal(rng);
   const VecX reference = jss.partialPivLu().solve(rhs);
   if (!system.factor()) return out;
+  out.factored = true;
   VecX delta = rhs;
   system.solve(delta);
   const Eigen::JacobiSVD<MatX> svd(jss);
@@ -283,6 +285,7 @@ TEST(StructuredNewtonStep, MergesAWireAndItsCatheterAlongEachOther) {
   EXPECT_EQ(long_pair.cost - pair.cost, pair.cost - short_pair.cost);
   // And it solves the same system as J_SS: backward stable both, so to ε cond(J_SS), times 1e3 for
   // the systems' size (as above).
+  ASSERT_TRUE(short_pair.factored);
   EXPECT_LE(short_pair.error, short_pair.bound);
 }
 
@@ -341,7 +344,8 @@ TEST(StructuredNewtonStep, TakesTheDenseLusStepsThroughTheBand) {
     EXPECT_EQ(by_band.iterations, by_lu.iterations) << trial;
     if (by_band.structured_steps > 0) ++structured_trials;
     // Both runs take the same iterates (the same count, asserted above); they differ by the
-    // round-off of backward-stable solves of the shifted Newton system, whose rows scaled by ρ are
+    // round-off of backward-stable solves of the shifted Newton system (and of W's products, which
+    // the banded run takes as L A⁻¹ Lᵀ x: round-off of |W||x|, smaller), whose rows scaled by ρ are
     // a principal block of W + R: relative ε · cond(W + R) per step, Newton's contraction keeping
     // the last step's. 1e-8 holds that for cond(W + R) up to 1e-8/ε = 4.5e7 (these problems:
     // 7e6–1.7e7, redundant contacts made solvable by the compliance).

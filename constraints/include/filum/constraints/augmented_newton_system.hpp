@@ -20,12 +20,17 @@
 // catheter, or a thread lying along another, touches it all along, and with the bodies one after
 // the other every row between them would reach back across the whole first body. Each group of
 // a later body takes the key of the earliest group of the bodies before it that a row joins it to
-// (the nearest keyed group along its own body where no row does), and the groups are sorted by
-// key, ties in the bodies' order: the wire's point lands beside the catheter's point it lies on,
-// and the envelope stays a few groups wide. A body that touches no earlier one keeps its place
-// after them, so one body, or bodies that only meet obstacles, keep the order along each body.
-// The order is a permutation of whole groups: A's band stays symmetric in it (both triangles are
-// widened), and a row still follows every point it acts on.
+// (groups no row joins take the key of the group before them along the body, or of its first
+// joined group for those before that), and the groups are sorted by key, ties in the bodies'
+// order: the wire's point lands beside the catheter's point it lies on, and the envelope stays a
+// few groups wide. A body that touches no earlier one keeps its place after them, so one body, or
+// bodies that only meet obstacles, keep the order along each body. The order is a permutation of
+// whole groups: A's band stays symmetric in it (both triangles are widened), and a row still
+// follows every point it acts on. Where bodies merge, both orders are laid out and the cheaper
+// envelope kept: two threads that cross once would otherwise have the whole second one placed
+// between two groups of the first, whose band would then reach across it. A body that touches two
+// earlier ones is merged along the one its lowest key comes from; its rows to the other reach as
+// far as they did with the bodies in sequence.
 //
 // Pivots. Eliminated in this order, a row's pivot is c_rr + δ + (the row's own J_rr given the
 // points before it): the size of J's diagonal (unit, by ρ), not the small compliance alone; a
@@ -90,8 +95,11 @@ class AugmentedNewtonSystem {
   void solve(Eigen::Ref<VecX> rhs);
 
  private:
-  /// Sets rank_ (group → place in the order) from the rows between bodies (header).
-  void orderGroups();
+  /// Sets rank_ (group → place in the order): with `merge`, bodies merged along the rows between
+  /// them (header), else the bodies one after the other. True when that is not the identity.
+  bool orderGroups(bool merge);
+  /// Places the rows after their points in rank_'s order and lays the envelope out; false as build.
+  bool layOut();
   /// The first unknown of the group at place `rank`.
   int groupPosition(int rank) const;
   /// The global group (over the touched bodies' bands, bodies one after the other) of point p,

@@ -74,7 +74,7 @@ class ContactNewton {
     double damping = 1e-9;      // δ's floor, the proximal shift of J_SS (its rows have a unit diagonal)
     double max_damping = 1.0;   // δ's ceiling (δ follows the relative residual in between)
     double stall_step = 1.0 / 65536;  // a line search that had to cut the step below this stops the solve
-    bool structured = true;  // the step's system through A's band when it is cheaper (false: dense LU always)
+    bool structured = true;  // the step's system and W's products through A's band when cheaper (false: dense always)
   };
   /// What a structured step needs besides W: the matrix A that W = L A⁻¹ Lᵀ was formed with, the
   /// bodies, and the body of each point.
@@ -121,7 +121,7 @@ class ContactNewton {
   bool structuredStep(double damping, const ConstraintRows& rows);
   /// J_SS + δ I into lu_ from the forms (the dense step).
   void denseSystem(int s, double damping);
-  /// Whether products with W go through A's band in this solve (bandProduct_), by their cost.
+  /// Whether products with W go through A's band in this solve (band_product_), by their cost.
   void chooseProduct(const ConstraintRows& rows);
   /// out := W x (c values), by W or through A's band.
   void multiplyW(const ConstraintRows& rows, const Eigen::Ref<const VecX>& x, Eigen::Ref<VecX> out);
