@@ -1,5 +1,5 @@
 // bench_applications: the surgical applications in wall time per simulated millisecond — the
-// shipped salpingectomy.json, intestine.json, catheter.json, catheter_device.json, coil.json and stitch.json
+// shipped salpingectomy.json, intestine.json, catheter.json, catheter_device.json, catheter_over_wire.json, coil.json and stitch.json
 // played whole with their instruments, navigation metrics or hub device (as `filum run` plays them:
 // the instruments' drivers, jaws and metrics, the device's servo ticks between the steps), and the
 // small bowel's cost against its length: a bowel of 0.5, 1, 2 and 4 m (radius 1.5 cm, soft
@@ -11,8 +11,8 @@
 // 3 mm segments, held at both ends and sagging under gravity): the wire lies on the lumen's
 // floor along its whole length, the worst case for the contact rows: measured 1140 ms per
 // simulated ms (median of 3) with ~430 lumen contacts (1300 rows), where the issue asks 1; 735
-// (one run) after W's column assembly (2026-11-27). Its rows couple two bodies, which the
-// Newton step through the step matrix's band cannot order narrowly: docs/vessels.md.
+// (one run) after W's column assembly, 27 (median of 3) since the band step merges the two bodies
+// along each other and Newton's products with W go through the bands (2026-11-27): docs/vessels.md.
 //   build/apps/bench/bench_applications --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -177,6 +177,8 @@ BENCHMARK_CAPTURE(application, intestine, std::string("intestine.json"))
 BENCHMARK_CAPTURE(application, catheter, std::string("catheter.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(application, catheter_device, std::string("catheter_device.json"))
+    ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(application, catheter_over_wire, std::string("catheter_over_wire.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(application, coil, std::string("coil.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);

@@ -4,7 +4,12 @@
 // leaves the lumen (penetration below a tenth of its radius at every step); the navigation
 // metrics report what happened (the tip's branch, the target, the hub's push and roll, the wall force).
 // apps/scenes/catheter_device.json: the same done by a hand on a haptic device, in strokes.
+// apps/scenes/catheter_over_wire.json: then a catheter advanced over the wire into the carotid.
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -164,6 +169,88 @@ TEST(CatheterScene, AHandOnAHapticDeviceFeedsTheWireIntoTheCarotidInStrokes) {
   EXPECT_EQ(rows, 6000);
   EXPECT_GT(released, 0);
   EXPECT_GT(largest_torque, 0.0);
+}
+
+/// The distance from x to the polyline through `samples` (the catheter's centre line) and the
+/// fraction of the way along it of the nearest point.
+std::pair<double, double> nearestOnPolyline(const std::vector<Vec3>& samples, const Vec3& x) {
+  double best = std::numeric_limits<double>::infinity(), where = 0.0;
+  for (std::size_t i = 0; i + 1 < samples.size(); ++i) {
+    const Vec3 d = samples[i + 1] - samples[i];
+    const double t = std::clamp((x - samples[i]).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    const double distance = (samples[i] + t * d - x).norm();
+    if (distance < best) {
+      best = distance;
+      where = (static_cast<double>(i) + t) / static_cast<double>(samples.size() - 1);
+    }
+  }
+  return {best, where};
+}
+
+TEST(CatheterScene, TheCatheterFollowsTheWireIntoTheCarotid) {
+  // apps/scenes/catheter_over_wire.json: the wire steered into the left common carotid with the
+  // catheter behind it (0-6 s), then the catheter pushed 15 cm over the held wire (6-10 s).
+  const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/catheter_over_wire.json";
+  const nlohmann::json document = readJsonFile(path);
+  auto scene = loadScene(document, path, app::makeFactory());
+  auto metrics = haptics::NavigationMetrics::fromScene(document, path, *scene);
+  scene->init();
+  metrics->start(*scene);
+  const CurveBody& catheter = *scene->bodies()[0]->curve();
+  const CurveBody& wire = *scene->bodies()[1]->curve();
+  const geometry::VesselTree& tree = metrics->lumen().tree();
+  const double dt = scene->settings().dt;
+  const long steps = std::lround(scene->settings().duration / dt);
+  double deepest = 0.0;  // into the vessel's wall, of each instrument's own radius
+  for (long k = 0; k < steps; ++k) {
+    const StepReport report = scene->step();
+    ASSERT_TRUE(report.ok) << report.message;
+    metrics->afterStep(*scene, dt);
+    if (k % 10 != 9) continue;  // every 10 ms: the wall's contacts move by under a sphere's spacing in that time
+    for (const CurveBody* body : {&catheter, &wire})
+      for (int i = 0; i <= kSamples; ++i) {
+        const Vec3 x = body->position(scene->state().q, static_cast<double>(i) / kSamples);
+        const geometry::VesselTree::Sample s = tree.sample(x, tree.maxRadius());
+        if (s.branch < 0) continue;
+        deepest = std::max(deepest, (body->radius() - s.value / s.gradient.norm()) / body->radius());
+      }
+  }
+  const auto& catheter_metrics = metrics->instrument(1);
+  const auto& wire_metrics = metrics->instrument(0);
+  auto branchName = [&](int branch) { return branch >= 0 ? tree.branch(branch).name : std::string("outside"); };
+  std::printf("  wire: tip in %s (reached at %.2f s), %.1f mm from the target; catheter: tip in %s (reached at %.2f s); "
+              "deepest %.3f r\n",
+              branchName(wire_metrics.branch).c_str(), wire_metrics.reached_time, 1e3 * wire_metrics.target_distance,
+              branchName(catheter_metrics.branch).c_str(), catheter_metrics.reached_time, deepest);
+  // The navigation block lists the guidewire first: instrument 0 is the wire, 1 the catheter.
+  ASSERT_EQ(metrics->instrumentCount(), 2);
+  // The wire got there in the first step, while the catheter was 16 cm behind; the catheter in the
+  // second, riding the held wire.
+  EXPECT_EQ(branchName(wire_metrics.branch), "left_common_carotid");
+  EXPECT_GT(wire_metrics.reached_time, 0.0);
+  EXPECT_LT(wire_metrics.reached_time, 6.0);
+  EXPECT_EQ(branchName(catheter_metrics.branch), "left_common_carotid");
+  EXPECT_GT(catheter_metrics.reached_time, 6.0);
+  // The catheter did not push the wire out of the carotid: its tip ends within the vessel's
+  // radius (4 mm) of the target, as catheter.json's does.
+  EXPECT_LT(wire_metrics.target_distance, 4e-3);
+  // Neither instrument went into the wall by more than a tenth of its radius.
+  EXPECT_LT(deepest, 0.1);
+  // At the end the wire lies in the catheter's lumen wherever the catheter covers it (away from
+  // its ends by a segment, 3 mm): within R_in − r of its axis, plus half the clearance, the depth
+  // beyond which the pipeline redoes a step in halves (max_penetration).
+  const double clearance = 5.3e-4 - wire.radius();
+  std::vector<Vec3> axis(1001);
+  for (int i = 0; i <= 1000; ++i) axis[i] = catheter.position(scene->state().q, i / 1000.0);
+  int covered = 0;
+  for (int i = 0; i <= kSamples; ++i) {
+    const auto [distance, where] = nearestOnPolyline(axis, wire.position(scene->state().q, static_cast<double>(i) / kSamples));
+    if (where < 0.003 / 0.18 || where > 1.0 - 0.003 / 0.18 || distance > 8.3e-4) continue;
+    ++covered;
+    EXPECT_LE(distance, 1.5 * clearance) << "wire at s = " << static_cast<double>(i) / kSamples;
+  }
+  // The catheter's 18 cm cover about half the wire's 35 cm.
+  EXPECT_GT(covered, kSamples / 3);
 }
 
 }  // namespace
