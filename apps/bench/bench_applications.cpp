@@ -14,6 +14,8 @@
 // (one run) after W's column assembly, 27 (median of 3) since the band step merges the two bodies
 // along each other and Newton's products with W go through the bands (2026-11-27): docs/vessels.md.
 //   build/apps/bench/bench_applications --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// (about 40 minutes: catheter_over_wire.json alone takes 4-5 minutes a run; filter it out with
+//   --benchmark_filter=-catheter_over_wire for the rest.)
 #include <benchmark/benchmark.h>
 
 #include <array>
