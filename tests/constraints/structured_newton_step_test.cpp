@@ -115,6 +115,18 @@ MatX delassus(const ConstraintRows& rows, const BandMatrix& a, const ConstraintP
   return l * inverse * l.transpose();
 }
 
+/// J_SS + δ I formed densely from the rows' forms and W (every row solved).
+MatX newtonJacobian(const std::vector<NewtonRowForm>& forms, const MatX& w, double damping) {
+  const int c = static_cast<int>(forms.size());
+  MatX jss = MatX::Zero(c, c);
+  for (int r = 0; r < c; ++r) {
+    for (int j = 0; j < forms[r].nb; ++j) jss.row(r) += forms[r].b[j] * w.row(forms[r].bk[j]);
+    for (int j = 0; j < forms[r].nc; ++j) jss(r, forms[r].ck[j]) += forms[r].c[j];
+    jss(r, r) += damping;
+  }
+  return jss;
+}
+
 TEST(StructuredNewtonStep, TheAugmentedSystemsSolutionIsJssInverseTimesTheRightHandSide) {
   // Two bodies — a rod (30 points interleaved with 30 frame triples, neighbours within 3 groups)
   // and a thread (25 points, within 2) — with contacts on each, one between them, and a fixed
@@ -174,12 +186,7 @@ TEST(StructuredNewtonStep, TheAugmentedSystemsSolutionIsJssInverseTimesTheRightH
   }
   ASSERT_GT(sliding, 0);
   const double damping = 1e-6;
-  MatX jss = MatX::Zero(c, c);
-  for (int r = 0; r < c; ++r) {
-    for (int j = 0; j < forms[r].nb; ++j) jss.row(r) += forms[r].b[j] * w.row(forms[r].bk[j]);
-    for (int j = 0; j < forms[r].nc; ++j) jss(r, forms[r].ck[j]) += forms[r].c[j];
-    jss(r, r) += damping;
-  }
+  const MatX jss = newtonJacobian(forms, w, damping);
   VecX rhs(c);
   for (int r = 0; r < c; ++r) rhs[r] = normal(rng);
   const VecX reference = jss.partialPivLu().solve(rhs);
@@ -251,12 +258,7 @@ CoaxialPair coaxialPair(int segments, bool compare) {
   if (!system.build(rows, solved, position, forms, damping, a, problem, point_body)) return out;
   out.cost = system.cost();
   if (!compare) return out;
-  MatX jss = MatX::Zero(c, c);
-  for (int r = 0; r < c; ++r) {
-    for (int j = 0; j < forms[r].nb; ++j) jss.row(r) += forms[r].b[j] * w.row(forms[r].bk[j]);
-    for (int j = 0; j < forms[r].nc; ++j) jss(r, forms[r].ck[j]) += forms[r].c[j];
-    jss(r, r) += damping;
-  }
+  const MatX jss = newtonJacobian(forms, w, damping);
   VecX rhs(c);
   for (int r = 0; r < c; ++r) rhs[r] = normal(rng);
   const VecX reference = jss.partialPivLu().solve(rhs);
