@@ -100,10 +100,11 @@ bool AugmentedNewtonSystem::build(const ConstraintRows& rows, const std::vector<
   if (!layOut()) return false;
   if (merged) {
     const double merged_cost = lu_.cost();
+    merged_rank_.assign(rank_.begin(), rank_.begin() + groups_);  // (capacity kept: no allocation once grown)
     orderGroups(false);
     layOut();
     if (merged_cost < lu_.cost()) {
-      orderGroups(true);
+      std::copy(merged_rank_.begin(), merged_rank_.end(), rank_.begin());
       layOut();
     }
   }

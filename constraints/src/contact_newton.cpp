@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "filum/constraints/band_solve_cost.hpp"
 #include "filum/core/growing_vector.hpp"
 
 namespace filum::constraints {
@@ -276,13 +277,12 @@ void ContactNewton::chooseProduct(const ConstraintRows& rows) {
       product_bodies_.push_back(b);
     }
   }
-  // Scatter and gather, 3 multiply-adds a term each; a band solve, forward and back, 9 (range + 1)
-  // a group each way (block_band_ldlt.hpp).
+  // Scatter and gather, 3 multiply-adds a term each, and a band solve per body.
   double cost = 6.0 * terms;
   for (int b : product_bodies_) {
     BandBlocks band;
     if (!structure_->inverse->bandBlocks(b, band)) return;
-    cost += 18.0 * band.groups * (band.range + 1);
+    cost += bandSolveMultiplyAdds(band);
   }
   band_product_cost_ = cost;
   band_product_ = kDenseProductRateRatio * cost < static_cast<double>(c) * c;

@@ -11,6 +11,7 @@
 #include <Eigen/CholmodSupport>
 #endif
 
+#include "filum/constraints/band_solve_cost.hpp"
 #include "filum/core/constraint_problem.hpp"
 #include "filum/core/growing_vector.hpp"
 
@@ -1041,7 +1042,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
     BandBlocks band;
     for (std::size_t b = 0; b < problem.bodies.size(); ++b)
       if (body_touched_[b])
-        solve += inverse.bandBlocks(static_cast<int>(b), band) ? 9.0 * band.groups * (2 * band.range + 1)
+        solve += inverse.bandBlocks(static_cast<int>(b), band) ? bandSolveMultiplyAdds(band)
                                                               : 63.0 * problem.bodies[b].pointCount();
     const double by_columns = solve * c, through_points = 3.0 * m * solve + 36.0 * m * c + 9.0 * m * m;
     by_points = through_points < by_columns && point_blocks_.addMissing(inverse, problem, point_body_);

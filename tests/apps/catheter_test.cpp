@@ -7,12 +7,11 @@
 // apps/scenes/catheter_over_wire.json: then a catheter advanced over the wire into the carotid.
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <utility>
-#include <vector>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -22,6 +21,7 @@
 #include "filum/core/scene_loader.hpp"
 #include "filum/haptics/navigation_metrics.hpp"
 #include "filum/run_command.hpp"
+#include "support/tube_axis.hpp"
 
 namespace filum {
 namespace {
@@ -171,22 +171,6 @@ TEST(CatheterScene, AHandOnAHapticDeviceFeedsTheWireIntoTheCarotidInStrokes) {
   EXPECT_GT(largest_torque, 0.0);
 }
 
-/// The distance from x to the polyline through `samples` (the catheter's centre line) and the
-/// fraction of the way along it of the nearest point.
-std::pair<double, double> nearestOnPolyline(const std::vector<Vec3>& samples, const Vec3& x) {
-  double best = std::numeric_limits<double>::infinity(), where = 0.0;
-  for (std::size_t i = 0; i + 1 < samples.size(); ++i) {
-    const Vec3 d = samples[i + 1] - samples[i];
-    const double t = std::clamp((x - samples[i]).dot(d) / d.squaredNorm(), 0.0, 1.0);
-    const double distance = (samples[i] + t * d - x).norm();
-    if (distance < best) {
-      best = distance;
-      where = (static_cast<double>(i) + t) / static_cast<double>(samples.size() - 1);
-    }
-  }
-  return {best, where};
-}
-
 TEST(CatheterScene, TheCatheterFollowsTheWireIntoTheCarotid) {
   // apps/scenes/catheter_over_wire.json: the wire steered into the left common carotid with the
   // catheter behind it (0-6 s), then the catheter pushed 15 cm over the held wire (6-10 s).
@@ -261,8 +245,6 @@ TEST(CatheterScene, TheCatheterFollowsTheWireIntoTheCarotid) {
   // redoes a step in halves (max_penetration).
   const double lumen_radius = document["nodes"][1]["components"][5]["lumen_radius"].get<double>();
   const double clearance = lumen_radius - wire.radius();
-  std::vector<Vec3> axis(1001);
-  for (int i = 0; i <= 1000; ++i) axis[i] = catheter.position(scene->state().q, i / 1000.0);
   const double wire_length = 0.35, from = 0.16 + 0.006, to = 0.34 - 0.006;
   int checked = 0;
   double farthest = 0.0;
@@ -270,7 +252,7 @@ TEST(CatheterScene, TheCatheterFollowsTheWireIntoTheCarotid) {
     const double s = static_cast<double>(i) / wire_samples;
     if (s * wire_length < from || s * wire_length > to) continue;
     ++checked;
-    const double distance = nearestOnPolyline(axis, wire.position(scene->state().q, s)).first;
+    const double distance = test::distanceToAxis(catheter, scene->state(), wire.position(scene->state().q, s));
     farthest = std::max(farthest, distance);
     EXPECT_LE(distance, 1.5 * clearance) << "wire at s = " << s;
   }

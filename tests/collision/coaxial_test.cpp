@@ -21,11 +21,14 @@
 #include "filum/core/scene.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
+#include "support/tube_axis.hpp"
 
 namespace filum::collision {
 namespace {
 
 using nlohmann::json;
+using test::distanceToAxis;
+using test::offsetFromAxis;
 
 constexpr double kDt = 1e-3;            // s
 constexpr double kGravity = 9.81;       // m/s²
@@ -78,23 +81,6 @@ std::unique_ptr<Scene> load(const json& document) {
 
 const ContactPipeline& pipelineOf(const Scene& scene) {
   return dynamic_cast<const ContactPipeline&>(*scene.collisionPipeline());
-}
-
-/// Offset of x from the nearest point of the catheter's centre line (a rod's centre line is the
-/// polyline of its nodes).
-Vec3 offsetFromAxis(const CurveBody& tube, const SceneState& s, const Vec3& x) {
-  const auto q = tube.block(s.q);
-  Vec3 nearest = Vec3::Constant(1.0);
-  for (int i = 0; i + 1 < tube.pointCount(); ++i) {
-    const Vec3 y0 = q.row(i).transpose(), e = q.row(i + 1).transpose() - y0;
-    const Vec3 d = x - y0 - std::clamp((x - y0).dot(e) / e.squaredNorm(), 0.0, 1.0) * e;
-    if (d.norm() < nearest.norm()) nearest = d;
-  }
-  return nearest;
-}
-
-double distanceToAxis(const CurveBody& tube, const SceneState& s, const Vec3& x) {
-  return offsetFromAxis(tube, s, x).norm();
 }
 
 /// The SceneError message of loading `document`, or "" when it loads.

@@ -123,6 +123,7 @@ class AugmentedNewtonSystem {
   std::vector<double> key_;             // per global group: its sort key (orderGroups)
   std::vector<std::pair<double, int>> by_key_;  // (key, global group), sorted
   std::vector<int> rank_;               // per global group: its place in the order
+  std::vector<int> merged_rank_;        // the merged order's rank_, while the other is laid out
   std::vector<std::pair<int, int>> by_anchor_;  // (anchor group, solved index), sorted
   std::vector<int> rows_before_;        // per place in the order: solved rows placed before its coordinates
   std::vector<int> row_unknown_;        // per solved index: its unknown's position
