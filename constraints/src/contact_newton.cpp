@@ -3,18 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "filum/constraints/band_solve_cost.hpp"
-#include "filum/core/growing_vector.hpp"
 
 namespace filum::constraints {
 
 namespace {
 
 using Kind = ConstraintRows::Kind;
-
-// The dense product's c² multiply-adds run as long vectorized dot products, about twice the band
-// sweeps' rate (the same ratio as structuredStep's between the dense and the envelope LU).
-constexpr double kDenseProductRateRatio = 2.0;
 
 /// A friction pair starts at row r (its normal row is r − 1).
 bool startsFrictionPair(const ConstraintRows& rows, int r) {
@@ -52,9 +46,8 @@ void ContactNewton::scale(const Eigen::Ref<const VecX>& diagonal, const Constrai
   }
 }
 
-double ContactNewton::evaluate(const MatX* w_matrix, const ConstraintRows& rows, const Eigen::Ref<const VecX>& lambda) {
+double ContactNewton::evaluate(bool jacobian, const ConstraintRows& rows, const Eigen::Ref<const VecX>& lambda) {
   const int c = c_;
-  const bool jacobian = w_matrix != nullptr;
   // A row whose F is λ_r itself (D = 0): its step is −λ_r, no W in its Jacobian row.
   auto freeRow = [&](int r) {
     f_[r] = lambda[r];
@@ -197,7 +190,7 @@ bool ContactNewton::structuredStep(double damping, const ConstraintRows& rows) {
 
 void ContactNewton::denseSystem(int s, double damping) {
   // J_SS + δ I from the forms: lu_(i, j) = Σ_k b_k W(k, S_j) + c(r, S_j) + δ_ij.
-  const MatX& w = *w_matrix_;
+  const MatX& w = matrix();
   for (int i = 0; i < s; ++i) {
     const NewtonRowForm& form = forms_[solved_[i]];
     for (int j = 0; j < s; ++j) {
@@ -227,8 +220,10 @@ bool ContactNewton::step(double damping, const ConstraintRows& rows, int& struct
   int moving = 0;
   for (int k : free_)
     if (delta_[k] != 0.0) ++moving;
-  // (The columns' axpys run vectorized, as the dense product: the same rate ratio as chooseProduct's.)
-  if (band_product_ && static_cast<double>(moving) * c > kDenseProductRateRatio * band_product_cost_) {
+  // (The columns' axpys run vectorized, as the dense product: the same rate ratio as chooseProduct's;
+  // W not formed yet, the band's product spares forming it.)
+  if (product_ && (w_matrix_ == nullptr ||
+                   static_cast<double>(moving) * c > BandDelassusProduct::kDenseProductRateRatio * product_->cost())) {
     // (trial_ is free until the line search.)
     trial_.head(c).setZero();
     for (int k : free_) trial_[k] = delta_[k];
@@ -236,7 +231,7 @@ bool ContactNewton::step(double damping, const ConstraintRows& rows, int& struct
   } else {
     w_free_.head(c).setZero();
     for (int k : free_)
-      if (delta_[k] != 0.0) w_free_.head(c).noalias() += delta_[k] * w_matrix_->col(k).head(c);
+      if (delta_[k] != 0.0) w_free_.head(c).noalias() += delta_[k] * matrix().col(k).head(c);
   }
   for (int i = 0; i < s; ++i) {
     const NewtonRowForm& form = forms_[solved_[i]];
@@ -259,79 +254,76 @@ bool ContactNewton::step(double damping, const ConstraintRows& rows, int& struct
 }
 
 void ContactNewton::chooseProduct(const ConstraintRows& rows) {
-  band_product_ = false;
-  const int c = c_;
-  if (!structured_ || !structure_ || !structure_->inverse || !structure_->problem || !structure_->point_body ||
-      structure_->inverse->coupled() || c == 0)
-    return;
-  const ConstraintProblem& problem = *structure_->problem;
-  const std::vector<int>& point_body = *structure_->point_body;
-  resizeGrowing(body_seen_, problem.bodies.size());
-  std::fill(body_seen_.begin(), body_seen_.end(), 0);
-  product_bodies_.clear();
-  const int terms = rows.end(c - 1);
-  for (int t = 0; t < terms; ++t) {
-    const int b = point_body[rows.point(t)];
-    if (!body_seen_[b]) {
-      body_seen_[b] = 1;
-      product_bodies_.push_back(b);
-    }
+  product_ = nullptr;
+  if (!structured_ || !structure_ || c_ == 0) return;
+  BandDelassusProduct* product = structure_->product;
+  if (product == nullptr) {
+    if (!structure_->inverse || !structure_->problem || !structure_->point_body) return;
+    product = &own_product_;
+    if (!product->prepare(rows, *structure_->inverse, *structure_->problem, *structure_->point_body)) return;
   }
-  // Scatter and gather, 3 multiply-adds a term each, and a band solve per body.
-  double cost = 6.0 * terms;
-  for (int b : product_bodies_) {
-    BandBlocks band;
-    if (!structure_->inverse->bandBlocks(b, band)) return;
-    cost += bandSolveMultiplyAdds(band);
-  }
-  band_product_cost_ = cost;
-  band_product_ = kDenseProductRateRatio * cost < static_cast<double>(c) * c;
-  if (band_product_ && point_vector_.size() < 3 * problem.dof_points) point_vector_.resize(3 * problem.dof_points);
+  if (product->cheaperThanDense()) product_ = product;
+}
+
+const MatX& ContactNewton::matrix() {
+  if (w_matrix_ == nullptr) w_matrix_ = &entries_->matrix();
+  return *w_matrix_;
 }
 
 void ContactNewton::multiplyW(const ConstraintRows& rows, const Eigen::Ref<const VecX>& x, Eigen::Ref<VecX> out) {
   const int c = c_;
-  if (!band_product_) {
-    out.noalias() = w_matrix_->topLeftCorner(c, c) * x;
+  if (product_) {
+    product_->multiply(rows, x, out);
     return;
   }
-  // W x = L A⁻¹ (Lᵀ x): the rows' forces on their points, A⁻¹ body by body (A is block diagonal
-  // over the bodies: !coupled()), and each row's reading of the response.
-  const ConstraintProblem& problem = *structure_->problem;
-  for (int b : product_bodies_) {
-    const BodyBlock& body = problem.bodies[b];
-    point_vector_.segment(3 * body.offset(), 3 * body.pointCount()).setZero();
-  }
-  for (int r = 0; r < c; ++r)
-    if (x[r] != 0.0) rows.addTransposed(r, x[r], point_vector_);
-  for (int b : product_bodies_) {
-    const BodyBlock& body = problem.bodies[b];
-    structure_->inverse->solveBlock(b, point_vector_.segment(3 * body.offset(), 3 * body.pointCount()));
-  }
-  for (int r = 0; r < c; ++r) out[r] = rows.dot(r, point_vector_);
+  out.noalias() = matrix().topLeftCorner(c, c) * x;
 }
+
+namespace {
+
+/// W already formed.
+class FormedDelassus final : public DelassusEntries {
+ public:
+  explicit FormedDelassus(const MatX& w) : w_(w) {}
+  const MatX& matrix() override { return w_; }
+
+ private:
+  const MatX& w_;
+};
+
+}  // namespace
 
 ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const VecX>& beta,
                                            const Eigen::Ref<const VecX>& compliance, const ConstraintRows& rows,
                                            const Settings& settings, double tolerance, Eigen::Ref<VecX> lambda,
                                            const Structure* structure) {
+  FormedDelassus formed(w);
+  return solve(formed, w.diagonal().head(beta.size()), beta, compliance, rows, settings, tolerance, lambda, structure);
+}
+
+ContactNewton::Result ContactNewton::solve(DelassusEntries& w, const Eigen::Ref<const VecX>& w_diagonal,
+                                           const Eigen::Ref<const VecX>& beta, const Eigen::Ref<const VecX>& compliance,
+                                           const ConstraintRows& rows, const Settings& settings, double tolerance,
+                                           Eigen::Ref<VecX> lambda, const Structure* structure) {
   const int c = static_cast<int>(beta.size());
   c_ = c;
-  w_matrix_ = &w;
+  entries_ = &w;
+  w_matrix_ = nullptr;
   structure_ = structure;
   structured_ = settings.structured;
   grow(c);
   compliance_.head(c) = compliance;
-  diagonal_.head(c) = w.diagonal().head(c) + compliance;
+  diagonal_.head(c) = w_diagonal + compliance;
   scale(diagonal_.head(c), rows);
   for (int r = 0; r < c; ++r)
     if (!(rho_[r] > 0.0)) lambda[r] = 0.0;
   chooseProduct(rows);
+  if (!product_) matrix();  // (every product through W)
   // F (and with the matrix, J) at x: w_ = W x − β first.
   auto at = [&](const Eigen::Ref<const VecX>& x, bool jacobian) {
     multiplyW(rows, x, wl_.head(c));
     wl_.head(c) += compliance_.head(c).cwiseProduct(x) - beta;
-    return evaluate(jacobian ? &w : nullptr, rows, x);
+    return evaluate(jacobian, rows, x);
   };
   // Along a step, (W + R)(λ + αΔ) − β = wl(λ) + α (W + R)Δ: one product with W per iteration, not
   // one per trial of the line search. Updated so, wl_ drifts from the exact product by round-off
@@ -380,14 +372,14 @@ ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const
     for (int k = 0; k <= kHalvings; ++k, alpha *= 0.5) {
       trial_.head(c) = lambda + alpha * delta_.head(c);
       wl_.head(c) = wl_base_.head(c) + alpha * w_delta_.head(c);
-      if (evaluate(nullptr, rows, trial_.head(c)) <= reference - 2.0 * kArmijo * alpha * merit) {
+      if (evaluate(false, rows, trial_.head(c)) <= reference - 2.0 * kArmijo * alpha * merit) {
         accepted = true;
         break;
       }
     }
     if (!accepted) break;
     lambda = trial_.head(c);
-    merit = evaluate(&w, rows, lambda);  // wl_ is the accepted trial's
+    merit = evaluate(true, rows, lambda);  // wl_ is the accepted trial's
     exact = false;
     history[result.iterations % kMemory] = merit;
     if (merit < best_merit) {
@@ -410,8 +402,9 @@ ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const
     result.converged = max_abs_residual_ <= threshold();
   }
   structure_ = nullptr;  // (the caller's, valid during this call only)
+  entries_ = nullptr;
   w_matrix_ = nullptr;
-  band_product_ = false;
+  product_ = nullptr;
   result.residual = max_abs_residual_;
   result.threshold = threshold();
   return result;
@@ -424,7 +417,7 @@ double ContactNewton::residual(const ConstraintRows& rows, const Eigen::Ref<cons
   grow(c);
   scale(diagonal, rows);
   wl_.head(c) = wl;
-  evaluate(nullptr, rows, lambda);
+  evaluate(false, rows, lambda);
   return max_abs_residual_;
 }
 

@@ -709,6 +709,164 @@ struct LagrangeMultiplierSolver::FactoredDelassus {
   }
 };
 
+/// W through the band (BandDelassusProduct), for reads in bulk: a change of λ makes the next
+/// product recompute all of W λ (one band product, O(terms + Σ_b groups_b · range_b)). It serves
+/// the equality polish after a Newton solve that never formed W (the equality rows' products, then
+/// every row's residual: two products), not Gauss–Seidel's sweeps, which change λ row by row.
+struct LagrangeMultiplierSolver::BandProductDelassus {
+  LagrangeMultiplierSolver& solver;
+  const ConstraintProblem& problem;
+  const ConstraintRows& rows;
+  bool stale = true;  // band_wl_ is not W λ of the current λ
+  void begin() { stale = true; }
+  double product(int r) {
+    if (stale) {
+      const int c = solver.c_;
+      if (solver.band_wl_.size() < c) solver.band_wl_.resize(2 * c);  // grows only
+      solver.band_product_.multiply(rows, solver.lambda_.head(c), solver.band_wl_.head(c));
+      stale = false;
+    }
+    return solver.band_wl_[r];
+  }
+  void changed(int /*r*/, double delta) { stale = stale || delta != 0.0; }
+  /// W_BB of the equality rows (sorted), a column W e_j per equality row (nb band products).
+  void equalityBlock(const ConstraintRows& /*rows*/, MatX& block) {
+    const auto& eq = solver.equality_rows_;
+    const int nb = static_cast<int>(eq.size()), c = solver.c_;
+    block.resize(nb, nb);
+    if (solver.band_wl_.size() < c) solver.band_wl_.resize(2 * c);  // grows only
+    if (solver.unit_.size() < c) solver.unit_.resize(2 * c);
+    solver.unit_.head(c).setZero();
+    for (int j = 0; j < nb; ++j) {
+      solver.unit_[eq[j]] = 1.0;
+      solver.band_product_.multiply(rows, solver.unit_.head(c), solver.band_wl_.head(c));
+      solver.unit_[eq[j]] = 0.0;
+      for (int i = 0; i < nb; ++i) block(i, j) = solver.band_wl_[eq[i]];
+    }
+    for (int i = 0; i < nb; ++i)  // (symmetric up to the round-off of the two products)
+      for (int j = 0; j < i; ++j) block(i, j) = block(j, i) = 0.5 * (block(i, j) + block(j, i));
+    stale = true;
+  }
+};
+
+/// W for the contact Newton, formed the first time it is asked for (a dense LU step; products,
+/// when the band's are not cheaper), at most once per solve. `asked` tells whether this solve's
+/// arithmetic went through W: what follows (Gauss–Seidel, the polish) then reads W too, so that a
+/// solve repeats bit for bit whether W was formed in it or kept from the last call.
+class LagrangeMultiplierSolver::DeferredDelassus final : public DelassusEntries {
+ public:
+  /// `formed`: W is in w_ already (step 2 formed it, or kept it from the last call).
+  DeferredDelassus(LagrangeMultiplierSolver& solver, const ConstraintProblem& problem, const ConstraintRows& rows,
+                   bool formed)
+      : solver_(solver), problem_(problem), rows_(rows), formed_(formed) {}
+  const MatX& matrix() override {
+    if (!formed_) solver_.formDelassus(problem_, rows_);
+    formed_ = true;
+    asked_ = true;
+    return solver_.w_;
+  }
+  bool asked() const { return asked_; }
+
+ private:
+  LagrangeMultiplierSolver& solver_;
+  const ConstraintProblem& problem_;
+  const ConstraintRows& rows_;
+  bool formed_;
+  bool asked_ = false;
+};
+
+double LagrangeMultiplierSolver::pointBlockEntry(const ConstraintRows& rows, int r, int k) const {
+  double sum = 0.0;
+  for (int t = rows.begin(r); t < rows.end(r); ++t) {
+    const int slot = point_blocks_.slot(rows.point(t));
+    for (int u = rows.begin(k); u < rows.end(k); ++u)
+      sum += rows.coeff(t).dot(point_blocks_.block(slot, point_blocks_.slot(rows.point(u))) * rows.coeff(u));
+  }
+  return sum;
+}
+
+double LagrangeMultiplierSolver::inverseBandDiagonal(const ConstraintRows& rows, int r) const {
+  double sum = 0.0;
+  for (int t = rows.begin(r); t < rows.end(r); ++t) {
+    const int body = point_body_[rows.point(t)];
+    const BandBlocks& band = inverse_band_layout_[body];
+    const std::vector<Eigen::Matrix3d>& z = inverse_band_[body];
+    const int offset = problem_offset_[body];
+    const int gt = band.point_group[rows.point(t) - offset];
+    for (int u = rows.begin(r); u < rows.end(r); ++u) {
+      if (point_body_[rows.point(u)] != body) continue;  // (A⁻¹ is block diagonal over the bodies)
+      const int gu = band.point_group[rows.point(u) - offset];
+      // Block (gt, gu): stored as (max, min), the one above the diagonal its transpose.
+      const Eigen::Matrix3d& block = z[static_cast<std::size_t>(std::max(gt, gu)) * (band.range + 1) +
+                                       (std::min(gt, gu) - std::max(gt, gu) + band.range)];
+      sum += gt >= gu ? rows.coeff(t).dot(block * rows.coeff(u)) : rows.coeff(u).dot(block * rows.coeff(t));
+    }
+  }
+  return sum;
+}
+
+bool LagrangeMultiplierSolver::inverseBandCovers(const ConstraintProblem& problem, const ConstraintRows& rows,
+                                                 const BlockInverse& inverse) {
+  const int bodies = static_cast<int>(problem.bodies.size());
+  if (static_cast<int>(inverse_band_.size()) < bodies) {  // grows only
+    inverse_band_.resize(bodies);
+    inverse_band_layout_.resize(bodies);
+    problem_offset_.resize(bodies);
+  }
+  body_touched_.assign(bodies, 0);  // (whole before any return: scatterForces reads it)
+  for (int r = 0; r < rows.rows(); ++r)
+    for (int t = rows.begin(r); t < rows.end(r); ++t) body_touched_[point_body_[rows.point(t)]] = 1;
+  for (int b = 0; b < bodies; ++b) {
+    if (!body_touched_[b]) continue;
+    if (!inverse.bandBlocks(b, inverse_band_layout_[b])) return false;
+    problem_offset_[b] = problem.bodies[b].offset();
+  }
+  for (int r = 0; r < rows.rows(); ++r)
+    for (int t = rows.begin(r); t < rows.end(r); ++t)
+      for (int u = rows.begin(r); u < t; ++u) {
+        const int body = point_body_[rows.point(t)];
+        if (point_body_[rows.point(u)] != body) continue;
+        const BandBlocks& band = inverse_band_layout_[body];
+        const int gt = band.point_group[rows.point(t) - problem_offset_[body]];
+        const int gu = band.point_group[rows.point(u) - problem_offset_[body]];
+        if (std::abs(gt - gu) > band.range) return false;
+      }
+  for (int b = 0; b < bodies; ++b)
+    if (body_touched_[b] && !inverse.inverseBandBlocks(b, inverse_band_[b])) return false;
+  return true;
+}
+
+double LagrangeMultiplierSolver::diagonalEntry(const ConstraintProblem& problem, const ConstraintRows& rows, int r) const {
+  switch (source_) {
+    case DelassusSource::kPointBlocks: return pointBlockEntry(rows, r, r);
+    case DelassusSource::kInverseBand: return inverseBandDiagonal(rows, r);
+    case DelassusSource::kColumns: break;
+  }
+  return generalEntry(problem, rows, r, r);
+}
+
+void LagrangeMultiplierSolver::formDelassus(const ConstraintProblem& problem, const ConstraintRows& rows) {
+  if (w_formed_) return;
+  const int c = rows.rows();
+  if (w_.rows() < c) w_.resize(c, c);  // grows only (entries r, k < c are used)
+  // Kept aside: the assembly writes diagonal_ again, with the same values but perhaps another sum
+  // order than diagonalEntry's, and the solve's ρ and compliance were set from the first.
+  if (saved_diagonal_.size() < c) saved_diagonal_.resize(2 * c);  // grows only
+  saved_diagonal_.head(c) = diagonal_.head(c);
+  if (source_ == DelassusSource::kPointBlocks) {
+    assembleFromPointBlocks(rows);
+  } else {
+    if (!columns_ready_) prepareColumns(problem, rows, *inverse_, false);  // (kInverseBand: none yet)
+    columns_ready_ = true;
+    assembleGeneral(problem, rows);
+  }
+  diagonal_.head(c) = saved_diagonal_.head(c);
+  DenseDelassus{*this}.begin();  // (both triangles)
+  w_formed_ = true;
+  stats_.reassembled = true;
+  last_nonzeros_ = stats_.nonzeros;
+}
+
 void LagrangeMultiplierSolver::warmStart(const ConstraintRows& rows) {
   // λ of the previous call when its rows were of the same kinds (an earlier stage of the same
   // step, same contact set); else the rows' guesses (a contact's force of the previous step, 0 for
@@ -834,42 +992,54 @@ void LagrangeMultiplierSolver::projectedGaussSeidel(const ConstraintRows& rows, 
   stats_.converged = stats_.residual <= stats_.threshold;
 }
 
-/// Newton on W dense (both triangles mirrored by DenseDelassus::begin), Gauss–Seidel from its
-/// best iterate when it does not converge.
+/// Newton on W dense (both triangles mirrored by DenseDelassus::begin) or, `deferred`, on W's
+/// products through the band with W formed only if Newton or Gauss–Seidel asks for it; Gauss–Seidel
+/// from Newton's best iterate when it does not converge.
 void LagrangeMultiplierSolver::solveWithNewton(const ConstraintProblem& problem, const ConstraintRows& rows,
-                                               const BlockInverse& inverse) {
+                                               const BlockInverse& inverse, bool deferred) {
   const int c = rows.rows();
   warmStart(rows);
   setCompliance(rows);
-  DenseDelassus w{*this};
-  w.begin();
-  factorEqualityBlock(rows, w);
+  DenseDelassus dense{*this};
+  BandProductDelassus band{*this, problem, rows};
+  DeferredDelassus w(*this, problem, rows, !deferred || w_formed_);
+  if (deferred) {
+    factorEqualityBlock(rows, band);
+  } else {
+    w.matrix();  // (formed in step 2: mirrored here)
+    dense.begin();
+    factorEqualityBlock(rows, dense);
+  }
   ContactNewton::Settings settings;
   settings.damping = options_.newton_damping;
   settings.structured = options_.newton_structured;
-  const ContactNewton::Structure structure{&inverse, &problem, &point_body_};
+  const ContactNewton::Structure structure{&inverse, &problem, &point_body_, deferred ? &band_product_ : nullptr};
   // Newton, and where it stalls (its active set still moving) a few Gauss–Seidel sweeps to
   // smooth λ before the next Newton round, within newton_iterations Newton iterations in all.
   constexpr int kSmoothingSweeps = 8;
   while (true) {
     settings.iterations = options_.newton_iterations - stats_.newton_iterations;
-    const ContactNewton::Result result =
-        newton_.solve(w_, rhs_.head(c), compliance_.head(c), rows, settings, options_.contact_tolerance, lambda_.head(c),
-                      &structure);
+    const ContactNewton::Result result = newton_.solve(w, diagonal_.head(c), rhs_.head(c), compliance_.head(c), rows,
+                                                       settings, options_.contact_tolerance, lambda_.head(c), &structure);
     stats_.newton_iterations += result.iterations;
     stats_.structured_steps += result.structured_steps;
     stats_.residual = result.residual;
     stats_.threshold = result.threshold;
     stats_.converged = result.converged;
     if (result.converged || !result.stalled || stats_.newton_iterations >= options_.newton_iterations) break;
-    projectedGaussSeidel(rows, w, kSmoothingSweeps);
+    w.matrix();  // Gauss–Seidel reads W's rows
+    projectedGaussSeidel(rows, dense, kSmoothingSweeps);
     if (stats_.converged) break;
   }
   if (!stats_.converged) {
     stats_.fell_back = true;
-    projectedGaussSeidel(rows, w, options_.contact_iterations);
+    w.matrix();
+    projectedGaussSeidel(rows, dense, options_.contact_iterations);
   }
-  polishEqualities(rows, w);
+  if (w.asked())
+    polishEqualities(rows, dense);
+  else
+    polishEqualities(rows, band);
 }
 
 template <class Delassus>
@@ -1031,8 +1201,22 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   // table (a new matrix every solve, 3 m = 300 solves against c ≈ 600, S doubled by the frames)
   // 5.8 and 4.9; a 2 m bowel (3 m = 243 solves against c ≈ 390 on a spline's cheaper band)
   // 2.1 and 2.9 — which this model sends to the columns.
+  //
+  // Newton whose products with W go through A's band (BandDelassusProduct) needs W's entries only
+  // for a dense LU step or Gauss–Seidel's smoothing: W is then formed when first asked for
+  // (DeferredDelassus), and a solve whose steps all go through the band never forms it — O(c²
+  // terms), most of a step of a rod lying on a table (bench_rod) before. What it needs then is
+  // W's diagonal (ρ, the compliance): from A⁻¹'s blocks within the band (Takahashi's equations,
+  // O(n r²) per body) when each row's points lie a band apart, as on a thread against an
+  // obstacle — no solve per row or per point, which grew as c n; else from the columns or the
+  // point blocks as W would be.
+  const bool deferred = newton && !separable && options_.newton_structured &&
+                        band_product_.prepare(rows, inverse, problem, point_body_) && band_product_.cheaperThanDense();
+  stats_.deferred = deferred;
+  const bool by_band = deferred && inverseBandCovers(problem, rows, inverse);
   bool by_points = false;
-  if (newton && !separable && !inverse.coupled() && !general_kept && !stats_.sparse && options_.point_blocks && c > 0) {
+  if (!by_band && newton && !separable && !inverse.coupled() && !general_kept && !stats_.sparse &&
+      options_.point_blocks && c > 0) {
     point_blocks_.keepIfUnchanged(inverse, problem);
     const double missing = point_blocks_.listMissing(rows), m = point_blocks_.touched();
     double solve = 0.0;  // S
@@ -1049,10 +1233,13 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
     if (by_points) stats_.point_columns = 3 * static_cast<int>(missing);  // (body_touched_: for scatterForces)
   }
   stats_.point_blocks = by_points;
+  source_ = by_band ? DelassusSource::kInverseBand : by_points ? DelassusSource::kPointBlocks : DelassusSource::kColumns;
+  inverse_ = &inverse;
   if (general_kept)
     stats_.reused_columns = c;
-  else if (!by_points)
+  else if (source_ == DelassusSource::kColumns)
     prepareColumns(problem, rows, inverse, separable);
+  columns_ready_ = general_kept || source_ == DelassusSource::kColumns;
 
   // 2. W = L M⁻¹ Lᵀ (lower triangle), dense or with the entries below round-off dropped —
   // unless every column was taken over from the same place and every row has the same factors
@@ -1060,7 +1247,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   bool unchanged = separable && have_factorization_ && stats_.reused_columns == stats_.columns &&
                    stats_.sparse == last_sparse_ && c + 1 == static_cast<int>(last_factor_start_.size());
   for (int i = 0; unchanged && i < stats_.columns; ++i) unchanged = current_[i].from == i;
-  unchanged = unchanged || general_kept;
+  unchanged = unchanged || (general_kept && w_formed_);
   for (int r = 0; unchanged && r <= c; ++r) unchanged = last_factor_start_[r] == (r < c ? rows.factorBegin(r) : rows.factorEnd(c - 1));
   const int factors = c > 0 ? rows.factorEnd(c - 1) : 0;
   for (int f = 0; unchanged && f < factors; ++f)
@@ -1072,6 +1259,10 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
                                                                            : options_.contact_form == ContactForm::kFactored);
   if (factored_form) {
     for (int r = 0; r < c; ++r) diagonal_[r] = generalEntry(problem, rows, r, r);
+    w_formed_ = false;
+  } else if (deferred && !unchanged) {
+    for (int r = 0; r < c; ++r) diagonal_[r] = diagonalEntry(problem, rows, r);
+    w_formed_ = false;
   } else if (!unchanged) {
     if (stats_.sparse) {
       sparse_->triplets.clear();
@@ -1087,6 +1278,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
     }
     stats_.reassembled = true;
     last_nonzeros_ = stats_.nonzeros;
+    w_formed_ = !stats_.sparse && !separable;  // (the general dense path's W: what formDelassus would form)
   } else {
     stats_.nonzeros = last_nonzeros_;
   }
@@ -1096,7 +1288,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
 
   // 4. λ = W⁻¹ (E − L A_t), or with contact rows the projected Gauss–Seidel solution.
   if (newton) {
-    solveWithNewton(problem, rows, inverse);
+    solveWithNewton(problem, rows, inverse, deferred);
     factored_last_call_ = false;
   } else if (factored_form) {
     FactoredDelassus w{*this, problem, rows, u_};
@@ -1145,7 +1337,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   constexpr int kColumnSumRows = 16;
   if (factored_form) {
     a.head(u_.size()) += u_;  // kept by the projected Gauss–Seidel sweeps
-  } else if (!separable && !inverse.coupled() && c <= kColumnSumRows && !by_points) {  // (the columns were solved)
+  } else if (!separable && !inverse.coupled() && c <= kColumnSumRows && source_ == DelassusSource::kColumns) {  // (the columns were solved)
     const auto& bodies = problem.bodies;
     for (int r = 0; r < c; ++r) {
       const Column& col = current_[r];
@@ -1180,7 +1372,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
     cached_size_ = problem.state_size;
   } else {
     previous_index_.clear();
-    have_general_ = lambda_.head(c).allFinite() && inverse.revision() >= 0 && !by_points;  // (no columns kept)
+    have_general_ = lambda_.head(c).allFinite() && inverse.revision() >= 0 && columns_ready_;  // (none: no columns kept)
     if (!general_kept) rememberRows(rows);
     cached_inverse_ = &inverse;
     cached_revision_ = inverse.revision();

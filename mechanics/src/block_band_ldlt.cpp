@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "filum/core/growing_vector.hpp"
+
 
 namespace filum::mechanics {
 
@@ -135,6 +137,38 @@ void BlockBandLdlt::solveColumns(Eigen::Ref<MatX> x, int first) const {
       v[3 * i + 2] = xi[2];
     }
   }
+}
+
+void BlockBandLdlt::inverseBand(std::vector<Eigen::Matrix3d>& z) const {
+  // Takahashi's equations (K. Takahashi, J. Fagan, M.-S. Chin, "Formation of a sparse bus
+  // impedance matrix and its application to short circuit study", 8th PICA Conf. 1973; Erisman &
+  // Tinney, CACM 18 (1975) 177): A = L D Lᵀ gives Lᵀ Z = D⁻¹ L⁻¹ for Z = A⁻¹, whose right side is
+  // block lower triangular with D_i⁻¹ on its diagonal, so for i <= j
+  //   Z_ij = δ_ij D_i⁻¹ − Σ_{k=i+1}^{i+r} L_kiᵀ Z_kj,
+  // every Z_kj within the band (|k − j| <= r): block rows from the last up, each from its farthest
+  // block to its diagonal. O(n r²) 3 × 3 products; the blocks outside the band are not formed.
+  resizeGrowing(z, blocks_.size());  // (a steady caller allocates nothing)
+  auto at = [&](int I, int J) -> Eigen::Matrix3d& { return z[static_cast<std::size_t>(I) * width_ + (J - I + r_)]; };
+  for (int i = n_ - 1; i >= 0; --i) {
+    const int last = std::min(n_ - 1, i + r_);
+    for (int j = last; j >= i; --j) {
+      Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+      if (j == i) {
+        // D_i⁻¹ column by column (D_i as its own LDLᵀ: solvePivot).
+        sum.setIdentity();
+        for (int c = 0; c < 3; ++c) solvePivot(block(i, i), reciprocals_[i], sum.col(c));
+      }
+      for (int k = i + 1; k <= last; ++k) {
+        // Z_kj: stored as (k, j) when k >= j, else as the transpose of (j, k).
+        if (k >= j)
+          sum.noalias() -= block(k, i).transpose() * at(k, j);
+        else
+          sum.noalias() -= block(k, i).transpose() * at(j, k).transpose();
+      }
+      at(j, i) = sum.transpose();  // Z_ji = Z_ijᵀ, the lower triangle's block
+    }
+  }
+  // (Z_ii is symmetric up to round-off; its stored lower triangle is the one read.)
 }
 
 MatX BlockBandLdlt::reconstruct() const {

@@ -478,6 +478,14 @@ std::string StepMatrix::method() const {
   return coupled_ ? "coupled bodies, " + out : out;
 }
 
+bool StepMatrix::inverseBandBlocks(int body, std::vector<Eigen::Matrix3d>& out) const {
+  if (coupled_ || body < 0 || body >= static_cast<int>(body_block_.size())) return false;
+  const Block& block = blocks_[body_block_[body]];
+  if (!block.band || block.rank > 0 || block.band_matrix.points() != block.points) return false;  // (as bandBlocks)
+  block.band_factor.inverseBand(out);
+  return true;
+}
+
 bool StepMatrix::bandBlocks(int body, BandBlocks& out) const {
   if (coupled_ || body < 0 || body >= static_cast<int>(body_block_.size())) return false;
   const Block& block = blocks_[body_block_[body]];

@@ -52,7 +52,9 @@
 // obstacle), whichever is cheaper. With the Structure the products with W are also taken as
 // L (A⁻¹ (Lᵀ x)) — the rows' forces on their points, a band solve per body, the rows' reading of
 // the response: O(terms + Σ_b groups_b · range_b) against c² — when that is cheaper (many rows
-// on few points: a wire lying along a catheter, a rod on a table).
+// on few points: a wire lying along a catheter, a rod on a table) — BandDelassusProduct. Then W
+// itself is asked for (DelassusEntries) only by a dense LU step, so a caller may leave it unformed
+// until then: a solve whose every step goes through the band never forms W.
 // The workspace only grows: a steady step allocates nothing.
 #pragma once
 
@@ -60,12 +62,23 @@
 #include <vector>
 
 #include "filum/constraints/augmented_newton_system.hpp"
+#include "filum/constraints/band_delassus_product.hpp"
 #include "filum/core/block_inverse.hpp"
 #include "filum/core/constraint_problem.hpp"
 #include "filum/core/constraint_rows.hpp"
 #include "filum/core/types.hpp"
 
 namespace filum::constraints {
+
+/// W (c × c, both triangles) for a solve that may not need it: formed by its owner when first
+/// asked, and then valid for the rest of the solve.
+class DelassusEntries {
+ public:
+  virtual const MatX& matrix() = 0;
+
+ protected:
+  ~DelassusEntries() = default;
+};
 
 class ContactNewton {
  public:
@@ -77,11 +90,13 @@ class ContactNewton {
     bool structured = true;  // the step's system and W's products through A's band when cheaper (false: dense always)
   };
   /// What a structured step needs besides W: the matrix A that W = L A⁻¹ Lᵀ was formed with, the
-  /// bodies, and the body of each point.
+  /// bodies, and the body of each point; and, optionally, W's band product already prepared on
+  /// these rows by the caller (null: prepared here from the rest).
   struct Structure {
     const BlockInverse* inverse = nullptr;
     const ConstraintProblem* problem = nullptr;
     const std::vector<int>* point_body = nullptr;
+    BandDelassusProduct* product = nullptr;
   };
   struct Result {
     int iterations = 0;
@@ -100,6 +115,11 @@ class ContactNewton {
   Result solve(const MatX& w, const Eigen::Ref<const VecX>& beta, const Eigen::Ref<const VecX>& compliance,
                const ConstraintRows& rows, const Settings& settings, double tolerance, Eigen::Ref<VecX> lambda,
                const Structure* structure = nullptr);
+  /// The same with W formed only if a step needs its entries (w.matrix(): a dense LU step, or
+  /// products when the band's are not cheaper); `w_diagonal` is W's diagonal (c values).
+  Result solve(DelassusEntries& w, const Eigen::Ref<const VecX>& w_diagonal, const Eigen::Ref<const VecX>& beta,
+               const Eigen::Ref<const VecX>& compliance, const ConstraintRows& rows, const Settings& settings,
+               double tolerance, Eigen::Ref<VecX> lambda, const Structure* structure = nullptr);
 
   /// max_r |F_r|/ρ_r (m/s²) of λ, given the diagonal of W + R and (W + R)λ − β: the residual by which any
   /// contact solve (projected Gauss–Seidel too) is measured.
@@ -111,9 +131,9 @@ class ContactNewton {
   void grow(int c);
   /// ρ per row (from W's diagonal).
   void scale(const Eigen::Ref<const VecX>& diagonal, const ConstraintRows& rows);
-  /// F and the merit θ at λ, given wl_ = (W + R)λ − β; with W (not null), J's rows as forms (forms_:
+  /// F and the merit θ at λ, given wl_ = (W + R)λ − β; with `jacobian`, J's rows as forms (forms_:
   /// Σ b_k W_k + Σ c_m e_m, three of each at most) and the free set.
-  double evaluate(const MatX* w, const ConstraintRows& rows, const Eigen::Ref<const VecX>& lambda);
+  double evaluate(bool jacobian, const ConstraintRows& rows, const Eigen::Ref<const VecX>& lambda);
   /// Δ from J Δ = −F (the reduced system); `structured` counts a step solved through A's band.
   bool step(double damping, const ConstraintRows& rows, int& structured);
   /// J_SS Δ_S = rhs_ through A's band (AugmentedNewtonSystem), when structure_ allows it and it
@@ -121,8 +141,10 @@ class ContactNewton {
   bool structuredStep(double damping, const ConstraintRows& rows);
   /// J_SS + δ I into lu_ from the forms (the dense step).
   void denseSystem(int s, double damping);
-  /// Whether products with W go through A's band in this solve (band_product_), by their cost.
+  /// Whether products with W go through A's band in this solve (product_), by their cost.
   void chooseProduct(const ConstraintRows& rows);
+  /// W dense, asked of entries_ the first time in a solve.
+  const MatX& matrix();
   /// out := W x (c values), by W or through A's band.
   void multiplyW(const ConstraintRows& rows, const Eigen::Ref<const VecX>& x, Eigen::Ref<VecX> out);
   /// In-place LU with partial pivoting of lu_'s leading s × s block; false if singular.
@@ -135,18 +157,16 @@ class ContactNewton {
   MatX lu_;    // J_SS + δ I (dense step), factored in place
   VecX w_free_;  // W Δ_I: the free rows' steps seen by W's rows
   VecX wl_base_, w_delta_;  // (W + R)λ − β at the line search's start, and (W + R)Δ
-  const MatX* w_matrix_ = nullptr;  // W of the current solve
+  DelassusEntries* entries_ = nullptr;  // W of the current solve, formed when asked
+  const MatX* w_matrix_ = nullptr;      // W once asked (null: not yet)
   std::vector<int> solved_, free_, pivot_;
   std::vector<char> is_free_;
   std::vector<NewtonRowForm> forms_;  // J's rows in terms of W's rows (evaluate, with the Jacobian)
   std::vector<int> row_position_;     // row → its index in solved_ (−1: free)
   const Structure* structure_ = nullptr;
   bool structured_ = true;
-  bool band_product_ = false;          // W x as L A⁻¹ Lᵀ x (chooseProduct)
-  double band_product_cost_ = 0.0;     // its multiply-adds
-  std::vector<int> product_bodies_;    // the bodies the rows act on
-  std::vector<char> body_seen_;        // per problem body
-  VecX point_vector_;                  // Lᵀ x, then A⁻¹ Lᵀ x (3 per point)
+  BandDelassusProduct* product_ = nullptr;  // W x as L A⁻¹ Lᵀ x in this solve (chooseProduct; null: W's)
+  BandDelassusProduct own_product_;         // prepared here when the Structure brings none
   AugmentedNewtonSystem augmented_;
   double max_abs_residual_ = 0.0;
   double force_scale_ = 0.0;  // max_r |λ_r|/ρ_r of the last evaluation (m/s²)

@@ -82,6 +82,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "filum/constraints/band_delassus_product.hpp"
 #include "filum/constraints/contact_newton.hpp"
 #include "filum/constraints/point_inverse_blocks.hpp"
 #include "filum/core/constraint_solver.hpp"
@@ -127,7 +128,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     long nonzeros = 0;       // entries of W's lower triangle that were kept
     bool sparse = false;     // sparse factorization used
     bool refactored = false; // W changed and was factored again
-    bool reassembled = false;  // W was assembled (false: unchanged anchors and directions)
+    bool reassembled = false;  // W was assembled (false: unchanged anchors and directions, or never asked for: deferred)
+    bool deferred = false;   // W left unformed until the contact Newton asks for it (its products through the band)
     int inequalities = 0;    // contact rows (normal and friction)
     int sweeps = 0;          // projected Gauss–Seidel sweeps (with contact rows; smoothing and fallback included)
     double change = 0.0;     // the last sweep's largest W_rr |Δλ_r| (m/s²)
@@ -209,9 +211,28 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   struct AssembledDelassus;
   struct DenseDelassus;
   struct FactoredDelassus;
+  struct BandProductDelassus;
+  class DeferredDelassus;
   template <class Delassus>
   void solveWithContacts(const ConstraintRows& rows, Delassus& w);
-  void solveWithNewton(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse);
+  void solveWithNewton(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse,
+                       bool deferred);
+  /// Where this call's W comes from: per-row columns A⁻¹ l_r, A⁻¹'s blocks between the rows'
+  /// points (point_blocks_), or — W deferred — A⁻¹'s blocks within each body's band (its diagonal
+  /// only; columns are solved if W is formed after all).
+  enum class DelassusSource { kColumns, kPointBlocks, kInverseBand };
+  /// W_rr from this call's source.
+  double diagonalEntry(const ConstraintProblem& problem, const ConstraintRows& rows, int r) const;
+  /// W_rk = Σ_{t ∈ r} Σ_{t' ∈ k} c_tᵀ H(p_t, p_t') c_t' from A⁻¹'s point blocks (all held).
+  double pointBlockEntry(const ConstraintRows& rows, int r, int k) const;
+  /// W_rr = Σ_{t, t' ∈ r} c_tᵀ (A⁻¹)(p_t, p_t') c_t' from the inverse bands (inverseBandCovers).
+  double inverseBandDiagonal(const ConstraintRows& rows, int r) const;
+  /// Whether every row's points lie within a band of each other on each body, and if so A⁻¹'s
+  /// blocks within the band of every body the rows touch (inverse_band_).
+  bool inverseBandCovers(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse);
+  /// W formed (lower triangle, as step 2 forms it) and mirrored into the upper one, unless w_
+  /// holds it already (w_formed_).
+  void formDelassus(const ConstraintProblem& problem, const ConstraintRows& rows);
   /// The equality rows solved exactly for the current contact forces (after an iterative solve).
   template <class Delassus>
   void polishEqualities(const ConstraintRows& rows, Delassus& w);
@@ -272,6 +293,17 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
 
   MatX g_;  // G_ab = w_aᵀ M⁻¹ w_b for anchors a, b (mass operator)
   MatX w_;  // W (dense path: the lower triangle, mirrored into the upper one for contact sweeps)
+  bool w_formed_ = false;  // w_ holds W of the current (last) call's rows (false: deferred and never asked for)
+  DelassusSource source_ = DelassusSource::kColumns;  // of this call's W
+  bool columns_ready_ = false;  // current_ holds this call's columns A⁻¹ l_r
+  const BlockInverse* inverse_ = nullptr;  // this call's A (formDelassus may solve columns through it)
+  std::vector<std::vector<Eigen::Matrix3d>> inverse_band_;  // per body: A⁻¹ within its band (kInverseBand)
+  std::vector<BandBlocks> inverse_band_layout_;  // per body: its band's range and point groups
+  std::vector<int> problem_offset_;  // per body: its first point (kInverseBand)
+  VecX unit_;  // e_j (BandProductDelassus::equalityBlock; grows only)
+  BandDelassusProduct band_product_;  // W x through A's band (the contact Newton's and the deferred polish's)
+  VecX band_wl_;  // W λ by band_product_ (BandProductDelassus; grows only)
+  VecX saved_diagonal_;  // diagonal_ across a deferred formDelassus (grows only)
   MatX yt_;  // Yᵀ: the columns y_k = A⁻¹ l_k as rows (assembleGeneralByColumns; grows only)
   VecX diagonal_;
   std::vector<int> bucket_, bucket_start_, cursor_;  // columns to solve, grouped by body

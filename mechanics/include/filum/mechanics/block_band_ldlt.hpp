@@ -51,6 +51,10 @@ class BlockBandLdlt {
   /// bit for bit. Each block of the factors is read once per block row for all the columns, and
   /// the columns' dependent chains (row i waits for row i ∓ 1) overlap.
   void solveColumns(Eigen::Ref<MatX> x, int first = 0) const;
+  /// The blocks of A⁻¹ within the band (after factor()), laid out as blocks(): row I holding
+  /// (A⁻¹)_{I, I − r .. I} (the blocks above the diagonal are their transposes). O(n r²), by
+  /// Takahashi's equations; for W's entries between rows a band apart without a solve per row.
+  void inverseBand(std::vector<Eigen::Matrix3d>& z) const;
   /// The dense matrix L D Lᵀ of the factors (after factor(); for tests and diagnostics).
   MatX reconstruct() const;
 

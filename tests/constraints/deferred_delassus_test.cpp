@@ -1,0 +1,141 @@
+// The contact Newton with W left unformed (lagrange_multiplier_solver.hpp, step 2: its products
+// through A's band, its diagonal from A⁻¹'s blocks within the band by Takahashi's equations, W
+// formed only when a dense LU step asks for it) against the same solver with W formed and every
+// step by the dense LU ("newton_linear_solve": "dense"), on contact problems through a random
+// block band A (test::BandMatrix: a rod's points interleaved with its frames, neighbours within
+// two groups) with a fixed point (three equality rows) and contacts on two consecutive points.
+//
+// Tolerance. Both solve the same problem to a residual of 1e-12 (contact_tolerance) by Newton
+// steps that differ by round-off — W's products (L A⁻¹ Lᵀ x against W x), W's diagonal (from
+// A⁻¹'s band against W's own entries: the scale ρ and the compliance R = 1e-6 W_rr move by ε),
+// the step's system (through the band against a dense LU): backward stable each, so the
+// multipliers agree to ε cond(W + R) per step, Newton's contraction keeping the last step's; as in
+// structured_newton_step_test, 1e-8 relative holds that for cond(W + R) up to 1e-8/ε, asserted.
+#include <cstdio>
+#include <limits>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/SVD>
+
+#include "filum/constraints/lagrange_multiplier_solver.hpp"
+#include "support/band_matrix.hpp"
+
+namespace filum::constraints {
+namespace {
+
+struct ContactProblem {
+  ConstraintRows rows;
+  ConstraintProblem problem;
+};
+
+/// A fixed point at point 3 and `contacts` contacts on points (k, k + 1), their normal rows' β
+/// drawn so that about `pressing` of them push (β < 0 separates nothing: the row wants a force).
+ContactProblem contactProblem(int points, int contacts, double pressing, std::mt19937& rng) {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  ContactProblem out;
+  ConstraintRows& rows = out.rows;
+  rows.clear();
+  rows.beginAnchor();
+  rows.addAnchorPoint(3, 1.0);
+  for (int axis = 0; axis < 3; ++axis) rows.addAnchoredRow(Vec3::Unit(axis), 0.1 * normal(rng));
+  for (int k = 0; k < contacts; ++k) {
+    rows.beginAnchor();
+    const int first = 5 + static_cast<int>(rng() % (points - 7));
+    const double w = uniform(rng);
+    rows.addAnchorPoint(first, 1.0 - w);
+    rows.addAnchorPoint(first + 1, w);
+    Vec3 n(normal(rng), normal(rng), normal(rng));
+    n.normalize();
+    const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+    // β_n > 0: the row asks for a force (an approach to undo); < 0: it separates by itself.
+    const double beta_n = uniform(rng) < pressing ? std::abs(normal(rng)) : -std::abs(normal(rng));
+    rows.addContactRows(n, beta_n, 0.3, t1, normal(rng), t2, normal(rng));
+  }
+  out.problem.bodies.push_back(BodyBlock{0, points});
+  out.problem.dof_points = points;
+  out.problem.state_size = 3 * points;
+  out.problem.layout_revision = 0;
+  return out;
+}
+
+struct Solved {
+  VecX lambda;
+  LagrangeMultiplierSolver::Statistics stats;
+};
+
+Solved solve(const ContactProblem& p, const test::BandMatrix& a, bool deferred) {
+  LagrangeMultiplierSolver::Options options;
+  options.contact_tolerance = 1e-12;
+  options.newton_structured = deferred;  // false: W formed, every step by the dense LU
+  LagrangeMultiplierSolver solver(options);
+  VecX acceleration = VecX::Zero(p.problem.state_size);
+  solver.solve(p.problem, p.rows, a, acceleration);
+  return {solver.multipliers(), solver.statistics()};
+}
+
+/// cond(W + R) of the problem (R = 1e-6 W_rr on the contact rows, as the solver's default).
+double conditionNumber(const ContactProblem& p, const test::BandMatrix& a) {
+  MatX w = test::delassus(p.rows, a, p.problem);
+  for (int r = 0; r < p.rows.rows(); ++r)
+    if (p.rows.kind(r) != ConstraintRows::Kind::kEquality) w(r, r) *= 1.0 + 1e-6;
+  const Eigen::JacobiSVD<MatX> svd(w);
+  return svd.singularValues()(0) / svd.singularValues()(w.rows() - 1);
+}
+
+/// The problem solved both ways; both converge, and their multipliers agree (see the tolerance above).
+struct Comparison {
+  Solved deferred, formed;
+};
+Comparison solveBothWays(int trial, const ContactProblem& p, const test::BandMatrix& a) {
+  Comparison out{solve(p, a, true), solve(p, a, false)};
+  std::printf("  trial %d: %d rows, %d and %d Newton iterations (deferred, formed), %d of the first through the band\n",
+              trial, p.rows.rows(), out.deferred.stats.newton_iterations, out.formed.stats.newton_iterations,
+              out.deferred.stats.structured_steps);
+  EXPECT_TRUE(out.deferred.stats.converged) << trial;
+  EXPECT_TRUE(out.formed.stats.converged) << trial;
+  EXPECT_TRUE(out.deferred.stats.deferred) << trial;
+  EXPECT_FALSE(out.formed.stats.deferred) << trial;
+  const double cond = conditionNumber(p, a);
+  EXPECT_LE(cond, 1e-8 / std::numeric_limits<double>::epsilon()) << trial;
+  EXPECT_LE((out.deferred.lambda - out.formed.lambda).lpNorm<Eigen::Infinity>(),
+            1e-8 * out.formed.lambda.lpNorm<Eigen::Infinity>())
+      << trial;
+  return out;
+}
+
+TEST(DeferredDelassus, SolvesAsTheFormedWWithoutFormingIt) {
+  // 150 points (300 groups with the frames) and 80 contacts, 60 % of them pressing: W's c² =
+  // 5.9e4 is costlier than two products through the band (2 × 1.6e4), and with ~140 rows active
+  // every step goes through the band — W is never formed.
+  std::mt19937 rng(21);
+  for (int trial = 0; trial < 5; ++trial) {
+    const test::BandMatrix a({{150, 2, true}}, rng);
+    const ContactProblem p = contactProblem(150, 80, 0.6, rng);
+    const Solved deferred = solveBothWays(trial, p, a).deferred;
+    EXPECT_FALSE(deferred.stats.reassembled) << trial;     // W never formed
+    EXPECT_EQ(deferred.stats.solved_columns, 0) << trial;  // nor a column A⁻¹ l_r solved
+    EXPECT_EQ(deferred.stats.structured_steps, deferred.stats.newton_iterations) << trial;
+  }
+}
+
+TEST(DeferredDelassus, AFewActiveRowsFormWWhenTheDenseStepAsksForIt) {
+  // 10 % of 80 contacts pressing: the solved set stays below the band step's 64 rows, the dense
+  // LU asks for W's entries, and W is formed from columns A⁻¹ l_r then (A⁻¹'s band gave only the
+  // diagonal) — the same solution.
+  std::mt19937 rng(23);
+  for (int trial = 0; trial < 5; ++trial) {
+    const test::BandMatrix a({{150, 2, true}}, rng);
+    const ContactProblem p = contactProblem(150, 80, 0.1, rng);
+    const Solved deferred = solveBothWays(trial, p, a).deferred;
+    EXPECT_TRUE(deferred.stats.reassembled) << trial;
+    EXPECT_EQ(deferred.stats.solved_columns, p.rows.rows()) << trial;
+    EXPECT_LT(deferred.stats.structured_steps, deferred.stats.newton_iterations) << trial;
+  }
+}
+
+}  // namespace
+}  // namespace filum::constraints
