@@ -298,7 +298,10 @@ ContactNewton::Result ContactNewton::solve(const MatX& w, const Eigen::Ref<const
                                            const Settings& settings, double tolerance, Eigen::Ref<VecX> lambda,
                                            const Structure* structure) {
   FormedDelassus formed(w);
-  return solve(formed, w.diagonal().head(beta.size()), beta, compliance, rows, settings, tolerance, lambda, structure);
+  const Eigen::Index c = beta.size();
+  if (formed_diagonal_.size() < c) formed_diagonal_.resize(2 * c);  // grows only (W's diagonal is strided)
+  formed_diagonal_.head(c) = w.diagonal().head(c);
+  return solve(formed, formed_diagonal_.head(c), beta, compliance, rows, settings, tolerance, lambda, structure);
 }
 
 ContactNewton::Result ContactNewton::solve(DelassusEntries& w, const Eigen::Ref<const VecX>& w_diagonal,

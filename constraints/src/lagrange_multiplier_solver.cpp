@@ -755,13 +755,16 @@ struct LagrangeMultiplierSolver::BandProductDelassus {
 /// solve repeats bit for bit whether W was formed in it or kept from the last call.
 class LagrangeMultiplierSolver::DeferredDelassus final : public DelassusEntries {
  public:
-  /// `formed`: W is in w_ already (step 2 formed it, or kept it from the last call).
-  DeferredDelassus(LagrangeMultiplierSolver& solver, const ConstraintProblem& problem, const ConstraintRows& rows,
-                   bool formed)
-      : solver_(solver), problem_(problem), rows_(rows), formed_(formed) {}
+  DeferredDelassus(LagrangeMultiplierSolver& solver, const ConstraintProblem& problem, const ConstraintRows& rows)
+      : solver_(solver), problem_(problem), rows_(rows) {}
+  /// W, both triangles: formed now (lower triangle, as step 2 forms it) unless w_ holds it —
+  /// formed in step 2 or kept from the last call, whichever kind of call that was — and its
+  /// lower triangle mirrored into the upper one on the first ask.
   const MatX& matrix() override {
-    if (!formed_) solver_.formDelassus(problem_, rows_);
-    formed_ = true;
+    if (!asked_) {
+      solver_.formDelassus(problem_, rows_);
+      DenseDelassus{solver_}.begin();
+    }
     asked_ = true;
     return solver_.w_;
   }
@@ -771,7 +774,6 @@ class LagrangeMultiplierSolver::DeferredDelassus final : public DelassusEntries 
   LagrangeMultiplierSolver& solver_;
   const ConstraintProblem& problem_;
   const ConstraintRows& rows_;
-  bool formed_;
   bool asked_ = false;
 };
 
@@ -831,9 +833,13 @@ bool LagrangeMultiplierSolver::inverseBandCovers(const ConstraintProblem& proble
         const int gu = band.point_group[rows.point(u) - problem_offset_[body]];
         if (std::abs(gt - gu) > band.range) return false;
       }
-  for (int b = 0; b < bodies; ++b)
-    if (body_touched_[b] && !inverse.inverseBandBlocks(b, inverse_band_[b])) return false;
   return true;
+}
+
+void LagrangeMultiplierSolver::computeInverseBands(const ConstraintProblem& problem, const BlockInverse& inverse) {
+  // (inverseBandCovers found a band on every touched body: inverseBandBlocks has one too.)
+  for (std::size_t b = 0; b < problem.bodies.size(); ++b)
+    if (body_touched_[b]) inverse.inverseBandBlocks(static_cast<int>(b), inverse_band_[b]);
 }
 
 double LagrangeMultiplierSolver::diagonalEntry(const ConstraintProblem& problem, const ConstraintRows& rows, int r) const {
@@ -845,15 +851,42 @@ double LagrangeMultiplierSolver::diagonalEntry(const ConstraintProblem& problem,
   return generalEntry(problem, rows, r, r);
 }
 
+bool LagrangeMultiplierSolver::choosePointBlocks(const ConstraintProblem& problem, const ConstraintRows& rows,
+                                                 const BlockInverse& inverse) {
+  const int c = rows.rows();
+  const bool separable = inverse.sameOnEveryAxis() && !inverse.coupled();
+  if (separable || inverse.coupled() || stats_.sparse || !options_.point_blocks || c == 0) return false;
+  point_blocks_.keepIfUnchanged(inverse, problem);
+  const double missing = point_blocks_.listMissing(rows), m = point_blocks_.touched();
+  double solve = 0.0;  // S
+  body_touched_.assign(problem.bodies.size(), 0);
+  for (int r = 0; r < c; ++r)
+    for (int t = rows.begin(r); t < rows.end(r); ++t) body_touched_[point_body_[rows.point(t)]] = 1;
+  BandBlocks band;
+  for (std::size_t b = 0; b < problem.bodies.size(); ++b)
+    if (body_touched_[b])
+      solve += inverse.bandBlocks(static_cast<int>(b), band) ? bandSolveMultiplyAdds(band)
+                                                            : 63.0 * problem.bodies[b].pointCount();
+  const double by_columns = solve * c, through_points = 3.0 * m * solve + 36.0 * m * c + 9.0 * m * m;
+  if (!(through_points < by_columns) || !point_blocks_.addMissing(inverse, problem, point_body_)) return false;
+  stats_.point_columns = 3 * static_cast<int>(missing);  // (body_touched_: for scatterForces)
+  return true;
+}
+
 void LagrangeMultiplierSolver::formDelassus(const ConstraintProblem& problem, const ConstraintRows& rows) {
-  if (w_formed_) return;
+  if (!w_unformed_) return;
   const int c = rows.rows();
   if (w_.rows() < c) w_.resize(c, c);  // grows only (entries r, k < c are used)
   // Kept aside: the assembly writes diagonal_ again, with the same values but perhaps another sum
   // order than diagonalEntry's, and the solve's ρ and compliance were set from the first.
   if (saved_diagonal_.size() < c) saved_diagonal_.resize(2 * c);  // grows only
   saved_diagonal_.head(c) = diagonal_.head(c);
-  if (source_ == DelassusSource::kPointBlocks) {
+  // W's diagonal came from A⁻¹'s band: W itself from the point blocks or the columns, chosen as
+  // step 1 would have (the point blocks kept while A is: the capstan's step matrix serves ~20 steps).
+  if (source_ == DelassusSource::kInverseBand && choosePointBlocks(problem, rows, *inverse_)) {
+    stats_.point_blocks = true;
+    assembleFromPointBlocks(rows);
+  } else if (source_ == DelassusSource::kPointBlocks) {
     assembleFromPointBlocks(rows);
   } else {
     if (!columns_ready_) prepareColumns(problem, rows, *inverse_, false);  // (kInverseBand: none yet)
@@ -861,8 +894,7 @@ void LagrangeMultiplierSolver::formDelassus(const ConstraintProblem& problem, co
     assembleGeneral(problem, rows);
   }
   diagonal_.head(c) = saved_diagonal_.head(c);
-  DenseDelassus{*this}.begin();  // (both triangles)
-  w_formed_ = true;
+  w_unformed_ = false;
   stats_.reassembled = true;
   last_nonzeros_ = stats_.nonzeros;
 }
@@ -1002,12 +1034,11 @@ void LagrangeMultiplierSolver::solveWithNewton(const ConstraintProblem& problem,
   setCompliance(rows);
   DenseDelassus dense{*this};
   BandProductDelassus band{*this, problem, rows};
-  DeferredDelassus w(*this, problem, rows, !deferred || w_formed_);
+  DeferredDelassus w(*this, problem, rows);
   if (deferred) {
     factorEqualityBlock(rows, band);
   } else {
-    w.matrix();  // (formed in step 2: mirrored here)
-    dense.begin();
+    w.matrix();  // (formed in step 2)
     factorEqualityBlock(rows, dense);
   }
   ContactNewton::Settings settings;
@@ -1214,24 +1245,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
                         band_product_.prepare(rows, inverse, problem, point_body_) && band_product_.cheaperThanDense();
   stats_.deferred = deferred;
   const bool by_band = deferred && inverseBandCovers(problem, rows, inverse);
-  bool by_points = false;
-  if (!by_band && newton && !separable && !inverse.coupled() && !general_kept && !stats_.sparse &&
-      options_.point_blocks && c > 0) {
-    point_blocks_.keepIfUnchanged(inverse, problem);
-    const double missing = point_blocks_.listMissing(rows), m = point_blocks_.touched();
-    double solve = 0.0;  // S
-    body_touched_.assign(problem.bodies.size(), 0);
-    for (int r = 0; r < c; ++r)
-      for (int t = rows.begin(r); t < rows.end(r); ++t) body_touched_[point_body_[rows.point(t)]] = 1;
-    BandBlocks band;
-    for (std::size_t b = 0; b < problem.bodies.size(); ++b)
-      if (body_touched_[b])
-        solve += inverse.bandBlocks(static_cast<int>(b), band) ? bandSolveMultiplyAdds(band)
-                                                              : 63.0 * problem.bodies[b].pointCount();
-    const double by_columns = solve * c, through_points = 3.0 * m * solve + 36.0 * m * c + 9.0 * m * m;
-    by_points = through_points < by_columns && point_blocks_.addMissing(inverse, problem, point_body_);
-    if (by_points) stats_.point_columns = 3 * static_cast<int>(missing);  // (body_touched_: for scatterForces)
-  }
+  const bool by_points = !by_band && newton && !general_kept && choosePointBlocks(problem, rows, inverse);
   stats_.point_blocks = by_points;
   source_ = by_band ? DelassusSource::kInverseBand : by_points ? DelassusSource::kPointBlocks : DelassusSource::kColumns;
   inverse_ = &inverse;
@@ -1247,7 +1261,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   bool unchanged = separable && have_factorization_ && stats_.reused_columns == stats_.columns &&
                    stats_.sparse == last_sparse_ && c + 1 == static_cast<int>(last_factor_start_.size());
   for (int i = 0; unchanged && i < stats_.columns; ++i) unchanged = current_[i].from == i;
-  unchanged = unchanged || (general_kept && w_formed_);
+  unchanged = unchanged || (general_kept && !w_unformed_);
   for (int r = 0; unchanged && r <= c; ++r) unchanged = last_factor_start_[r] == (r < c ? rows.factorBegin(r) : rows.factorEnd(c - 1));
   const int factors = c > 0 ? rows.factorEnd(c - 1) : 0;
   for (int f = 0; unchanged && f < factors; ++f)
@@ -1259,10 +1273,10 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
                                                                            : options_.contact_form == ContactForm::kFactored);
   if (factored_form) {
     for (int r = 0; r < c; ++r) diagonal_[r] = generalEntry(problem, rows, r, r);
-    w_formed_ = false;
   } else if (deferred && !unchanged) {
+    if (by_band) computeInverseBands(problem, inverse);
     for (int r = 0; r < c; ++r) diagonal_[r] = diagonalEntry(problem, rows, r);
-    w_formed_ = false;
+    w_unformed_ = true;
   } else if (!unchanged) {
     if (stats_.sparse) {
       sparse_->triplets.clear();
@@ -1278,7 +1292,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
     }
     stats_.reassembled = true;
     last_nonzeros_ = stats_.nonzeros;
-    w_formed_ = !stats_.sparse && !separable;  // (the general dense path's W: what formDelassus would form)
+    w_unformed_ = false;
   } else {
     stats_.nonzeros = last_nonzeros_;
   }

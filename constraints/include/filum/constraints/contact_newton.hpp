@@ -167,6 +167,7 @@ class ContactNewton {
   bool structured_ = true;
   BandDelassusProduct* product_ = nullptr;  // W x as L A⁻¹ Lᵀ x in this solve (chooseProduct; null: W's)
   BandDelassusProduct own_product_;         // prepared here when the Structure brings none
+  VecX formed_diagonal_;                    // W's diagonal, contiguous (solve with W formed)
   AugmentedNewtonSystem augmented_;
   double max_abs_residual_ = 0.0;
   double force_scale_ = 0.0;  // max_r |λ_r|/ρ_r of the last evaluation (m/s²)

@@ -227,11 +227,15 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   double pointBlockEntry(const ConstraintRows& rows, int r, int k) const;
   /// W_rr = Σ_{t, t' ∈ r} c_tᵀ (A⁻¹)(p_t, p_t') c_t' from the inverse bands (inverseBandCovers).
   double inverseBandDiagonal(const ConstraintRows& rows, int r) const;
-  /// Whether every row's points lie within a band of each other on each body, and if so A⁻¹'s
-  /// blocks within the band of every body the rows touch (inverse_band_).
+  /// Whether every body the rows touch has a band and every row's points lie within a band of
+  /// each other on each body (body_touched_, inverse_band_layout_ and problem_offset_ set).
   bool inverseBandCovers(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse);
-  /// W formed (lower triangle, as step 2 forms it) and mirrored into the upper one, unless w_
-  /// holds it already (w_formed_).
+  /// A⁻¹'s blocks within the band of every touched body (inverse_band_), after inverseBandCovers.
+  void computeInverseBands(const ConstraintProblem& problem, const BlockInverse& inverse);
+  /// Whether W comes from A⁻¹'s blocks between the rows' points (point_blocks_, brought up to
+  /// date then) rather than a column per row: by their multiply-adds with nothing held (solve()).
+  bool choosePointBlocks(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse);
+  /// W formed (lower triangle, as step 2 forms it) unless w_ holds it already (!w_unformed_).
   void formDelassus(const ConstraintProblem& problem, const ConstraintRows& rows);
   /// The equality rows solved exactly for the current contact forces (after an iterative solve).
   template <class Delassus>
@@ -293,7 +297,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
 
   MatX g_;  // G_ab = w_aᵀ M⁻¹ w_b for anchors a, b (mass operator)
   MatX w_;  // W (dense path: the lower triangle, mirrored into the upper one for contact sweeps)
-  bool w_formed_ = false;  // w_ holds W of the current (last) call's rows (false: deferred and never asked for)
+  bool w_unformed_ = false;  // a deferred call left W unformed: w_ does not hold its rows' W
   DelassusSource source_ = DelassusSource::kColumns;  // of this call's W
   bool columns_ready_ = false;  // current_ holds this call's columns A⁻¹ l_r
   const BlockInverse* inverse_ = nullptr;  // this call's A (formDelassus may solve columns through it)
