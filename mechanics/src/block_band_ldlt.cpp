@@ -5,7 +5,6 @@
 
 #include "filum/core/growing_vector.hpp"
 
-
 namespace filum::mechanics {
 
 void BlockBandLdlt::resize(int points, int range) {
