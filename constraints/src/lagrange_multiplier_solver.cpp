@@ -755,14 +755,15 @@ struct LagrangeMultiplierSolver::BandProductDelassus {
 /// solve repeats bit for bit whether W was formed in it or kept from the last call.
 class LagrangeMultiplierSolver::DeferredDelassus final : public DelassusEntries {
  public:
-  DeferredDelassus(LagrangeMultiplierSolver& solver, const ConstraintProblem& problem, const ConstraintRows& rows)
-      : solver_(solver), problem_(problem), rows_(rows) {}
+  DeferredDelassus(LagrangeMultiplierSolver& solver, const ConstraintProblem& problem, const ConstraintRows& rows,
+                   const BlockInverse& inverse)
+      : solver_(solver), problem_(problem), rows_(rows), inverse_(inverse) {}
   /// W, both triangles: formed now (lower triangle, as step 2 forms it) unless w_ holds it —
   /// formed in step 2 or kept from the last call, whichever kind of call that was — and its
   /// lower triangle mirrored into the upper one on the first ask.
   const MatX& matrix() override {
     if (!asked_) {
-      solver_.formDelassus(problem_, rows_);
+      solver_.formDelassus(problem_, rows_, inverse_);
       DenseDelassus{solver_}.begin();
     }
     asked_ = true;
@@ -774,6 +775,7 @@ class LagrangeMultiplierSolver::DeferredDelassus final : public DelassusEntries 
   LagrangeMultiplierSolver& solver_;
   const ConstraintProblem& problem_;
   const ConstraintRows& rows_;
+  const BlockInverse& inverse_;
   bool asked_ = false;
 };
 
@@ -873,7 +875,8 @@ bool LagrangeMultiplierSolver::choosePointBlocks(const ConstraintProblem& proble
   return true;
 }
 
-void LagrangeMultiplierSolver::formDelassus(const ConstraintProblem& problem, const ConstraintRows& rows) {
+void LagrangeMultiplierSolver::formDelassus(const ConstraintProblem& problem, const ConstraintRows& rows,
+                                            const BlockInverse& inverse) {
   if (!w_unformed_) return;
   const int c = rows.rows();
   if (w_.rows() < c) w_.resize(c, c);  // grows only (entries r, k < c are used)
@@ -883,13 +886,13 @@ void LagrangeMultiplierSolver::formDelassus(const ConstraintProblem& problem, co
   saved_diagonal_.head(c) = diagonal_.head(c);
   // W's diagonal came from A⁻¹'s band: W itself from the point blocks or the columns, chosen as
   // step 1 would have (the point blocks kept while A is: the capstan's step matrix serves ~20 steps).
-  if (source_ == DelassusSource::kInverseBand && choosePointBlocks(problem, rows, *inverse_)) {
+  if (source_ == DelassusSource::kInverseBand && choosePointBlocks(problem, rows, inverse)) {
     stats_.point_blocks = true;
     assembleFromPointBlocks(rows);
   } else if (source_ == DelassusSource::kPointBlocks) {
     assembleFromPointBlocks(rows);
   } else {
-    if (!columns_ready_) prepareColumns(problem, rows, *inverse_, false);  // (kInverseBand: none yet)
+    if (!columns_ready_) prepareColumns(problem, rows, inverse, false);  // (kInverseBand: none yet)
     columns_ready_ = true;
     assembleGeneral(problem, rows);
   }
@@ -1034,7 +1037,7 @@ void LagrangeMultiplierSolver::solveWithNewton(const ConstraintProblem& problem,
   setCompliance(rows);
   DenseDelassus dense{*this};
   BandProductDelassus band{*this, problem, rows};
-  DeferredDelassus w(*this, problem, rows);
+  DeferredDelassus w(*this, problem, rows, inverse);
   if (deferred) {
     factorEqualityBlock(rows, band);
   } else {
@@ -1248,7 +1251,6 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   const bool by_points = !by_band && newton && !general_kept && choosePointBlocks(problem, rows, inverse);
   stats_.point_blocks = by_points;
   source_ = by_band ? DelassusSource::kInverseBand : by_points ? DelassusSource::kPointBlocks : DelassusSource::kColumns;
-  inverse_ = &inverse;
   if (general_kept)
     stats_.reused_columns = c;
   else if (source_ == DelassusSource::kColumns)

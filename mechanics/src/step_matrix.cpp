@@ -479,10 +479,9 @@ std::string StepMatrix::method() const {
 }
 
 bool StepMatrix::inverseBandBlocks(int body, std::vector<Eigen::Matrix3d>& out) const {
-  if (coupled_ || body < 0 || body >= static_cast<int>(body_block_.size())) return false;
-  const Block& block = blocks_[body_block_[body]];
-  if (!block.band || block.rank > 0 || block.band_matrix.points() != block.points) return false;  // (as bandBlocks)
-  block.band_factor.inverseBand(out);
+  BandBlocks band;
+  if (!bandBlocks(body, band)) return false;  // (held as a band: the same conditions)
+  blocks_[body_block_[body]].band_factor.inverseBand(out);
   return true;
 }
 

@@ -236,7 +236,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// date then) rather than a column per row: by their multiply-adds with nothing held (solve()).
   bool choosePointBlocks(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse);
   /// W formed (lower triangle, as step 2 forms it) unless w_ holds it already (!w_unformed_).
-  void formDelassus(const ConstraintProblem& problem, const ConstraintRows& rows);
+  void formDelassus(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse);
   /// The equality rows solved exactly for the current contact forces (after an iterative solve).
   template <class Delassus>
   void polishEqualities(const ConstraintRows& rows, Delassus& w);
@@ -300,7 +300,6 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   bool w_unformed_ = false;  // a deferred call left W unformed: w_ does not hold its rows' W
   DelassusSource source_ = DelassusSource::kColumns;  // of this call's W
   bool columns_ready_ = false;  // current_ holds this call's columns A⁻¹ l_r
-  const BlockInverse* inverse_ = nullptr;  // this call's A (formDelassus may solve columns through it)
   std::vector<std::vector<Eigen::Matrix3d>> inverse_band_;  // per body: A⁻¹ within its band (kInverseBand)
   std::vector<BandBlocks> inverse_band_layout_;  // per body: its band's range and point groups
   std::vector<int> problem_offset_;  // per body: its first point (kInverseBand)
