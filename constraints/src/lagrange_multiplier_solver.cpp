@@ -545,6 +545,64 @@ void LagrangeMultiplierSolver::assembleGeneral(const ConstraintProblem& problem,
     }
 }
 
+bool LagrangeMultiplierSolver::buildEqualitySystem(const ConstraintRows& rows, const std::vector<int>& solved,
+                                                   const ConstraintProblem& problem, const BlockInverse& inverse,
+                                                   double dense_cost) {
+  // [A −L_Bᵀ; L_B 0] [u; λ_B] = [0; β_B]: eliminating u gives L_B A⁻¹ L_Bᵀ λ_B = W_BB λ_B = β_B,
+  // so each row's form is J_r = W_r, with no shift (the rows are exact; a row dependent on earlier
+  // ones gives a zero pivot, refused, and the caller forms W as before). Taken when the envelope
+  // LU costs fewer multiply-adds than the band solve per row that forming W_BB takes (c S) plus
+  // `dense_cost`.
+  // Only for more rows than sparse_above: below, W (or W_BB) is small and factored densely, with
+  // pivoting, which stays accurate where A is not definite (a compressed thread: catenary.json's
+  // supports held to 1e-12 m that way, to 3e-10 m through this elimination without pivoting);
+  // above, W would go to the sparse factorization, and a rod held along a channel at 240 rows
+  // kept its points 1e-8 m off the axis that way against 1e-11 m through the band.
+  const int c = rows.rows();
+  const int nb = static_cast<int>(solved.size());
+  if (nb <= options_.sparse_above || inverse.coupled() || !options_.newton_structured) return false;
+  double solve = 0.0;  // S over the rows' bodies (not body_touched_: scatterForces reads that one)
+  equality_bodies_.assign(problem.bodies.size(), 0);
+  for (const int r : solved)
+    for (int t = rows.begin(r); t < rows.end(r); ++t) equality_bodies_[point_body_[rows.point(t)]] = 1;
+  BandBlocks band;
+  for (std::size_t b = 0; b < problem.bodies.size(); ++b)
+    if (equality_bodies_[b]) {
+      if (!inverse.bandBlocks(static_cast<int>(b), band)) return false;
+      solve += bandSolveMultiplyAdds(band);
+    }
+  band_position_.assign(c, -1);
+  equality_forms_.resize(c);
+  for (int i = 0; i < nb; ++i) {
+    const int r = solved[i];
+    band_position_[r] = i;
+    equality_forms_[r] = NewtonRowForm();
+    equality_forms_[r].addW(r, 1.0);
+  }
+  return equality_system_.build(rows, solved, band_position_, equality_forms_, 0.0, inverse, problem, point_body_) &&
+         equality_system_.cost() < solve * nb + dense_cost && equality_system_.factor();
+}
+
+bool LagrangeMultiplierSolver::equalityBlockThroughBand(const ConstraintRows& rows, const ConstraintProblem& problem,
+                                                        const BlockInverse& inverse) {
+  const double nb = static_cast<double>(equality_rows_.size());
+  return buildEqualitySystem(rows, equality_rows_, problem, inverse, nb * nb * nb / 6.0);  // + W_BB's LDLᵀ
+}
+
+bool LagrangeMultiplierSolver::solveEqualitiesThroughBand(const ConstraintProblem& problem, const ConstraintRows& rows,
+                                                          const BlockInverse& inverse, const VecX& a) {
+  // Against the columns' path's first stage alone (c S): W's factorization would come on top.
+  const int c = rows.rows();
+  band_rows_.resize(c);
+  for (int r = 0; r < c; ++r) band_rows_[r] = r;
+  if (!buildEqualitySystem(rows, band_rows_, problem, inverse, 0.0)) return false;
+  for (int r = 0; r < c; ++r) lambda_[r] = rows.rhs(r) - rows.dot(r, a);
+  equality_system_.solve(lambda_.head(c));
+  body_touched_ = equality_bodies_;  // every row is one of them: the bodies scatterForces solves on
+  stats_.equality_band = true;
+  return lambda_.head(c).allFinite();
+}
+
 void LagrangeMultiplierSolver::factorAndSolve() {
   const int c = c_;
   if (!stats_.sparse) {
@@ -1039,7 +1097,7 @@ void LagrangeMultiplierSolver::solveWithNewton(const ConstraintProblem& problem,
   BandProductDelassus band{*this, problem, rows};
   DeferredDelassus w(*this, problem, rows, inverse);
   if (deferred) {
-    factorEqualityBlock(rows, band);
+    factorEqualityBlock(rows, band, &problem, &inverse);
   } else {
     w.matrix();  // (formed in step 2)
     factorEqualityBlock(rows, dense);
@@ -1077,16 +1135,25 @@ void LagrangeMultiplierSolver::solveWithNewton(const ConstraintProblem& problem,
 }
 
 template <class Delassus>
-void LagrangeMultiplierSolver::factorEqualityBlock(const ConstraintRows& rows, Delassus& w) {
-  // W_BB of the equality rows, factored once per solve (Gauss–Seidel's sweeps and the polish).
+void LagrangeMultiplierSolver::factorEqualityBlock(const ConstraintRows& rows, Delassus& w, const ConstraintProblem* problem,
+                                                   const BlockInverse* inverse) {
+  // W_BB of the equality rows, factored once per solve (Gauss–Seidel's sweeps and the polish) —
+  // or, given the problem and an operator with a band, the augmented system of the equality rows
+  // alone when its envelope LU is cheaper (solveEqualitiesThroughBand's, on the rows B).
   equality_rows_.clear();
   for (int r = 0; r < rows.rows(); ++r)
     if (rows.kind(r) == ConstraintRows::Kind::kEquality) equality_rows_.push_back(r);
   const int nb = static_cast<int>(equality_rows_.size());
+  equality_by_band_ = false;
   if (nb == 0) return;
+  residual_bb_.resize(nb);
+  if (problem && inverse && equalityBlockThroughBand(rows, *problem, *inverse)) {
+    equality_by_band_ = true;
+    stats_.equality_block_band = true;
+    return;
+  }
   w.equalityBlock(rows, w_bb_);
   ldlt_bb_.compute(w_bb_);
-  residual_bb_.resize(nb);
 }
 
 template <class Delassus>
@@ -1095,7 +1162,12 @@ double LagrangeMultiplierSolver::equalityStep(Delassus& w) {
   const int nb = static_cast<int>(equality_rows_.size());
   if (nb == 0) return 0.0;
   for (int i = 0; i < nb; ++i) residual_bb_[i] = rhs_[equality_rows_[i]] - w.product(equality_rows_[i]);
-  delta_bb_ = ldlt_bb_.solve(residual_bb_);
+  if (equality_by_band_) {
+    delta_bb_ = residual_bb_;
+    equality_system_.solve(delta_bb_);
+  } else {
+    delta_bb_ = ldlt_bb_.solve(residual_bb_);
+  }
   double change = 0.0;
   for (int i = 0; i < nb; ++i) {
     const int r = equality_rows_[i];
@@ -1210,6 +1282,19 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
     rhs_.resize(2 * c);
     diagonal_.resize(2 * c);
     lambda_.conservativeResize(2 * c);
+  }
+
+  // Equality rows alone through a band (a rod held along a channel: hundreds of rows, each on a
+  // point or two): the augmented system's envelope LU, W neither formed nor factored.
+  if (stats_.inequalities == 0 && !separable && solveEqualitiesThroughBand(problem, rows, inverse, a)) {
+    scatterForces(problem, rows, inverse, a);
+    have_general_ = false;
+    columns_ready_ = false;
+    factored_last_call_ = false;
+    have_factorization_ = false;
+    last_factor_start_.clear();
+    previous_index_.clear();
+    return;
   }
 
   // 1. Columns of M⁻¹ Lᵀ (per anchor or per row), kept or solved. Through an operator that mixes

@@ -82,6 +82,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "filum/constraints/augmented_newton_system.hpp"
 #include "filum/constraints/band_delassus_product.hpp"
 #include "filum/constraints/contact_newton.hpp"
 #include "filum/constraints/point_inverse_blocks.hpp"
@@ -141,6 +142,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     int structured_steps = 0;  // Newton steps solved through A's band (the others by a dense LU)
     bool point_blocks = false;  // W formed from A⁻¹'s blocks between touched points (not from per-row columns)
     int point_columns = 0;      // columns A⁻¹ E_p solved for points newly touched (3 per point)
+    bool equality_band = false;  // equality rows only, solved through A's band (W never formed)
+    bool equality_block_band = false;  // with contacts: W_BB⁻¹ (the equality rows' steps) through A's band
   };
 
   LagrangeMultiplierSolver();
@@ -202,6 +205,12 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// a += A⁻¹ Lᵀ λ by scattering Lᵀ λ and one solve per touched body.
   void scatterForces(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse, VecX& a);
   void factorAndSolve();
+  /// Equality rows only, through an operator with a band (an implicit step's matrix): λ from the
+  /// augmented system [A −Lᵀ; L 0] [u; λ] = [0; E − L a_t] by its envelope LU
+  /// (augmented_newton_system.hpp, every row's form W_r), when that costs fewer multiply-adds than
+  /// the column per row W would be formed from. False (nothing done) otherwise.
+  bool solveEqualitiesThroughBand(const ConstraintProblem& problem, const ConstraintRows& rows,
+                                  const BlockInverse& inverse, const VecX& a);
   /// W as full symmetric rows (adjacency_), from the dense or sparse lower triangle.
   void buildAdjacency(int c);
   /// (W λ)_r.
@@ -242,7 +251,16 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   void polishEqualities(const ConstraintRows& rows, Delassus& w);
   /// The equality rows and their block W_BB, factored (once per solve).
   template <class Delassus>
-  void factorEqualityBlock(const ConstraintRows& rows, Delassus& w);
+  void factorEqualityBlock(const ConstraintRows& rows, Delassus& w, const ConstraintProblem* problem = nullptr,
+                           const BlockInverse* inverse = nullptr);
+  /// The augmented system of the rows `solved` (each form W_r) laid out and factored in
+  /// equality_system_, when its envelope LU is cheaper than a band solve per row and `dense_cost`;
+  /// false (nothing kept) otherwise.
+  bool buildEqualitySystem(const ConstraintRows& rows, const std::vector<int>& solved, const ConstraintProblem& problem,
+                           const BlockInverse& inverse, double dense_cost);
+  /// W_BB's factorization replaced by the augmented system of the equality rows (equality_rows_).
+  bool equalityBlockThroughBand(const ConstraintRows& rows, const ConstraintProblem& problem,
+                                const BlockInverse& inverse);
   /// λ_B += W_BB⁻¹ (β − Wλ)_B; returns the largest change of a row's acceleration (m/s²).
   template <class Delassus>
   double equalityStep(Delassus& w);
@@ -305,6 +323,12 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   std::vector<int> problem_offset_;  // per body: its first point (kInverseBand)
   VecX unit_;  // e_j (BandProductDelassus::equalityBlock; grows only)
   BandDelassusProduct band_product_;  // W x through A's band (the contact Newton's and the deferred polish's)
+  AugmentedNewtonSystem equality_system_;  // solveEqualitiesThroughBand's
+  std::vector<int> band_rows_;             // 0 … c − 1: every row solved, in its own place (solveEqualitiesThroughBand)
+  std::vector<NewtonRowForm> equality_forms_;  // J_r = W_r
+  std::vector<int> band_position_;         // row → its place in the rows solved by equality_system_, or −1
+  bool equality_by_band_ = false;          // this solve's W_BB⁻¹ through equality_system_ (not ldlt_bb_)
+  std::vector<char> equality_bodies_;      // per body: whether the rows equality_system_ solves act on it
   VecX band_wl_;  // W λ by band_product_ (BandProductDelassus; grows only)
   VecX saved_diagonal_;  // diagonal_ across a deferred formDelassus (grows only)
   MatX yt_;  // Yᵀ: the columns y_k = A⁻¹ l_k as rows (assembleGeneralByColumns; grows only)
