@@ -1,5 +1,6 @@
 #include "filum/constraints/register_components.hpp"
 
+#include "filum/constraints/channel_constraint.hpp"
 #include "filum/constraints/clamp_constraint.hpp"
 #include "filum/constraints/fixed_point_constraint.hpp"
 #include "filum/constraints/lagrange_multiplier_solver.hpp"
@@ -20,6 +21,10 @@ void register_components(Factory& factory) {
               [](const Params& p) { return PointOnPlaneConstraint::fromParams(p); });
   factory.add("ClampConstraint", "holds the curve point and its tangent direction: a clamp, a cantilever (5 rows)",
               [](const Params& p) { return ClampConstraint::fromParams(p); });
+  factory.add("ChannelConstraint",
+              "keeps the body on a fixed channel's centre line while it is inside (a coil in a microcatheter; "
+              "2 rows per point inside)",
+              [](const Params& p) { return ChannelConstraint::fromParams(p); });
   factory.add("SlidingPointConstraint",
               "the thread passes through a point and slides through it, s(t) free (2 rows + 1 DOF, suture)",
               [](const Params& p) { return SlidingPointConstraint::fromParams(p); });
