@@ -13,11 +13,11 @@ ending on the neck's axis (x = 0) pointing into the dome. Ending at x = 0 fixes 
     8 cos psi_1 - RB (1 - cos psi_1) = 0,   cos psi_1 = RB / (8 + RB).
 Below the inlet it goes straight on, long enough to hold the whole coil at the start.
 
-The coil starts straight in the channel, its distal end at the tip, with the helix's rest
-curvature and twist (not its shape): a helix of radius R and pitch p has curvature R / (R^2 + c^2)
-and torsion c / (R^2 + c^2), c = p / 2 pi. The delivery wire holds the coil's proximal end
-(FixedPointConstraint on a path) and pushes it at PUSH_SPEED up the channel until that end is at the
-tip; it then holds it there until the coil is detached (released) at DETACH.
+The coil starts straight in the channel, its distal end START_BEHIND inside the tip, with the
+helix's rest curvature and twist (not its shape): a helix of radius R and pitch p has curvature
+R / (R^2 + c^2) and torsion c / (R^2 + c^2), c = p / 2 pi. The delivery wire holds the coil's
+proximal end (FixedPointConstraint on a path) and pushes it at PUSH_SPEED up the channel until
+that end is DETACH_BEHIND from the tip, where the coil is detached (released); the run goes on 1 s.
 Run from anywhere: python3 apps/tools/make_coil_delivery_scene.py
 """
 import json
@@ -42,7 +42,11 @@ INLET_Z = -10e-3                # m: the parent's inlet (the vessel data)
 STEP = 2.5e-4                   # m: the channel's polyline spacing (a 2 mm bend turns 7 degrees per segment)
 CATHETER_RADIUS = 0.3e-3        # m: 1.7 F
 PUSH_SPEED = 0.02               # m/s
-DETACH_AFTER = 0.5              # s after the proximal end reached the tip
+# Detached with its proximal end three node spacings behind the tip, as soon as it is there: the
+# channel holds a node only while it is a spacing or more behind the tip, so pushed on, the coil
+# was held in the end by the delivery wire's point alone, pivoted about it, and the run diverged
+# (at 3.03 s, with its end 0.46 mm behind the tip). Once detached its tail is free to slide out.
+DETACH_BEHIND = 3 * coil.LENGTH / (NODES - 1)  # m: 0.75 mm
 # The channel's rows hold each node to the centre line at the acceleration level without the
 # centripetal v^2 / R of a node sliding round a bend, which the stabilization balances at an offset
 # v^2 / (R omega^2); at the contact rows' rate 0.5/dt that is 0.8 um in the tip's bend (20 um at the
@@ -104,14 +108,15 @@ def scene():
     c = coil.PITCH / (2 * math.pi)
     kappa = coil.HELIX_R / (coil.HELIX_R**2 + c**2)
     tau = c / (coil.HELIX_R**2 + c**2)
-    # The pusher: the proximal end from where it starts, along the channel, to the tip, at PUSH_SPEED.
-    push_time = (coil.LENGTH + START_BEHIND) / PUSH_SPEED
-    pusher = []
-    for k in range(0, 41):
-        t = push_time * k / 40
-        pusher.append({"time": round(t, 6),
-                       "position": [round(v, 9) for v in point_at(path, s_table, start + PUSH_SPEED * t)]})
-    detach = round(push_time + DETACH_AFTER, 6)
+    # The pusher: the proximal end from where it starts, along the channel, to the tip, at PUSH_SPEED,
+    # with a key at every vertex of the centre line it passes (keys farther apart would cut across
+    # the tip's bend, by 0.14 mm at 1.5 mm apart, and kink the coil against its first point held).
+    push_time = (coil.LENGTH + START_BEHIND - DETACH_BEHIND) / PUSH_SPEED
+    end = total - DETACH_BEHIND
+    arcs = [start] + [a for a in s_table if start < a < end] + [end]
+    pusher = [{"time": round((a - start) / PUSH_SPEED, 6),
+               "position": [round(v, 9) for v in point_at(path, s_table, a)]} for a in arcs]
+    detach = round(push_time, 6)
     tube = {"units": "m", "blend": 1.0,
             "branches": [{"name": "microcatheter", "open": ["start", "end"],
                           "points": [p + [CATHETER_RADIUS] for p in path[::4] + ([path[-1]] if (len(path) - 1) % 4 else [])]}]}
@@ -120,7 +125,7 @@ def scene():
     data = coil.scene()
     data.update({
         "name": "coil pushed out of a microcatheter into a cerebral aneurysm",
-        "duration": round(detach + 0.5, 6),
+        "duration": round(detach + 1.0, 6),
         "output": {"interval": 0.05, "curve_samples": 400},
         "camera": {"position": [0.006, -0.03, 0.02], "look_at": [0.0, 0.0, 0.011], "up": [0, 0, 1],
                    "fov": 40, "size": [720, 720], "background": [1, 1, 1]},
@@ -146,8 +151,8 @@ HEADER = """// A detachable platinum coil pushed out of a microcatheter into a c
 // apps/tools/make_coil_delivery_scene.py, which derives the numbers (the coil's material: coil.json).
 // The microcatheter is a channel the coil's centre line follows while inside (ChannelConstraint):
 // up the parent artery, round its C-bend, and through a steam-shaped tip into the neck. The
-// delivery wire (a FixedPointConstraint on a path) pushes the coil's proximal end at %.0f mm/s to the
-// tip, holds it there, and the coil is detached at t = %.2f s.
+// delivery wire (a FixedPointConstraint on a path) pushes the coil's proximal end at %.0f mm/s to
+// 0.75 mm behind the tip, where the coil is detached, at t = %.2f s.
 """
 
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "filum/constraints/curve_lookup.hpp"
 #include "filum/constraints/projected_point_constraint.hpp"
@@ -17,6 +18,7 @@ constexpr int kMaxSamples = 100000;  // rows for 2 × this many points: far beyo
 
 ChannelConstraint::ChannelConstraint(Points path, int samples, double capture, Baumgarte stabilization)
     : path_(std::move(path)), requested_samples_(samples), capture_(capture), baumgarte_(stabilization) {
+  if (path_.rows() < 2) throw std::invalid_argument("ChannelConstraint: a centre line of at least 2 points");
   arc_.assign(static_cast<std::size_t>(path_.rows()), 0.0);
   for (Eigen::Index i = 1; i < path_.rows(); ++i)
     arc_[i] = arc_[i - 1] + (path_.row(i) - path_.row(i - 1)).norm();
@@ -37,6 +39,12 @@ std::unique_ptr<ChannelConstraint> ChannelConstraint::fromParams(const Params& p
 
 void ChannelConstraint::init(const Scene& scene) {
   const CurveBody& curve = requireCurve(body(), *this);
+  // More points than the body has spans would give rows that depend on each other (a chain's two
+  // transverse DOFs per node): a singular system.
+  if (requested_samples_ > std::max(1, curve.pointCount() - 1))
+    throw SceneError(origin() + "/samples", "at most the body's point count − 1 (" +
+                                                std::to_string(std::max(1, curve.pointCount() - 1)) + ") for " + describe(),
+                     std::to_string(requested_samples_));
   const int n = requested_samples_ > 0 ? requested_samples_ : std::max(1, curve.pointCount() - 1);
   samples_.assign(static_cast<std::size_t>(n), BodyPoint());
   for (int k = 1; k <= n; ++k) samples_[k - 1].attach(curve, static_cast<double>(k) / n);
@@ -75,7 +83,8 @@ int ChannelConstraint::forEachInside(const SceneState& s, Visit&& visit) const {
   Vec3 previous = Vec3::Zero();
   for (std::size_t k = 0; k < samples_.size(); ++k) {
     const Vec3 x = samples_[k].map(s.q);
-    const double d = k == 0 ? 0.0 : (x - previous).norm();
+    // d_k: the distance from the point before (for s_1, from the body's start s = 0).
+    const double d = (x - (k == 0 ? samples_[0].body()->position(s.q, 0.0) : previous)).norm();
     const Projection p = k == 0 ? project(x, 0.0, tip) : project(x, previous_arc - d, previous_arc + 2.0 * d);
     if (p.arc >= tip - d || (x - p.point).norm() > capture_) return static_cast<int>(k);  // so is every later one
     visit(k, x, p);
@@ -94,10 +103,16 @@ bool ChannelConstraint::findTipCrossing(const SceneState& s, int inside, double&
   const Vec3 tip = path_.row(last).transpose();
   const Vec3 t = (path_.row(last) - path_.row(last - 1)).normalized().transpose();
   auto f = [&](double sigma) { return t.dot(curve.position(s.q, sigma) - tip); };
-  double lo = inside > 0 ? samples_[inside - 1].abscissa() : 0.0;
-  if (f(lo) >= 0.0) return false;  // the body's start is past the tip: nothing inside to pass through it
+  // From s_1 on, as the samples: s = 0 and the spacing after it are left to what pushes the body
+  // (a support there would repeat its rows: a singular system when its end reaches the tip).
+  // Only for a body in the channel (a point held): a loop of a body let go that passes the tip is
+  // not caught there.
+  if (inside == 0) return false;
+  const std::size_t first = static_cast<std::size_t>(inside) - 1;
+  double lo = samples_[first].abscissa();
+  if (f(lo) >= 0.0) return false;
   double hi = -1.0;
-  for (std::size_t k = inside; k < samples_.size(); ++k) {
+  for (std::size_t k = first + 1; k < samples_.size(); ++k) {
     if (f(samples_[k].abscissa()) >= 0.0) {
       hi = samples_[k].abscissa();
       break;
@@ -110,7 +125,11 @@ bool ChannelConstraint::findTipCrossing(const SceneState& s, int inside, double&
     (f(mid) >= 0.0 ? hi : lo) = mid;
   }
   abscissa = hi;
-  return (curve.position(s.q, hi) - tip).norm() <= capture_;
+  if ((curve.position(s.q, hi) - tip).norm() > capture_) return false;
+  // Leaving the tip at 60° or more to its axis: no support (the oblique rows divide by t·P′).
+  BodyPoint point(curve, hi);
+  const Vec3 along = point.mapTangent(s.q);
+  return t.dot(along) > 0.5 * along.norm();
 }
 
 void ChannelConstraint::buildRows(const SceneState& s, ConstraintRows& rows) const {
@@ -133,16 +152,15 @@ void ChannelConstraint::buildRows(const SceneState& s, ConstraintRows& rows) con
   // The tip support: g = [u w]ᵀ (P(σ*) − C_tip) with σ*(q) on the tip's plane, t·(P(σ*) − C_tip) = 0,
   // so σ̇* = −t·Ṗ / t·P′ and ġ_u = u·(Ṗ + P′ σ̇*) = u′·Ṗ, u′ = u − (u·P′ / t·P′) t (likewise w): the
   // rows u′·a(σ*) = −2ω u′·Ṗ − ω² g_u (P″ σ̇*² and the like left to the stabilization).
-  tip_point_.attach(*samples_.front().body(), crossing);
+  const BodyPoint point(*samples_.front().body(), crossing);
   const Eigen::Index last = path_.rows() - 1;
   const Vec3 tip = path_.row(last).transpose();
   const Vec3 t = (path_.row(last) - path_.row(last - 1)).normalized().transpose();
-  const Vec3 along = tip_point_.mapTangent(s.q);  // P′(σ*)
-  if (!(t.dot(along) > 0.5 * along.norm())) return;  // leaving the tip at 60° or more: no support
+  const Vec3 along = point.mapTangent(s.q);  // P′(σ*)
   const auto [u, w] = orthonormalComplement(t);
-  const Vec3 gap = tip_point_.map(s.q) - tip, velocity = tip_point_.map(s.v);
+  const Vec3 gap = point.map(s.q) - tip, velocity = point.map(s.v);
   rows.beginAnchor();
-  tip_point_.forEachWeight([&](int index, double weight) { rows.addAnchorPoint(index, weight); });
+  point.forEachWeight([&](int index, double weight) { rows.addAnchorPoint(index, weight); });
   for (const Vec3& d : {u, w}) {
     const Vec3 oblique = d - (d.dot(along) / t.dot(along)) * t;
     rows.addAnchoredRow(oblique, baumgarte_.term(d.dot(gap), oblique.dot(velocity)));

@@ -598,9 +598,12 @@ bool LagrangeMultiplierSolver::solveEqualitiesThroughBand(const ConstraintProble
   if (!buildEqualitySystem(rows, band_rows_, problem, inverse, 0.0)) return false;
   for (int r = 0; r < c; ++r) lambda_[r] = rows.rhs(r) - rows.dot(r, a);
   equality_system_.solve(lambda_.head(c));
+  if (!lambda_.head(c).allFinite()) return false;  // the columns' path below takes the system
   body_touched_ = equality_bodies_;  // every row is one of them: the bodies scatterForces solves on
   stats_.equality_band = true;
-  return lambda_.head(c).allFinite();
+  stats_.sparse = false;
+  stats_.columns = 0;
+  return true;
 }
 
 void LagrangeMultiplierSolver::factorAndSolve() {
@@ -1146,7 +1149,11 @@ void LagrangeMultiplierSolver::factorEqualityBlock(const ConstraintRows& rows, D
   const int nb = static_cast<int>(equality_rows_.size());
   equality_by_band_ = false;
   if (nb == 0) return;
-  residual_bb_.resize(nb);
+  // Grow only: the equality rows change in number as a channel lets a body's points go.
+  if (residual_bb_.size() < nb) {
+    residual_bb_.resize(2 * nb);
+    delta_bb_.resize(2 * nb);
+  }
   if (problem && inverse && equalityBlockThroughBand(rows, *problem, *inverse)) {
     equality_by_band_ = true;
     stats_.equality_block_band = true;
@@ -1163,10 +1170,10 @@ double LagrangeMultiplierSolver::equalityStep(Delassus& w) {
   if (nb == 0) return 0.0;
   for (int i = 0; i < nb; ++i) residual_bb_[i] = rhs_[equality_rows_[i]] - w.product(equality_rows_[i]);
   if (equality_by_band_) {
-    delta_bb_ = residual_bb_;
-    equality_system_.solve(delta_bb_);
+    delta_bb_.head(nb) = residual_bb_.head(nb);
+    equality_system_.solve(delta_bb_.head(nb));
   } else {
-    delta_bb_ = ldlt_bb_.solve(residual_bb_);
+    delta_bb_.head(nb) = ldlt_bb_.solve(residual_bb_.head(nb));
   }
   double change = 0.0;
   for (int i = 0; i < nb; ++i) {

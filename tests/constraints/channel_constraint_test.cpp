@@ -6,11 +6,12 @@
 // across it (the bending plane is wherever the rod's roll put it: only x and ρ are compared).
 //
 // Tolerances.
-// - On the axis: a point is held once it is a node spacing l or more behind the tip. Between the
-//   tip support and the last point held (at most 2l apart) the rod is off their chord by at most
-//   κ (2l)²/8 with κ <= κ0 there, so a point is taken in that far off the axis at most, κ0 l²/2,
-//   and the stabilization pulls it in from there (it decays; the rows then hold it to the solve's
-//   round-off): no point a spacing or more behind the tip is farther off the axis than κ0 l²/2.
+// - On the axis: a point is held while it is a node spacing l or more behind the tip. Here points
+//   only leave the channel (pushed out); one that has been let go and comes back (the rod
+//   swaying) is taken in at most κ0 l²/2 off the axis — between the tip support and the last point
+//   held (at most 2l apart) the rod is off their chord by κ (2l)²/8 with κ <= κ0 there — and pulled
+//   in from there. So no point a spacing or more behind the tip is farther off the axis than
+//   κ0 l²/2; a point held throughout stays at the round-off of the solves (measured 3e-13 m).
 // - The tip: the rod leaves the axis between its last point held (inside) and the next (out),
 //   so the free length is a within one node spacing l, and the direction it leaves in is the axis
 //   within the turn of one node, κ0 l: the tip is off by at most l + a κ0 l = (1 + κ0 a) l (first
@@ -88,9 +89,29 @@ TEST(ChannelConstraint, APreshapedRodPushedOutTakesItsRestArc) {
     EXPECT_LE(o.tip_error, (1 + kCurvature * kPush) * l) << nodes;  // see the header
     EXPECT_LE(o.off_axis, kCurvature * l * l / 2) << nodes;
     // 7 cm of the 10 cm rod left in, held up to a spacing behind the tip: the points s = k/n,
-    // k >= 1, with s L < 0.07 − l, give or take one.
-    EXPECT_NEAR(o.inside, 0.7 * (nodes - 1) - 1, 1.0) << nodes;
+    // k >= 1, with s L < 0.07 − l, k < 0.7 n − 1: 0.7 n − 2 of them, give or take one (the
+    // rod's axial strain decides the last).
+    EXPECT_NEAR(o.inside, 0.7 * (nodes - 1) - 2, 1.0) << nodes;
   }
+}
+
+TEST(ChannelConstraint, ARodPushedRightOutIsLetGoWithoutRepeatingThePushersRows) {
+  // The pusher takes the rod's proximal end (s = 0) to the tip and a little beyond: the run goes
+  // through, and at the end nothing is held. (The tip support is never searched before s_1, so
+  // it does not nearly repeat the pusher's rows as s = 0 reaches the tip — coil_delivery.json
+  // diverged there before; this rod, without contacts, went through either way.)
+  nlohmann::json document = pushedOut(51);
+  document["nodes"][0]["components"][2]["path"] = {{{"time", 0.0}, {"position", {-0.1, 0, 0}}},
+                                                   {{"time", 1.0}, {"position", {0.002, 0, 0}}}};
+  auto scene = loadScene(document, "channel test", app::makeFactory());
+  scene->init();
+  const auto* channel = dynamic_cast<const constraints::ChannelConstraint*>(scene->constraints().back());
+  while (scene->state().time < 1.2 - 0.5e-3) {
+    const StepReport report = scene->step();
+    ASSERT_TRUE(report.ok) << report.message;
+  }
+  EXPECT_EQ(channel->insideCount(scene->state()), 0);
+  EXPECT_EQ(channel->rowCount(), 0);
 }
 
 TEST(ChannelConstraint, RefusesAPathWithRepeatedPoints) {

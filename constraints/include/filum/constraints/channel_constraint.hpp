@@ -17,24 +17,26 @@
 // centre line: it and every point after it are not held. A coil curled up beside the channel's
 // shaft is thus never taken back in; a body pulled back into the channel is, point by point.
 //
-// The tip support. Where the body crosses the tip's plane (the plane through C(L_c) across the last
-// segment's tangent t), at the abscissa σ* with t·(P(σ*) − C(L_c)) = 0 found by bisection from the
-// last point held, it passes through the tip: two more rows, g = [u w]ᵀ (P(σ*) − C(L_c)) with the
-// material point σ* of this state (a sliding point without a DOF: ġ is taken as [u w]ᵀ Ṗ(σ*),
-// leaving out P′ σ̇*, which lies along t and so has no part across it where the body leaves along
-// the axis). So the body is supported at the tip itself, wherever its nodes are: a node is taken
-// in or let go a spacing inside, where the body is already on the centre line (within κ d²/8), and
-// not at the tip, where a node hovering at the edge was taken in and let go every few steps with
-// its offset, and the stabilization's pull on it fed a rod's oscillation (measured: a rod pushed
-// 3 cm out of a straight channel and held oscillated by ±0.5 mm at its tip for seconds).
+// The tip support. Where a body in the channel (a point held) crosses the tip's plane (the plane
+// through C(L_c) across the last segment's tangent t), at the abscissa σ* with
+// t·(P(σ*) − C(L_c)) = 0 found by bisection from the last point held, it passes through the tip:
+// two more rows on the material point σ* of this state, g = [u w]ᵀ (P(σ*) − C(L_c)). As σ* moves
+// (σ̇* = −t·Ṗ / t·P′), ġ_u = u·(Ṗ + P′ σ̇*) = u′·Ṗ with u′ = u − (u·P′ / t·P′) t (likewise w): the
+// rows are u′·a(σ*) = −2ω u′·Ṗ − ω² g_u, oblique (P″ σ̇*² and the like left to the
+// stabilization); none where the body leaves the tip at 60° or more to its axis. So the body is
+// supported at the tip itself, wherever its nodes are: a node is taken in or let go a spacing
+// inside, where the body is already on the centre line (within κ d²/8), and not at the tip, where
+// a node hovering at the edge was taken in and let go every few steps with its offset, and the
+// stabilization's pull on it fed a rod's oscillation (measured: a rod pushed 3 cm out of a
+// straight channel and held oscillated by ±0.5 mm at its tip for seconds).
 //
 // The clearance between the body and the lumen is neglected (the body's centre line on the
 // channel's): for a 0.254 mm coil in a 0.42 mm microcatheter lumen the coil's axis could wander by
 // 83 µm. What it saves: a contact row per sphere that starts on the lumen's axis, where its normal
 // is undefined (docs/vessels.md, "The coil pushed out of a microcatheter").
 //
-// Scene parameters: "centre_line" (m, at least 2 points, proximal to distal), "samples" (n, default the
-// body's point count − 1, at most 100,000), "capture" (m, default 4 body radii), "stabilization"
+// Scene parameters: "centre_line" (m, at least 2 points, proximal to distal), "samples" (n, default
+// and at most the body's point count − 1: more would give rows that depend on each other), "capture" (m, default 4 body radii), "stabilization"
 // (ω, 1/s, default 0.1/dt). The rows' count changes as points leave: rowCount() is that of the
 // last buildRows; violation() reports 2n + 2 entries (the tip's last), zero for what is not held.
 #pragma once
@@ -84,8 +86,8 @@ class ChannelConstraint final : public Constraint {
   template <class Visit>
   int forEachInside(const SceneState& s, Visit&& visit) const;
   /// σ*, where the body crosses the tip's plane after its first `inside` points (see the header);
-  /// false when it does not (all of it before the tip, or its start past it) or crosses it farther
-  /// than `capture` from the tip.
+  /// false when none is held, when it does not cross it, or crosses it farther than `capture` from
+  /// the tip or at 60° or more to its axis.
   bool findTipCrossing(const SceneState& s, int inside, double& abscissa) const;
 
   Points path_;
@@ -94,7 +96,6 @@ class ChannelConstraint final : public Constraint {
   double capture_;
   Baumgarte baumgarte_;
   std::vector<BodyPoint> samples_;  // s_k = k/n, k = 1 … n
-  mutable BodyPoint tip_point_;     // the body's point at σ* (buildRows)
   mutable int rows_built_ = 0;
 };
 
