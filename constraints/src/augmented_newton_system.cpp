@@ -170,7 +170,7 @@ bool AugmentedNewtonSystem::layOut() {
   return true;
 }
 
-bool AugmentedNewtonSystem::factor() {
+bool AugmentedNewtonSystem::factor(bool positive_pivots) {
   const ConstraintRows& rows = *rows_;
   lu_.allocate();
   // A, both triangles (the band holds the lower one; a diagonal block only its lower triangle).
@@ -207,7 +207,7 @@ bool AugmentedNewtonSystem::factor() {
     for (int j = 0; j < form.nc; ++j) lu_.at(position, row_unknown_[(*row_position_)[form.ck[j]]]) += form.c[j];
     lu_.at(position, position) += damping_;
   }
-  return lu_.factor();
+  return lu_.factor(positive_pivots);
 }
 
 void AugmentedNewtonSystem::solve(Eigen::Ref<VecX> rhs) {

@@ -96,17 +96,16 @@ int ChannelConstraint::forEachInside(const SceneState& s, Visit&& visit) const {
 
 bool ChannelConstraint::findTipCrossing(const SceneState& s, int inside, double& abscissa) const {
   // f(σ) = t·(P(σ) − C(L_c)), t the last segment's tangent: negative inside. From the last point
-  // held (or s = 0) on, the first sample where f >= 0, then bisection between it and the one
-  // before (f is continuous along the body), to a round-off bracket.
+  // held on, the first sample where f >= 0, then bisection between it and the one before (f is
+  // continuous along the body), to a round-off bracket.
   const CurveBody& curve = *samples_.front().body();
   const Eigen::Index last = path_.rows() - 1;
   const Vec3 tip = path_.row(last).transpose();
   const Vec3 t = (path_.row(last) - path_.row(last - 1)).normalized().transpose();
   auto f = [&](double sigma) { return t.dot(curve.position(s.q, sigma) - tip); };
-  // From s_1 on, as the samples: s = 0 and the spacing after it are left to what pushes the body
-  // (a support there would repeat its rows: a singular system when its end reaches the tip).
-  // Only for a body in the channel (a point held): a loop of a body let go that passes the tip is
-  // not caught there.
+  // Only for a body in the channel (a point held, so never before s_1: s = 0 and the spacing
+  // after it are left to what pushes the body, whose rows a support there would nearly repeat),
+  // and a loop of a body let go that passes the tip is not caught there.
   if (inside == 0) return false;
   const std::size_t first = static_cast<std::size_t>(inside) - 1;
   double lo = samples_[first].abscissa();

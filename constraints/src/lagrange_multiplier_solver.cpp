@@ -550,7 +550,10 @@ bool LagrangeMultiplierSolver::buildEqualitySystem(const ConstraintRows& rows, c
                                                    double dense_cost) {
   // [A −L_Bᵀ; L_B 0] [u; λ_B] = [0; β_B]: eliminating u gives L_B A⁻¹ L_Bᵀ λ_B = W_BB λ_B = β_B,
   // so each row's form is J_r = W_r, with no shift (the rows are exact; a row dependent on earlier
-  // ones gives a zero pivot, refused, and the caller forms W as before). Taken when the envelope
+  // ones gives a zero pivot, refused, and the caller forms W as before). Every pivot is positive
+  // when A is definite — A's own, then each row's, a pivot of L A⁻¹ Lᵀ's LDLᵀ — and the
+  // elimination without pivoting stable; a pivot <= 0 (an indefinite A: a compressed thread) is
+  // refused too, and W formed with pivoting takes the system. Taken when the envelope
   // LU costs fewer multiply-adds than the band solve per row that forming W_BB takes (c S) plus
   // `dense_cost`.
   // Only for more rows than sparse_above: below, W (or W_BB) is small and factored densely, with
@@ -580,7 +583,7 @@ bool LagrangeMultiplierSolver::buildEqualitySystem(const ConstraintRows& rows, c
     equality_forms_[r].addW(r, 1.0);
   }
   return equality_system_.build(rows, solved, band_position_, equality_forms_, 0.0, inverse, problem, point_body_) &&
-         equality_system_.cost() < solve * nb + dense_cost && equality_system_.factor();
+         equality_system_.cost() < solve * nb + dense_cost && equality_system_.factor(/*positive_pivots=*/true);
 }
 
 bool LagrangeMultiplierSolver::equalityBlockThroughBand(const ConstraintRows& rows, const ConstraintProblem& problem,

@@ -35,7 +35,7 @@ double ProfileLu::cost() const {
   return sum;
 }
 
-bool ProfileLu::factor() {
+bool ProfileLu::factor(bool positive_pivots) {
   for (int i = 0; i < n_; ++i) {
     const int fi = first_[i];
     double* l_row = lower_.data() + start_[i];  // L_ik at l_row[k − fi]
@@ -54,7 +54,7 @@ bool ProfileLu::factor() {
     }
     double pivot = diagonal_[i];
     for (int k = fi; k < i; ++k) pivot -= l_row[k - fi] * u_col[k - fi];
-    if (!(std::abs(pivot) > 0.0) || !std::isfinite(pivot)) return false;
+    if (!(std::abs(pivot) > 0.0) || !std::isfinite(pivot) || (positive_pivots && !(pivot > 0.0))) return false;
     diagonal_[i] = pivot;
   }
   return true;

@@ -117,6 +117,20 @@ TEST(EqualityBand, HeldAlongAChannelSolvesAsTheFormedW) {
   }
 }
 
+TEST(EqualityBand, AnIndefiniteStepMatrixIsLeftToTheFormedW) {
+  // A with a negative pivot (the first group's diagonal negated: a compressed thread's step matrix
+  // is indefinite). The envelope LU does not pivot, so it refuses a pivot <= 0, and W is formed
+  // and factored with pivoting as before: the same multipliers as the formed path's, bit for bit.
+  std::mt19937 rng(41);
+  for (int trial = 0; trial < 2; ++trial) {
+    const test::BandMatrix a({{150, 2, true, /*indefinite=*/true}}, rng);
+    const Problem p = channelProblem(150, 120, 0, rng);
+    const Solved band = solve(p, a, true), formed = solve(p, a, false);
+    EXPECT_FALSE(band.stats.equality_band) << trial;
+    EXPECT_EQ(band.lambda, formed.lambda) << trial;
+  }
+}
+
 TEST(EqualityBand, WithContactsTheEqualityStepsGoThroughTheBand) {
   // The same held rows and 6 contacts beyond them: the contact Newton's equality block (its
   // Gauss–Seidel steps and the polish) through the augmented system of the held rows. Both

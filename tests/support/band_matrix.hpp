@@ -24,6 +24,7 @@ class BandMatrix final : public BlockInverse {
   struct Body {
     int points = 0, range = 0;
     bool internal = false;
+    bool indefinite = false;  // the first group's diagonal made negative (an indefinite A)
   };
   BandMatrix(const std::vector<Body>& bodies, std::mt19937& rng) {
     std::normal_distribution<double> normal(0.0, 1.0);
@@ -44,6 +45,8 @@ class BandMatrix final : public BlockInverse {
         }
       // Diagonally dominant: symmetric positive definite.
       for (int i = 0; i < 3 * n; ++i) dense(i, i) = dense.row(i).cwiseAbs().sum() + 1.0;
+      if (spec.indefinite)
+        for (int i = 0; i < 3; ++i) dense(i, i) = -dense(i, i);  // still invertible (dominant), not definite
       band.blocks.assign(static_cast<std::size_t>(n) * (spec.range + 1), Eigen::Matrix3d::Zero());
       for (int i = 0; i < n; ++i)
         for (int j = std::max(0, i - spec.range); j <= i; ++j)

@@ -90,7 +90,7 @@ class AugmentedNewtonSystem {
   double cost() const { return lu_.cost(); }
   /// Lays the envelope's storage out, fills the values and factors; false on a zero or non-finite
   /// pivot.
-  bool factor();
+  bool factor(bool positive_pivots = false);  // ProfileLu::factor's check
   /// rhs (in solved order) := Δ_S.
   void solve(Eigen::Ref<VecX> rhs);
 

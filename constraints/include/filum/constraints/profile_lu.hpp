@@ -47,7 +47,10 @@ class ProfileLu {
     return upper_[start_[j] + (i - first_[j])];
   }
   /// Factors in place; false (and the factors are unusable) on a zero or non-finite pivot.
-  bool factor();
+  /// With positive_pivots, also on a pivot <= 0: the check that K is quasi-definite in this order
+  /// (a positive definite block and rows after it, as [A −Lᵀ; L 0] with A definite), whose
+  /// elimination without pivoting is then stable; an indefinite A shows as a negative pivot.
+  bool factor(bool positive_pivots = false);
   /// x := K⁻¹ x after factor().
   void solve(Eigen::Ref<VecX> x) const;
 
