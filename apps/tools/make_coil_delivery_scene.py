@@ -108,7 +108,8 @@ def scene():
     c = coil.PITCH / (2 * math.pi)
     kappa = coil.HELIX_R / (coil.HELIX_R**2 + c**2)
     tau = c / (coil.HELIX_R**2 + c**2)
-    # The pusher: the proximal end from where it starts, along the channel, to the tip, at PUSH_SPEED,
+    # The pusher: the proximal end from where it starts, along the channel, to DETACH_BEHIND from the
+    # tip, at PUSH_SPEED,
     # with a key at every vertex of the centre line it passes (keys farther apart would cut across
     # the tip's bend, by 0.14 mm at 1.5 mm apart, and kink the coil against its first point held).
     push_time = (coil.LENGTH + START_BEHIND - DETACH_BEHIND) / PUSH_SPEED

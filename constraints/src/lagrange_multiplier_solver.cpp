@@ -550,10 +550,11 @@ bool LagrangeMultiplierSolver::buildEqualitySystem(const ConstraintRows& rows, c
                                                    double dense_cost) {
   // [A −L_Bᵀ; L_B 0] [u; λ_B] = [0; β_B]: eliminating u gives L_B A⁻¹ L_Bᵀ λ_B = W_BB λ_B = β_B,
   // so each row's form is J_r = W_r, with no shift (the rows are exact; a row dependent on earlier
-  // ones gives a zero pivot, refused, and the caller forms W as before). Every pivot is positive
-  // when A is definite — A's own, then each row's, a pivot of L A⁻¹ Lᵀ's LDLᵀ — and the
-  // elimination without pivoting stable; a pivot <= 0 (an indefinite A: a compressed thread) is
-  // refused too, and W formed with pivoting takes the system. Taken when the envelope
+  // ones gives a zero pivot, refused). Every pivot is positive when A is definite — A's own, then
+  // each row's, a pivot of L A⁻¹ Lᵀ's LDLᵀ — and the elimination without pivoting stable; a pivot
+  // <= 0 (an indefinite A: a compressed thread; dependent rows) is refused too
+  // (equality_pivot_refused_), and W is formed and factored densely with pivoting — not by the
+  // sparse factorization, which pivots for sparsity only. Taken when the envelope
   // LU costs fewer multiply-adds than the band solve per row that forming W_BB takes (c S) plus
   // `dense_cost`.
   // Only for more rows than sparse_above: below, W (or W_BB) is small and factored densely, with
@@ -563,6 +564,7 @@ bool LagrangeMultiplierSolver::buildEqualitySystem(const ConstraintRows& rows, c
   // kept its points 1e-8 m off the axis that way against 1e-11 m through the band.
   const int c = rows.rows();
   const int nb = static_cast<int>(solved.size());
+  equality_pivot_refused_ = false;
   if (nb <= options_.sparse_above || inverse.coupled() || !options_.newton_structured) return false;
   double solve = 0.0;  // S over the rows' bodies (not body_touched_: scatterForces reads that one)
   equality_bodies_.assign(problem.bodies.size(), 0);
@@ -582,8 +584,11 @@ bool LagrangeMultiplierSolver::buildEqualitySystem(const ConstraintRows& rows, c
     equality_forms_[r] = NewtonRowForm();
     equality_forms_[r].addW(r, 1.0);
   }
-  return equality_system_.build(rows, solved, band_position_, equality_forms_, 0.0, inverse, problem, point_body_) &&
-         equality_system_.cost() < solve * nb + dense_cost && equality_system_.factor(/*positive_pivots=*/true);
+  if (!equality_system_.build(rows, solved, band_position_, equality_forms_, 0.0, inverse, problem, point_body_) ||
+      !(equality_system_.cost() < solve * nb + dense_cost))
+    return false;
+  equality_pivot_refused_ = !equality_system_.factor(/*positive_pivots=*/true);
+  return !equality_pivot_refused_;
 }
 
 bool LagrangeMultiplierSolver::equalityBlockThroughBand(const ConstraintRows& rows, const ConstraintProblem& problem,
@@ -1296,15 +1301,19 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
 
   // Equality rows alone through a band (a rod held along a channel: hundreds of rows, each on a
   // point or two): the augmented system's envelope LU, W neither formed nor factored.
-  if (stats_.inequalities == 0 && !separable && solveEqualitiesThroughBand(problem, rows, inverse, a)) {
-    scatterForces(problem, rows, inverse, a);
-    have_general_ = false;
-    columns_ready_ = false;
-    factored_last_call_ = false;
-    have_factorization_ = false;
-    last_factor_start_.clear();
-    previous_index_.clear();
-    return;
+  if (stats_.inequalities == 0 && !separable) {
+    if (solveEqualitiesThroughBand(problem, rows, inverse, a)) {
+      scatterForces(problem, rows, inverse, a);
+      have_general_ = false;
+      columns_ready_ = false;
+      factored_last_call_ = false;
+      have_factorization_ = false;
+      last_factor_start_.clear();
+      previous_index_.clear();
+      return;
+    }
+    // Refused for a pivot <= 0: W dense, factored with pivoting (Eigen's LDLT), not the sparse way.
+    if (equality_pivot_refused_) stats_.sparse = false;
   }
 
   // 1. Columns of M⁻¹ Lᵀ (per anchor or per row), kept or solved. Through an operator that mixes

@@ -89,8 +89,8 @@ class AugmentedNewtonSystem {
   /// The envelope LU's multiply-adds (after build).
   double cost() const { return lu_.cost(); }
   /// Lays the envelope's storage out, fills the values and factors; false on a zero or non-finite
-  /// pivot.
-  bool factor(bool positive_pivots = false);  // ProfileLu::factor's check
+  /// pivot, and with positive_pivots on a pivot <= 0 (ProfileLu::factor).
+  bool factor(bool positive_pivots = false);
   /// rhs (in solved order) := Δ_S.
   void solve(Eigen::Ref<VecX> rhs);
 

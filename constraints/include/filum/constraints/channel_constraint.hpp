@@ -12,7 +12,8 @@
 // Which points are held, found afresh from the state alone (no memory between steps, so
 // save/restore and rollback stay exact): walking from s_1 to s_n, each point is projected onto the
 // segments near where the one before it projected (within [ℓ_{k−1} − d_k, ℓ_{k−1} + 2 d_k], d_k the
-// distance between the two points; s_1 onto the whole polyline), and the walk stops at the first
+// distance between the two points, for s_1 its distance from s = 0; s_1 onto the whole polyline),
+// and the walk stops at the first
 // point that projects within d_k of the tip or beyond, or lies farther than `capture` from the
 // centre line: it and every point after it are not held. A coil curled up beside the channel's
 // shaft is thus never taken back in; a body pulled back into the channel is, point by point.

@@ -328,6 +328,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   std::vector<NewtonRowForm> equality_forms_;  // J_r = W_r
   std::vector<int> band_position_;         // row → its place in the rows solved by equality_system_, or −1
   bool equality_by_band_ = false;          // this solve's W_BB⁻¹ through equality_system_ (not ldlt_bb_)
+  bool equality_pivot_refused_ = false;    // the last buildEqualitySystem met a pivot <= 0
   std::vector<char> equality_bodies_;      // per body: whether the rows equality_system_ solves act on it
   VecX band_wl_;  // W λ by band_product_ (BandProductDelassus; grows only)
   VecX saved_diagonal_;  // diagonal_ across a deferred formDelassus (grows only)

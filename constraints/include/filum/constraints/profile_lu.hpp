@@ -47,9 +47,10 @@ class ProfileLu {
     return upper_[start_[j] + (i - first_[j])];
   }
   /// Factors in place; false (and the factors are unusable) on a zero or non-finite pivot.
-  /// With positive_pivots, also on a pivot <= 0: the check that K is quasi-definite in this order
-  /// (a positive definite block and rows after it, as [A −Lᵀ; L 0] with A definite), whose
-  /// elimination without pivoting is then stable; an indefinite A shows as a negative pivot.
+  /// With positive_pivots, also on a pivot <= 0. For [A −Lᵀ; L 0] with A positive definite and
+  /// independent rows, each placed after its points, every pivot is positive (A's Schur
+  /// complements, then those of L A⁻¹ Lᵀ); a pivot <= 0 so shows an A that is not definite (or
+  /// dependent rows) — the converse need not hold.
   bool factor(bool positive_pivots = false);
   /// x := K⁻¹ x after factor().
   void solve(Eigen::Ref<VecX> x) const;
