@@ -591,12 +591,6 @@ bool LagrangeMultiplierSolver::buildEqualitySystem(const ConstraintRows& rows, c
   return !equality_pivot_refused_;
 }
 
-bool LagrangeMultiplierSolver::equalityBlockThroughBand(const ConstraintRows& rows, const ConstraintProblem& problem,
-                                                        const BlockInverse& inverse) {
-  const double nb = static_cast<double>(equality_rows_.size());
-  return buildEqualitySystem(rows, equality_rows_, problem, inverse, nb * nb * nb / 6.0);  // + W_BB's LDLᵀ
-}
-
 bool LagrangeMultiplierSolver::solveEqualitiesThroughBand(const ConstraintProblem& problem, const ConstraintRows& rows,
                                                           const BlockInverse& inverse, const VecX& a) {
   // Against the columns' path's first stage alone (c S): W's factorization would come on top.
@@ -1162,7 +1156,9 @@ void LagrangeMultiplierSolver::factorEqualityBlock(const ConstraintRows& rows, D
     residual_bb_.resize(2 * nb);
     delta_bb_.resize(2 * nb);
   }
-  if (problem && inverse && equalityBlockThroughBand(rows, *problem, *inverse)) {
+  // The band's envelope LU against W_BB's band product per row and its LDLᵀ, nb³/6.
+  const double dense_cost = static_cast<double>(nb) * nb * nb / 6.0;
+  if (problem && inverse && buildEqualitySystem(rows, equality_rows_, *problem, *inverse, dense_cost)) {
     equality_by_band_ = true;
     stats_.equality_block_band = true;
     return;

@@ -21,26 +21,20 @@
 #include <Eigen/SVD>
 
 #include "filum/constraints/lagrange_multiplier_solver.hpp"
-#include "support/band_matrix.hpp"
+#include "support/row_problem.hpp"
 
 namespace filum::constraints {
 namespace {
 
 constexpr double kTolerance = 1e-12;  // τ, the contact solve's relative residual
 
-struct ContactProblem {
-  ConstraintRows rows;
-  ConstraintProblem problem;
-};
-
 /// A fixed point at point 3 and `contacts` contacts on points (k, k + 1), their normal rows' β
 /// drawn so that about `pressing` of them push (β < 0 separates nothing: the row wants a force).
-ContactProblem contactProblem(int points, int contacts, double pressing, std::mt19937& rng) {
+test::RowProblem contactProblem(int points, int contacts, double pressing, std::mt19937& rng) {
   std::normal_distribution<double> normal(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  ContactProblem out;
+  test::RowProblem out(points);
   ConstraintRows& rows = out.rows;
-  rows.clear();
   rows.beginAnchor();
   rows.addAnchorPoint(3, 1.0);
   for (int axis = 0; axis < 3; ++axis) rows.addAnchoredRow(Vec3::Unit(axis), 0.1 * normal(rng));
@@ -57,43 +51,15 @@ ContactProblem contactProblem(int points, int contacts, double pressing, std::mt
     const double beta_n = uniform(rng) < pressing ? std::abs(normal(rng)) : -std::abs(normal(rng));
     rows.addContactRows(n, beta_n, 0.3, t1, normal(rng), t2, normal(rng));
   }
-  out.problem.bodies.push_back(BodyBlock{0, points});
-  out.problem.dof_points = points;
-  out.problem.state_size = 3 * points;
-  out.problem.layout_revision = 0;
   return out;
-}
-
-struct Solved {
-  VecX lambda;
-  LagrangeMultiplierSolver::Statistics stats;
-};
-
-Solved solve(const ContactProblem& p, const test::BandMatrix& a, bool deferred) {
-  LagrangeMultiplierSolver::Options options;
-  options.contact_tolerance = kTolerance;
-  options.newton_structured = deferred;  // false: W formed, every step by the dense LU
-  LagrangeMultiplierSolver solver(options);
-  VecX acceleration = VecX::Zero(p.problem.state_size);
-  solver.solve(p.problem, p.rows, a, acceleration);
-  return {solver.multipliers(), solver.statistics()};
-}
-
-/// cond(W + R) of the problem (R = 1e-6 W_rr on the contact rows, as the solver's default).
-double conditionNumber(const ContactProblem& p, const test::BandMatrix& a) {
-  MatX w = test::delassus(p.rows, a, p.problem);
-  for (int r = 0; r < p.rows.rows(); ++r)
-    if (p.rows.kind(r) != ConstraintRows::Kind::kEquality) w(r, r) *= 1.0 + 1e-6;
-  const Eigen::JacobiSVD<MatX> svd(w);
-  return svd.singularValues()(0) / svd.singularValues()(w.rows() - 1);
 }
 
 /// The problem solved both ways; both converge, and their multipliers agree (see the tolerance above).
 struct Comparison {
-  Solved deferred, formed;
+  test::RowSolve deferred, formed;
 };
-Comparison solveBothWays(int trial, const ContactProblem& p, const test::BandMatrix& a) {
-  Comparison out{solve(p, a, true), solve(p, a, false)};
+Comparison solveBothWays(int trial, const test::RowProblem& p, const test::BandMatrix& a) {
+  Comparison out{test::solveRows(p, a, true, kTolerance), test::solveRows(p, a, false, kTolerance)};
   std::printf("  trial %d: %d rows, %d and %d Newton iterations (deferred, formed), %d of the first through the band\n",
               trial, p.rows.rows(), out.deferred.stats.newton_iterations, out.formed.stats.newton_iterations,
               out.deferred.stats.structured_steps);
@@ -101,7 +67,7 @@ Comparison solveBothWays(int trial, const ContactProblem& p, const test::BandMat
   EXPECT_TRUE(out.formed.stats.converged) << trial;
   EXPECT_TRUE(out.deferred.stats.deferred) << trial;
   EXPECT_FALSE(out.formed.stats.deferred) << trial;
-  const double cond = conditionNumber(p, a);
+  const double cond = test::compliantCondition(p, a);
   const double difference = (out.deferred.lambda - out.formed.lambda).lpNorm<Eigen::Infinity>();
   const double scale = out.formed.lambda.lpNorm<Eigen::Infinity>();
   std::printf("    cond(W + R) %.2g, multipliers %.2g apart relative\n", cond, difference / scale);
@@ -116,8 +82,8 @@ TEST(DeferredDelassus, SolvesAsTheFormedWWithoutFormingIt) {
   std::mt19937 rng(21);
   for (int trial = 0; trial < 5; ++trial) {
     const test::BandMatrix a({{150, 2, true}}, rng);
-    const ContactProblem p = contactProblem(150, 80, 0.6, rng);
-    const Solved deferred = solveBothWays(trial, p, a).deferred;
+    const test::RowProblem p = contactProblem(150, 80, 0.6, rng);
+    const test::RowSolve deferred = solveBothWays(trial, p, a).deferred;
     EXPECT_FALSE(deferred.stats.reassembled) << trial;     // W never formed
     EXPECT_EQ(deferred.stats.solved_columns, 0) << trial;  // nor a column A⁻¹ l_r solved
     EXPECT_EQ(deferred.stats.structured_steps, deferred.stats.newton_iterations) << trial;
@@ -131,8 +97,8 @@ TEST(DeferredDelassus, AFewActiveRowsFormWWhenTheDenseStepAsksForIt) {
   std::mt19937 rng(23);
   for (int trial = 0; trial < 5; ++trial) {
     const test::BandMatrix a({{150, 2, true}}, rng);
-    const ContactProblem p = contactProblem(150, 80, 0.1, rng);
-    const Solved deferred = solveBothWays(trial, p, a).deferred;
+    const test::RowProblem p = contactProblem(150, 80, 0.1, rng);
+    const test::RowSolve deferred = solveBothWays(trial, p, a).deferred;
     EXPECT_TRUE(deferred.stats.reassembled) << trial;
     EXPECT_EQ(deferred.stats.solved_columns, p.rows.rows()) << trial;
     EXPECT_LT(deferred.stats.structured_steps, deferred.stats.newton_iterations) << trial;

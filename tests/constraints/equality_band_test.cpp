@@ -22,25 +22,19 @@
 #include <Eigen/SVD>
 
 #include "filum/constraints/lagrange_multiplier_solver.hpp"
-#include "support/band_matrix.hpp"
+#include "support/row_problem.hpp"
 
 namespace filum::constraints {
 namespace {
 
-struct Problem {
-  ConstraintRows rows;
-  ConstraintProblem problem;
-};
-
 /// Two rows across a random unit direction at each of `held` consecutive points from point 1
 /// (a body held along a channel), then `contacts` contacts on points (k, k + 1) beyond them, 4
 /// points apart (held + 4 contacts + 4 <= points).
-Problem channelProblem(int points, int held, int contacts, std::mt19937& rng) {
+test::RowProblem channelProblem(int points, int held, int contacts, std::mt19937& rng) {
   std::normal_distribution<double> normal(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  Problem out;
+  test::RowProblem out(points);
   ConstraintRows& rows = out.rows;
-  rows.clear();
   for (int p = 1; p <= held; ++p) {
     Vec3 t(normal(rng), normal(rng), normal(rng));
     t.normalize();
@@ -60,42 +54,25 @@ Problem channelProblem(int points, int held, int contacts, std::mt19937& rng) {
     rows.addAnchorPoint(first + 1, 0.5);
     rows.addContactRows(n, std::abs(normal(rng)), 0.3, t1, normal(rng), t2, normal(rng));
   }
-  out.problem.bodies.push_back(BodyBlock{0, points});
-  out.problem.dof_points = points;
-  out.problem.state_size = 3 * points;
-  out.problem.layout_revision = 0;
   return out;
 }
 
-struct Solved {
-  VecX lambda;
-  LagrangeMultiplierSolver::Statistics stats;
-};
+constexpr double kTolerance = 1e-12;  // τ, the contact solve's relative residual
 
-Solved solve(const Problem& p, const test::BandMatrix& a, bool through_band) {
-  LagrangeMultiplierSolver::Options options;
-  options.contact_tolerance = 1e-12;
-  options.newton_structured = through_band;  // false: W formed and factored
-  LagrangeMultiplierSolver solver(options);
-  VecX acceleration = VecX::Zero(p.problem.state_size);
-  solver.solve(p.problem, p.rows, a, acceleration);
-  return {solver.multipliers(), solver.statistics()};
-}
-
-double condition(const MatX& w) {
-  const Eigen::JacobiSVD<MatX> svd(w);
-  return svd.singularValues()(0) / svd.singularValues()(w.rows() - 1);
+test::RowSolve solve(const test::RowProblem& p, const test::BandMatrix& a, bool through_band) {
+  return test::solveRows(p, a, through_band, kTolerance);  // false: W formed and factored
 }
 
 /// 2 cond γ_{3n} (see the header), n the augmented system's order over `groups` 3 × 3 groups.
-double roundOff(double cond, const Problem& p, int groups) {
+double roundOff(double cond, const test::RowProblem& p, int groups) {
   const double n = 3.0 * groups + p.rows.rows();
   const double u = std::numeric_limits<double>::epsilon() / 2;
   return 2.0 * cond * (3 * n * u / (1 - 3 * n * u));
 }
 
 /// The two solutions' relative distance, printed and checked against `allowed`.
-void expectClose(int trial, const Problem& p, const Solved& band, const Solved& formed, double allowed) {
+void expectClose(int trial, const test::RowProblem& p, const test::RowSolve& band, const test::RowSolve& formed,
+                 double allowed) {
   const double difference = (band.lambda - formed.lambda).lpNorm<Eigen::Infinity>();
   const double scale = formed.lambda.lpNorm<Eigen::Infinity>();
   std::printf("  trial %d: %d rows, multipliers %.2g apart relative (allowed %.2g)\n", trial, p.rows.rows(),
@@ -108,13 +85,13 @@ TEST(EqualityBand, HeldAlongAChannelSolvesAsTheFormedW) {
   std::mt19937 rng(31);
   for (int trial = 0; trial < 4; ++trial) {
     const test::BandMatrix a({{150, 2, true}}, rng);
-    const Problem p = channelProblem(150, 120, 0, rng);
-    const Solved band = solve(p, a, true), formed = solve(p, a, false);
+    const test::RowProblem p = channelProblem(150, 120, 0, rng);
+    const test::RowSolve band = solve(p, a, true), formed = solve(p, a, false);
     EXPECT_TRUE(band.stats.equality_band) << trial;
     EXPECT_FALSE(formed.stats.equality_band) << trial;
     EXPECT_FALSE(band.stats.reassembled) << trial;
     EXPECT_EQ(band.stats.solved_columns, 0) << trial;
-    expectClose(trial, p, band, formed, roundOff(condition(test::delassus(p.rows, a, p.problem)), p, 300));
+    expectClose(trial, p, band, formed, roundOff(test::condition(test::delassus(p.rows, a, p.problem)), p, 300));
   }
 }
 
@@ -127,16 +104,16 @@ TEST(EqualityBand, AnIndefiniteStepMatrixIsLeftToWFactoredWithPivoting) {
   std::mt19937 rng(41);
   for (int trial = 0; trial < 2; ++trial) {
     const test::BandMatrix a({{150, 2, true, /*indefinite=*/true}}, rng);
-    const Problem p = channelProblem(150, 120, 0, rng);
-    const Solved band = solve(p, a, true);
+    const test::RowProblem p = channelProblem(150, 120, 0, rng);
+    const test::RowSolve band = solve(p, a, true);
     EXPECT_FALSE(band.stats.equality_band) << trial;
     EXPECT_FALSE(band.stats.sparse) << trial;
     const MatX w = test::delassus(p.rows, a, p.problem);
     VecX beta(p.rows.rows());
     for (int r = 0; r < p.rows.rows(); ++r) beta[r] = p.rows.rhs(r);  // a_t = 0
-    Solved reference = band;
+    test::RowSolve reference = band;
     reference.lambda = w.fullPivLu().solve(beta);
-    expectClose(trial, p, band, reference, roundOff(condition(w), p, 300));
+    expectClose(trial, p, band, reference, roundOff(test::condition(w), p, 300));
   }
 }
 
@@ -149,17 +126,14 @@ TEST(EqualityBand, WithContactsTheEqualityStepsGoThroughTheBand) {
   std::mt19937 rng(37);
   for (int trial = 0; trial < 4; ++trial) {
     const test::BandMatrix a({{150, 2, true}}, rng);
-    const Problem p = channelProblem(150, 120, 6, rng);
-    const Solved band = solve(p, a, true), formed = solve(p, a, false);
+    const test::RowProblem p = channelProblem(150, 120, 6, rng);
+    const test::RowSolve band = solve(p, a, true), formed = solve(p, a, false);
     EXPECT_TRUE(band.stats.converged) << trial;
     EXPECT_TRUE(formed.stats.converged) << trial;
     EXPECT_TRUE(band.stats.equality_block_band) << trial;
     EXPECT_FALSE(formed.stats.equality_block_band) << trial;
-    MatX w = test::delassus(p.rows, a, p.problem);
-    for (int r = 0; r < p.rows.rows(); ++r)
-      if (p.rows.kind(r) != ConstraintRows::Kind::kEquality) w(r, r) *= 1.0 + 1e-6;
-    const double cond = condition(w);
-    expectClose(trial, p, band, formed, cond * 2.0 * 1e-12 + roundOff(cond, p, 300));
+    const double cond = test::compliantCondition(p, a);
+    expectClose(trial, p, band, formed, cond * 2.0 * kTolerance + roundOff(cond, p, 300));
   }
 }
 

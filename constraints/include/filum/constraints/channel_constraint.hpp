@@ -68,9 +68,8 @@ class ChannelConstraint final : public Constraint {
 
   /// How many of the n points are held at state s (the tip support not counted).
   int insideCount(const SceneState& s) const;
-  /// The channel's length L_c (m).
-  double length() const { return arc_.back(); }
 
+ private:
   /// The channel's point nearest to x among the segments that overlap [from, to] (arc lengths, m):
   /// its arc length ℓ, the point C(ℓ) and its segment's unit tangent.
   struct Projection {
@@ -79,8 +78,6 @@ class ChannelConstraint final : public Constraint {
     Vec3 tangent = Vec3::UnitX();
   };
   Projection project(const Vec3& x, double from, double to) const;
-
- private:
   void init(const Scene& scene) override;
   /// Calls visit(k, P(s_k), projection) for each point held, in order (the walk above); returns
   /// how many were.

@@ -258,9 +258,6 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// false (nothing kept) otherwise.
   bool buildEqualitySystem(const ConstraintRows& rows, const std::vector<int>& solved, const ConstraintProblem& problem,
                            const BlockInverse& inverse, double dense_cost);
-  /// W_BB's factorization replaced by the augmented system of the equality rows (equality_rows_).
-  bool equalityBlockThroughBand(const ConstraintRows& rows, const ConstraintProblem& problem,
-                                const BlockInverse& inverse);
   /// λ_B += W_BB⁻¹ (β − Wλ)_B; returns the largest change of a row's acceleration (m/s²).
   template <class Delassus>
   double equalityStep(Delassus& w);
