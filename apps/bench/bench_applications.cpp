@@ -1,6 +1,6 @@
 // bench_applications: the surgical applications in wall time per simulated millisecond — the
-// shipped salpingectomy.json, intestine.json, catheter.json, catheter_device.json, catheter_over_wire.json, coil.json,
-// coil_delivery.json and stitch.json
+// shipped salpingectomy.json, intestine.json, guidewire.json, catheter_device.json, catheter.json,
+// coil_in_sac.json, coil.json and stitch.json
 // played whole with their instruments, navigation metrics or hub device (as `filum run` plays them:
 // the instruments' drivers, jaws and metrics, the device's servo ticks between the steps), and the
 // small bowel's cost against its length: a bowel of 0.5, 1, 2 and 4 m (radius 1.5 cm, soft
@@ -15,8 +15,8 @@
 // (one run) after W's column assembly, 27 (median of 3) since the band step merges the two bodies
 // along each other and Newton's products with W go through the bands (2026-11-27): docs/vessels.md.
 //   build/apps/bench/bench_applications --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-// (about 50 minutes: catheter_over_wire.json alone takes 4-5 minutes a run, coil_delivery.json
-// about 4; filter them out with --benchmark_filter=-'catheter_over_wire|coil_delivery' for the rest.)
+// (about 50 minutes: catheter.json alone takes 4-5 minutes a run, coil.json about 4; filter them
+// out with --benchmark_filter=-'application/(catheter|coil)/' for the rest.)
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -177,15 +177,15 @@ BENCHMARK_CAPTURE(application, salpingectomy, std::string("salpingectomy.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(application, intestine, std::string("intestine.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
-BENCHMARK_CAPTURE(application, catheter, std::string("catheter.json"))
+BENCHMARK_CAPTURE(application, guidewire, std::string("guidewire.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(application, catheter_device, std::string("catheter_device.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
-BENCHMARK_CAPTURE(application, catheter_over_wire, std::string("catheter_over_wire.json"))
+BENCHMARK_CAPTURE(application, catheter, std::string("catheter.json"))
+    ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(application, coil_in_sac, std::string("coil_in_sac.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(application, coil, std::string("coil.json"))
-    ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
-BENCHMARK_CAPTURE(application, coil_delivery, std::string("coil_delivery.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(application, stitch, std::string("stitch.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);

@@ -80,6 +80,15 @@ void orbit(visual::CameraSettings& camera, double yaw, double pitch) {
   if (rotated.normalized().cross(camera.up.normalized()).norm() > 0.05) camera.position = camera.look_at + rotated;
 }
 
+// A hub whose constraint let go (released, cut) leaves the keys; the arrows stay on the hub they
+// drove, or, when it was that one, pass to the next (after the last: to the one before).
+void dropHub(std::vector<std::unique_ptr<haptics::HubControl>>& hubs, std::size_t index, std::size_t& keyed,
+             const SceneError& error, std::ostream& log) {
+  log << "filum view: the hub of '" << hubs[index]->name() << "' cannot be moved any more: " << error.what() << '\n';
+  hubs.erase(hubs.begin() + static_cast<std::ptrdiff_t>(index));
+  if (keyed > index || keyed == hubs.size()) keyed = keyed > 0 ? keyed - 1 : 0;
+}
+
 }  // namespace
 
 int viewScene(const ViewOptions& options, std::ostream& log) {
@@ -94,7 +103,8 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
   std::unique_ptr<haptics::HapticSession> haptic;
   std::unique_ptr<haptics::InstrumentSet> instruments;  // on their scripts until a key gives one to the mouse
   std::unique_ptr<Scene> scene;
-  std::unique_ptr<haptics::HubControl> hub;           // arrows: push, pull and turn the hub
+  std::vector<std::unique_ptr<haptics::HubControl>> hubs;  // arrows: push, pull and turn a hub
+  std::size_t hub_index = 0;                              // the one the arrows drive (Tab: the next)
   std::unique_ptr<haptics::HubDevice> hub_device;     // or a haptic device at the hub (then no arrows)
   bool hub_lost_logged = false;
   std::unique_ptr<haptics::FluoroscopyPedal> pedal;   // f: the X-ray pedal
@@ -117,11 +127,12 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
     }
     instruments = haptics::InstrumentSet::fromScene(document, options.scene, *scene, 1.0);
     if (instruments) instruments->start();  // devices on their own thread (a Phantom) start sampling
-    // A catheter or guidewire ("navigation"): its hub to the arrow keys (a block that only
-    // scores an aneurysm's coils has no instrument).
+    // Catheters and guidewires ("navigation"): their hubs to the arrow keys, one at a time (a
+    // block that only scores an aneurysm's coils has no instrument).
     if (const auto navigation = haptics::NavigationMetrics::fromScene(document, options.scene, *scene);
-        navigation && navigation->instrumentCount() > 0 && !hub_device)
-      hub = haptics::HubControl::find(*scene, navigation->instrument(0).name);
+        navigation && !hub_device)
+      for (int i = 0; i < navigation->instrumentCount(); ++i)
+        if (auto hub = haptics::HubControl::find(*scene, navigation->instrument(i).name)) hubs.push_back(std::move(hub));
     pedal = haptics::FluoroscopyPedal::fromScene(document, options.scene);
     fluoroscopy = visual::FluoroscopyView::fromScene(document, options.scene);
   } catch (const SceneError& e) {
@@ -202,18 +213,21 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
           if (e.key == "q" || e.key == "Escape") quit = true;
           if (e.key == "space") paused = !paused;
           if (e.key == "g") grab_mode = !grab_mode;
-          // The hub: a stroke of 5 mm or 15° over 0.1 s a press.
-          try {
-            if (hub && (e.key == "Up" || e.key == "Down")) {
-              hub->push(*scene, e.key == "Up" ? 5e-3 : -5e-3, 0.1);
-              hub_moved = true;
+          // A hub: a stroke of 5 mm or 15° over 0.1 s a press; Tab passes the arrows to the next
+          // instrument's hub (the wire's, then the catheter's over it, ...).
+          if (hubs.size() > 1 && e.key == "Tab") hub_index = (hub_index + 1) % hubs.size();
+          if (!hubs.empty()) {
+            haptics::HubControl& hub = *hubs[hub_index];
+            try {
+              if (e.key == "Up" || e.key == "Down") {
+                hub.push(*scene, e.key == "Up" ? 5e-3 : -5e-3, 0.1);
+                hub_moved = true;
+              }
+              if (e.key == "Left" || e.key == "Right")
+                hub_moved |= hub.turn(*scene, (e.key == "Left" ? 15.0 : -15.0) * std::numbers::pi / 180.0, 0.1);
+            } catch (const SceneError& error) {  // the hub's constraint let go (released, cut): no more keys
+              dropHub(hubs, hub_index, hub_index, error, log);
             }
-            if (hub && (e.key == "Left" || e.key == "Right")) {
-              hub_moved |= hub->turn(*scene, (e.key == "Left" ? 15.0 : -15.0) * std::numbers::pi / 180.0, 0.1);
-            }
-          } catch (const SceneError& error) {  // the hub's constraint let go (released, cut): no more keys
-            log << "filum view: the hub cannot be moved any more: " << error.what() << '\n';
-            hub.reset();
           }
           if (fluoroscopy && e.key == "x") show_xray = !show_xray;
           if (fluoroscopy && e.key == "f") {
@@ -295,12 +309,12 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
         const long steps = std::max(1L, std::lround(advance / dt));
         const auto before = Clock::now();
         for (long k = 0; k < steps; ++k) {
-          if (hub) {
+          for (std::size_t h = 0; h < hubs.size();) {
             try {
-              hub->update(*scene);
+              hubs[h]->update(*scene);
+              ++h;
             } catch (const SceneError& error) {
-              log << "filum view: the hub cannot be moved any more: " << error.what() << '\n';
-              hub.reset();
+              dropHub(hubs, h, hub_index, error, log);
             }
           }
           if (instruments) instruments->beforeStep(*scene);
@@ -348,6 +362,14 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
       if (selected >= 0)
         hud += " | mouse: " + instruments->instrument(selected).name() +
                (instruments->instrument(selected).jawsClosing() ? " (jaws closing)" : "");
+      if (!hubs.empty()) {  // the hub the arrows drive
+        const haptics::HubControl& hub = *hubs[hub_index];
+        std::ostringstream keyed;
+        keyed.precision(3);
+        keyed << " | arrows: " << hub.name() << " " << 1e3 * hub.insertion(*scene) << " mm, "
+              << hub.roll(*scene) * 180.0 / std::numbers::pi << " deg";
+        hud += keyed.str();
+      }
       if (hub_device) {  // what the hand on the hub feels
         std::ostringstream felt;
         felt.precision(3);
@@ -366,9 +388,10 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
       visual::drawHeadsUp(frame, hud);
       visual::drawFooter(frame, instruments ? "1-9: instrument to the mouse, 0: probe | c/o: close/open jaws | [/]: turn needle | "
                                               "left: move | right: orbit | wheel: zoom | space | r | q"
-                                : hub || hub_device
-                                            ? std::string(hub ? "up/down: push/pull the hub | left/right: turn it"
-                                                              : "the hub on the haptic device (grip: its button)") +
+                                : !hubs.empty() || hub_device
+                                            ? std::string(!hubs.empty() ? "up/down: push/pull the hub | left/right: turn it"
+                                                                        : "the hub on the haptic device (grip: its button)") +
+                                                  (hubs.size() > 1 ? " | tab: next instrument" : "") +
                                                   (fluoroscopy ? " | f: X-ray pedal | x: monitor/3D" : "") + " | space | q"
                                             : "left: push | shift+left or g: grab | right: orbit | wheel: zoom | space: pause | r | q");
       window.show(frame);

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes apps/scenes/coil_delivery.json: the coil of coil.json (apps/tools/make_coil_scene.py derives
+"""Writes apps/scenes/coil.json: the coil of coil_in_sac.json (apps/tools/make_coil_scene.py derives
 its material) pushed out of a microcatheter into the sac of the cerebral aneurysm of
 apps/scenes/data/cerebral_aneurysm.json, where it takes its helical secondary shape and curls up
 against the dome and itself (docs/vessels.md, "The coil pushed out of a microcatheter").
@@ -28,13 +28,13 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_coil_scene as coil  # noqa: E402  (the coil's material, derived there)
-# Nodes every 0.25 mm, half coil.json's spacing: at 0.5 mm the coil turns by 0.17 rad per node,
+# Nodes every 0.25 mm, half coil_in_sac.json's spacing: at 0.5 mm the coil turns by 0.17 rad per node,
 # and the node between the last one held and the tip support was flung out of the tip within the
 # first 60 ms (the run diverged); at 0.25 mm (0.083 rad per node) the whole delivery runs.
 NODES = 2 * (coil.NODES - 1) + 1
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SCENE = os.path.join(HERE, "..", "scenes", "coil_delivery.json")
+SCENE = os.path.join(HERE, "..", "scenes", "coil.json")
 
 BEND, RB = 8e-3, 2e-3           # m: the C-bend's centreline radius (the vessel data), the tip's bend radius
 TIP_Z = 10.0e-3                 # m: the microcatheter's tip on the neck's axis (neck 8 to 10.5 mm)
@@ -121,7 +121,7 @@ def scene():
     tube = {"units": "m", "blend": 1.0,
             "branches": [{"name": "microcatheter", "open": ["start", "end"],
                           "points": [p + [CATHETER_RADIUS] for p in path[::4] + ([path[-1]] if (len(path) - 1) % 4 else [])]}]}
-    # coil.json's scene (vessels, contact, metrics, the coil's collision and visual models),
+    # coil_in_sac.json's scene (vessels, contact, metrics, the coil's collision and visual models),
     # with the microcatheter added and the coil straight in it with its helix's rest curvature.
     data = coil.scene()
     data.update({
@@ -149,7 +149,7 @@ def scene():
 HEADER = """// A detachable platinum coil pushed out of a microcatheter into a cerebral aneurysm's sac, where it
 // takes its helical secondary shape and curls up against the dome and itself; the packing density
 // of the sac grows as it goes in (metrics.csv, packing_density). Written by
-// apps/tools/make_coil_delivery_scene.py, which derives the numbers (the coil's material: coil.json).
+// apps/tools/make_coil_delivery_scene.py, which derives the numbers (the coil's material: coil_in_sac.json).
 // The microcatheter is a channel the coil's centre line follows while inside (ChannelConstraint):
 // up the parent artery, round its C-bend, and through a steam-shaped tip into the neck. The
 // delivery wire (a FixedPointConstraint on a path) pushes the coil's proximal end at %.0f mm/s to

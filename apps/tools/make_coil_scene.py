@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes apps/scenes/coil.json: a detachable platinum coil in the sac of the cerebral aneurysm of
+"""Writes apps/scenes/coil_in_sac.json: a detachable platinum coil in the sac of the cerebral aneurysm of
 apps/scenes/data/cerebral_aneurysm.json, laid in its helical rest shape (docs/vessels.md, "The coil").
 
 The coil is a "10 system" coil: a platinum wire (coils are often of a platinum-tungsten
@@ -25,7 +25,7 @@ import os
 import re
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SCENE = os.path.join(HERE, "..", "scenes", "coil.json")
+SCENE = os.path.join(HERE, "..", "scenes", "coil_in_sac.json")
 
 WIRE_D, WINDING_D = 50e-6, 0.204e-3
 E_PT, G_PT, RHO_PT = 168e9, 61e9, 21450.0
@@ -61,8 +61,8 @@ HEADER = """// A detachable platinum coil in a cerebral aneurysm's sac: the fram
 // over the rod's section, Poisson's ratio 0) and density %.0f kg/m^3; its secondary shape a helix
 // 6 mm across with a 0.4 mm pitch, 6 cm long: a discrete Cosserat rod of %d nodes (0.5 mm), rest
 // shape the initial one, stepped implicitly at 1 ms. Blood's drag as a viscous damping of 5/s.
-// Not in this scene: the microcatheter and the pushing of the coil out of it (docs/vessels.md,
-// "Not built yet").
+// Not in this scene: the microcatheter and the pushing of the coil out of it (coil.json does that;
+// docs/vessels.md, "The coil pushed out of a microcatheter").
 """
 
 

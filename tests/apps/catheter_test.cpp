@@ -1,10 +1,10 @@
-// apps/scenes/catheter.json as a trainer would check it: the scripted push-and-turn takes the
+// apps/scenes/guidewire.json as a trainer would check it: the scripted push-and-turn takes the
 // guidewire's tip into the left common carotid, and the same push without the turn does not (the
 // wire rides straight up into the left subclavian: the turn is what steers it); the wire never
 // leaves the lumen (penetration below a tenth of its radius at every step); the navigation
 // metrics report what happened (the tip's branch, the target, the hub's push and roll, the wall force).
 // apps/scenes/catheter_device.json: the same done by a hand on a haptic device, in strokes.
-// apps/scenes/catheter_over_wire.json: then a catheter advanced over the wire into the carotid.
+// apps/scenes/catheter.json: then a catheter advanced over the wire into the carotid.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -39,7 +39,7 @@ struct NavigationRun {
 // (0.76 mm apart), where the union of the spheres is thinnest.
 constexpr int kSamples = 400;
 NavigationRun navigate(bool turn) {
-  const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/catheter.json";
+  const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/guidewire.json";
   nlohmann::json document = readJsonFile(path);
   if (!turn) {  // the negative control: the hub pushed the same way, never turned
     for (auto& component : document["nodes"][1]["components"])
@@ -172,9 +172,9 @@ TEST(CatheterScene, AHandOnAHapticDeviceFeedsTheWireIntoTheCarotidInStrokes) {
 }
 
 TEST(CatheterScene, TheCatheterFollowsTheWireIntoTheCarotid) {
-  // apps/scenes/catheter_over_wire.json: the wire steered into the left common carotid with the
+  // apps/scenes/catheter.json: the wire steered into the left common carotid with the
   // catheter behind it (0-6 s), then the catheter pushed 15 cm over the held wire (6-10 s).
-  const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/catheter_over_wire.json";
+  const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/catheter.json";
   const nlohmann::json document = readJsonFile(path);
   auto scene = loadScene(document, path, app::makeFactory());
   auto metrics = haptics::NavigationMetrics::fromScene(document, path, *scene);
@@ -229,10 +229,10 @@ TEST(CatheterScene, TheCatheterFollowsTheWireIntoTheCarotid) {
   EXPECT_GT(catheter_metrics.reached_time, 6.0);
   // The catheter neither pushed the wire out nor drove it on: with its hub held, the wire's tip
   // moved by less than one of its segments (3 mm, the rod's resolution) while the catheter rode
-  // 15 cm up it, and it ends within the vessel's radius (4 mm) of the target, as catheter.json's.
+  // 15 cm up it, and it ends within the vessel's radius (4 mm) of the target, as guidewire.json's.
   EXPECT_LT(tip_moved, 3e-3);
   EXPECT_LT(wire_metrics.target_distance, 4e-3);
-  // Neither instrument went into the wall by more than a tenth of its radius (as catheter.json's
+  // Neither instrument went into the wall by more than a tenth of its radius (as guidewire.json's
   // tests ask), nor pushed on it beyond the scene's limit (0.5 N, where a trainer flags a push).
   EXPECT_LT(deepest, 0.1);
   EXPECT_LT(wire_metrics.max_wall_force, 0.5);

@@ -1,4 +1,4 @@
-// apps/scenes/coil_delivery.json as a physicist would check the delivery: the coil is pushed
+// apps/scenes/coil.json as a physicist would check the delivery: the coil is pushed
 // through the microcatheter (a ChannelConstraint) at the delivery wire's speed v, so the length of
 // coil in the aneurysm grows by v t — the coil is not lost or made along the way — while the part
 // in the channel stays on its centre line and the part out of it stays in the lumen.
@@ -36,7 +36,7 @@
 namespace filum {
 namespace {
 
-const std::string kScene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/coil_delivery.json";
+const std::string kScene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/coil.json";
 constexpr double kPushSpeed = 0.02;  // m/s (apps/tools/make_coil_delivery_scene.py)
 constexpr double kBendRadius = 2e-3;  // m, the microcatheter's tip bend (the same)
 constexpr double kSegment = 2.5e-4;   // m, its polyline's segments (the same)

@@ -1,4 +1,4 @@
-// apps/scenes/coil.json as a trainer and a physicist would check it: the coil stays in the sac
+// apps/scenes/coil_in_sac.json as a trainer and a physicist would check it: the coil stays in the sac
 // (every point of its centre line in the aneurysm, never deeper in the wall than a tenth of its
 // radius), the wall carries its weight once it has settled (statics: the contact forces on the
 // lumen add up to m g), and the packing density the run reports is π r² L / V with the coil's
@@ -18,7 +18,7 @@
 namespace filum {
 namespace {
 
-const std::string kCoilScene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/coil.json";
+const std::string kCoilScene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/coil_in_sac.json";
 
 /// The polyline's length through `samples` + 1 points of the centre line (m).
 double polylineLength(const CurveBody& body, const VecX& q, int samples) {

@@ -79,7 +79,7 @@ TEST(RunVisual, AFluoroscopyBlockAddsTheCArmsViewAndTheFluoroscopyTime) {
   const fs::path out = fs::path(FILUM_BINARY_DIR) / "test_output" / "run_fluoroscopy";
   fs::remove_all(out);
   RunOptions options;
-  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/catheter.json";  // the pedal: [0, 1], [1.5, 6] s
+  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/guidewire.json";  // the pedal: [0, 1], [1.5, 6] s
   options.out = out.string();
   options.duration = 0.2;
   options.progress = false;

@@ -88,8 +88,26 @@ TEST(ViewCommand, TheMouseTakesTheHapticToolOfTheScene) {
   expectMouseGrabsAndPulls("haptic_grasp.json", "view_haptic_last_frame.png");
 }
 
+/// An instrument's hub as the keys move it: its point constraint at s = 0 and its RodEndFrame.
+struct Hub {
+  const constraints::ProjectedPointConstraint* point = nullptr;
+  const mechanics::RodEndFrame* frame = nullptr;
+};
+
+Hub hubOf(const Scene& scene, const std::string& instrument) {
+  Hub hub;
+  const Node* node = const_cast<Scene&>(scene).root().find(instrument);
+  if (!node) return hub;
+  for (const auto& c : node->components()) {
+    if (const auto* p = dynamic_cast<const constraints::ProjectedPointConstraint*>(c.get()); p && p->abscissa() == 0.0)
+      hub.point = p;
+    if (const auto* r = dynamic_cast<const mechanics::RodEndFrame*>(c.get())) hub.frame = r;
+  }
+  return hub;
+}
+
 TEST(ViewCommand, ArrowsPushAndTurnACathetersHubAndTheMonitorShowsTheXRay) {
-  // apps/scenes/catheter.json: Up pushes the guidewire's hub 5 mm along the introducer's axis
+  // apps/scenes/guidewire.json: Up pushes the guidewire's hub 5 mm along the introducer's axis
   // (over 0.1 s, then held; its scripted path dropped; a second press during a stroke adds its
   // own), Left turns it 15° (RodEndFrame::turn);
   // f presses the fluoroscopy pedal and x puts the fluoroscope's monitor in the window: a grey
@@ -98,7 +116,7 @@ TEST(ViewCommand, ArrowsPushAndTurnACathetersHubAndTheMonitorShowsTheXRay) {
   const fs::path out = fs::path(FILUM_BINARY_DIR) / "test_output" / "view";
   fs::create_directories(out);
   ViewOptions options;
-  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/catheter.json";
+  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/guidewire.json";
   options.frames = 30;
   options.fixed_step = 0.02;
   options.screenshot = (out / "catheter_monitor.png").string();
@@ -108,12 +126,7 @@ TEST(ViewCommand, ArrowsPushAndTurnACathetersHubAndTheMonitorShowsTheXRay) {
   double roll_before = -1.0, roll_after = -1.0;
   options.on_frame = [&](const ViewFrame& f) {
     Node& wire = *const_cast<Scene&>(f.scene).root().find("guidewire");
-    const constraints::ProjectedPointConstraint* hub = nullptr;
-    const mechanics::RodEndFrame* frame = nullptr;
-    for (const auto& c : wire.components()) {
-      if (const auto* p = dynamic_cast<const constraints::ProjectedPointConstraint*>(c.get()); p && p->abscissa() == 0.0) hub = p;
-      if (const auto* r = dynamic_cast<const mechanics::RodEndFrame*>(c.get())) frame = r;
-    }
+    const auto [hub, frame] = hubOf(f.scene, "guidewire");
     ASSERT_NE(hub, nullptr);
     ASSERT_NE(frame, nullptr);
     const double t = f.scene.state().time;
@@ -149,6 +162,50 @@ TEST(ViewCommand, ArrowsPushAndTurnACathetersHubAndTheMonitorShowsTheXRay) {
       coloured += !(b == g && g == r);
     }
   EXPECT_EQ(coloured, 0);
+}
+
+TEST(ViewCommand, TabPassesTheArrowsFromTheWiresHubToTheCatheters) {
+  // apps/scenes/catheter.json (a guidewire and a catheter over it, their hubs pushed by a script
+  // along the introducer's axis, +z, 3.25 cm/s for 6 s): the arrows start on the first
+  // instrument of the "navigation" block, the wire; Tab passes them to the catheter. Its Up and
+  // Left then move the catheter's hub (5 mm along the axis, 15°) and leave the wire on its script.
+  FILUM_REQUIRE_RENDERING();
+  ViewOptions options;
+  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/catheter.json";
+  options.frames = 12;
+  options.fixed_step = 0.02;
+  const Vec3 axis = Vec3::UnitZ();
+  Vec3 catheter_before = Vec3::Zero(), catheter_after = Vec3::Zero(), wire_before = Vec3::Zero(), wire_after = Vec3::Zero();
+  double t_before = 0.0, t_after = 0.0, catheter_roll = 0.0, wire_roll = -1.0;
+  options.on_frame = [&](const ViewFrame& f) {
+    const Hub wire = hubOf(f.scene, "guidewire"), catheter = hubOf(f.scene, "catheter");
+    ASSERT_TRUE(wire.point && wire.frame && catheter.point && catheter.frame);
+    const double t = f.scene.state().time;
+    if (f.index == 2) {
+      t_before = t;
+      wire_before = wire.point->target().position(f.scene.state());
+      catheter_before = catheter.point->target().position(f.scene.state());
+      catheter_roll = catheter.frame->roll(t);
+      for (const char* key : {"Tab", "Up", "Left"}) f.window.sendToSelf({WindowEvent::Type::kKey, 0, 0, 0, false, key});
+    }
+    if (f.index == 11) {  // 0.18 s after the keys: the 0.1-s strokes are over
+      t_after = t;
+      wire_after = wire.point->target().position(f.scene.state());
+      catheter_after = catheter.point->target().position(f.scene.state());
+      catheter_roll = catheter.frame->roll(t) - catheter_roll;
+      wire_roll = wire.frame->roll(t);
+    }
+  };
+  std::ostringstream log;
+  ASSERT_EQ(viewScene(options, log), kRunOk) << log.str();
+  ASSERT_GT(t_after, t_before + 0.1);
+  // The catheter's hub: exactly the stroke (round-off of the 0.4 m coordinates), and the turn.
+  EXPECT_LT((catheter_after - catheter_before - 5e-3 * axis).norm(), 1e-12) << (catheter_after - catheter_before).transpose();
+  EXPECT_NEAR(catheter_roll, 15.0 * M_PI / 180.0, 1e-12);
+  // The wire's: on its script (0.195 m in 6 s, linear), not turned (its roll starts at 1 s).
+  EXPECT_LT((wire_after - wire_before - 0.195 / 6.0 * (t_after - t_before) * axis).norm(), 1e-12)
+      << (wire_after - wire_before).transpose();
+  EXPECT_EQ(wire_roll, 0.0);
 }
 
 TEST(ViewCommand, KeysGiveAnInstrumentToTheMouseAndCloseItsJaws) {
@@ -247,11 +304,11 @@ int framesPlayedWithKeys(const std::string& scene_file, int frames, double fixed
 }
 
 TEST(ViewCommand, ACoilSceneWithoutAHubPlaysAndIgnoresTheArrows) {
-  // apps/scenes/coil.json: a "navigation" block that scores an aneurysm's coil and has no
+  // apps/scenes/coil_in_sac.json: a "navigation" block that scores an aneurysm's coil and has no
   // instrument to push. A smoke test of that case (the view once took instrument 0 of none):
   // with Up, Left and x pressed, it plays its frames and ends normally.
   FILUM_REQUIRE_RENDERING();
-  EXPECT_EQ(framesPlayedWithKeys("coil.json", 4, 0.002, 1, {"Up", "Left", "x"}), 4);
+  EXPECT_EQ(framesPlayedWithKeys("coil_in_sac.json", 4, 0.002, 1, {"Up", "Left", "x"}), 4);
 }
 
 TEST(ViewCommand, AHapticDeviceOnTheHubPushesItAndTheArrowsDoNot) {

@@ -98,7 +98,7 @@ TEST(ChannelConstraint, APreshapedRodPushedOutTakesItsRestArc) {
 TEST(ChannelConstraint, ARodPushedRightOutIsLetGoWithoutRepeatingThePushersRows) {
   // The pusher takes the rod's proximal end (s = 0) to the tip and a little beyond: the run goes
   // through, and at the end nothing is held. (The tip support is never searched before s_1, so
-  // it does not nearly repeat the pusher's rows as s = 0 reaches the tip — coil_delivery.json
+  // it does not nearly repeat the pusher's rows as s = 0 reaches the tip — coil.json
   // diverged there before; this rod, without contacts, went through either way.)
   nlohmann::json document = pushedOut(51);
   document["nodes"][0]["components"][2]["path"] = {{{"time", 0.0}, {"position", {-0.1, 0, 0}}},
