@@ -17,7 +17,8 @@ NewtonSettings NewtonSettings::fromParams(const Params& p, const NewtonSettings&
   if (solve != "linearized" && solve != "newton") p.fail("solve", "\"linearized\" or \"newton\"", "\"" + solve + "\"");
   settings.linearized = solve == "linearized";
   settings.max_iterations = p.integer("newton_iterations", 1, settings.max_iterations);
-  settings.max_halvings = p.has("max_halvings") ? p.integer("max_halvings", 0) : settings.max_halvings;
+  settings.max_halvings = p.has("max_halvings") ? p.integer("max_halvings", 0, 60, "a sub-step of h / 2^60 is below the round-off of any time") : settings.max_halvings;
+  settings.max_step_solves = p.has("max_step_solves") ? p.integer("max_step_solves", 1) : settings.max_step_solves;
   settings.tolerance = p.nonNegative({"newton_tolerance", "1"}, settings.tolerance);
   if (settings.linearized) {
     settings.linearization_tolerance = p.positive({"linearization_tolerance", "1"}, settings.linearization_tolerance);
@@ -318,6 +319,7 @@ bool ImplicitStepSolver::update(Scene& scene, const SceneState& s0, const VecX& 
 
 bool ImplicitStepSolver::step(Scene& scene, SceneState& s, double h, double theta, double kappa,
                               double position_factor) {
+  step_solves_ = 0;
   if (advance(scene, s, h, theta, kappa, position_factor, 0)) return true;
   scene.noteFault(scene.integrator().describe() + ": " + failure_);
   return false;
@@ -325,6 +327,7 @@ bool ImplicitStepSolver::step(Scene& scene, SceneState& s, double h, double thet
 
 bool ImplicitStepSolver::advance(Scene& scene, SceneState& s, double h, double theta, double kappa,
                                  double position_factor, int depth) {
+  ++step_solves_;
   const Status status = solve(scene, s, h, theta, kappa, a_);
   if (status == Status::kConverged) {
     // v1 = v0 + h a,  q1 = q0 ⊕ (h v0 + c h² a) (q0 + ... for points, R exp(...) for frames).
@@ -338,10 +341,14 @@ bool ImplicitStepSolver::advance(Scene& scene, SceneState& s, double h, double t
     s.time += h;
     return true;
   }
-  if (depth >= settings_.max_halvings) {
+  // Two more solves at least: within the step's budget, and h/2 within the depth allowed.
+  if (depth >= settings_.max_halvings || step_solves_ + 2 > settings_.max_step_solves) {
     if (status == Status::kNotConverged)
-      failure_ = "Newton did not converge in " + std::to_string(settings_.max_iterations) + " iterations, even with " +
-                 std::to_string(1L << depth) + " sub-steps of " + std::to_string(h) + " s";
+      failure_ = "Newton did not converge in " + std::to_string(settings_.max_iterations) +
+                 " iterations, even in sub-steps of " + std::to_string(h) + " s (" + std::to_string(step_solves_) +
+                 " Newton solves for this step; " +
+                 (depth >= settings_.max_halvings ? "max_halvings " + std::to_string(settings_.max_halvings) + " reached)"
+                                                  : "max_step_solves " + std::to_string(settings_.max_step_solves) + " reached)");
     return false;
   }
   // Two steps of h/2 (the state advances through the first before the second starts).

@@ -73,10 +73,16 @@
 // Robustness. Far from equilibrium with a large step the Newton iteration may not converge: a
 // compressed thread has negative stiffness directions, so M − κh²K may be indefinite and the
 // Newton step overshoots. A non-converged iterate is never accepted (it can carry enormous
-// energy): step() then halves h and takes two steps, recursively up to max_halvings times
-// (2^max_halvings sub-steps at most), where M/h² dominates −K again. Only if that fails too is
-// the step reported to the scene (Scene::noteFault), which rolls it back. The iteration is also
-// abandoned early when the update stops shrinking above √tolerance (from the third iteration).
+// energy): step() then halves h and takes two steps, recursively, towards sub-steps where M/h²
+// dominates −K again. The halving is bounded by work, not by depth: at most max_step_solves
+// Newton solves for one step (2047 by default: every attempt of ten levels of halving, the worst
+// case of a step that needs sub-steps of h/1024 throughout), however deep the sub-steps (down to
+// h/2^max_halvings, 30 by default) — a stiff string started away from equilibrium (a strain
+// transient of microseconds: catenary.json's first steps need sub-steps of 15 µs) needs a few
+// very short sub-steps and then climbs back to long ones (after a converged half, its sibling is
+// tried whole). Only if that fails too is the step reported to the scene (Scene::noteFault),
+// which rolls it back. The iteration is also abandoned early when the update stops shrinking
+// above √tolerance (from the third iteration).
 //
 // Bodies with internal DOFs (a rod's frames): their rotations are unknowns of the same system,
 // moved by q0 ⊕ w (R exp(w)) for the increment w = θh v0 + κh² a, with their rotary inertia in
@@ -107,7 +113,8 @@ struct NewtonSettings {
   bool reuse_factorization = true;        // "reuse_factorization" (linearized mode, with the estimate), see above
   int max_iterations = 10;
   double tolerance = 1e-10;
-  int max_halvings = 10;
+  int max_halvings = 30;       // depth: sub-steps down to h / 2^30
+  int max_step_solves = 2047;  // work: Newton solves (attempts) for one step, see above
   bool refactor_every_iteration = true;
   LinearSolverChoice linear_solver = LinearSolverChoice::Auto;
 
@@ -117,7 +124,8 @@ struct NewtonSettings {
   /// "newton_iterations": max iterations >= 1 (default 10; 1 in linearized mode is Baraff &
   /// Witkin's step without the estimate), "newton_tolerance": relative
   /// tolerance >= 0 (default 1e-10; 0 runs every iteration and accepts the last),
-  /// "max_halvings": step halvings allowed when Newton does not converge (default 10),
+  /// "max_halvings": how deep a step may be halved when Newton does not converge (default 30),
+  /// "max_step_solves": Newton solves allowed for one step, the halves' included (default 2047),
   /// "jacobian_update": "every_iteration" (Newton, default) or "every_step" (the chord method:
   /// A factored once per step from the start of the iteration, later iterations only evaluate
   /// forces and solve; linear convergence, cheaper iterations — worth it when h is small and A
@@ -182,6 +190,7 @@ class ImplicitStepSolver {
  private:
   bool advance(Scene& scene, SceneState& s, double h, double theta, double kappa, double position_factor,
                int depth);
+  int step_solves_ = 0;  // Newton solves of the current step (halves included)
   /// What solve() does once: with may_reuse, the first iteration may solve with an earlier
   /// factorization; kStale when it did and its estimate failed.
   enum class Attempt { kConverged, kNotConverged, kFailed, kStale };
