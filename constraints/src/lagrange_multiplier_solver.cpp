@@ -969,11 +969,14 @@ void LagrangeMultiplierSolver::warmStart(const ConstraintRows& rows) {
   // λ of the previous call when its rows were of the same kinds (an earlier stage of the same
   // step, same contact set); else the rows' guesses (a contact's force of the previous step, 0 for
   // a new one).
+  // A λ that is not finite (a failed solve: through a step matrix that is not definite, which an
+  // implicit integrator then takes again in halves) is no guide: the rows start from their
+  // guesses then, and a guess that is not finite (a force remembered from it) from 0.
   const int c = rows.rows();
-  bool warm = static_cast<int>(last_kinds_.size()) == c;
+  bool warm = static_cast<int>(last_kinds_.size()) == c && lambda_.head(c).allFinite();
   for (int r = 0; warm && r < c; ++r) warm = last_kinds_[r] == rows.kind(r);
   if (!warm)
-    for (int r = 0; r < c; ++r) lambda_[r] = rows.guess(r);
+    for (int r = 0; r < c; ++r) lambda_[r] = std::isfinite(rows.guess(r)) ? rows.guess(r) : 0.0;
   last_kinds_.resize(c);
   for (int r = 0; r < c; ++r) last_kinds_[r] = rows.kind(r);
 }

@@ -328,7 +328,13 @@ bool ImplicitStepSolver::step(Scene& scene, SceneState& s, double h, double thet
 bool ImplicitStepSolver::advance(Scene& scene, SceneState& s, double h, double theta, double kappa,
                                  double position_factor, int depth) {
   ++step_solves_;
+  // A fault a component records during the attempt (a non-finite force or constraint solve at a
+  // wild iterate) belongs to the attempt: it is taken back when the attempt is discarded for its
+  // halves, or when a fresh iteration converged after it (solve(): a stale matrix's attempt), and
+  // reported with the step's failure if the halves fail too.
+  const bool clean = scene.fault().empty();
   const Status status = solve(scene, s, h, theta, kappa, a_);
+  const std::string attempt_fault = clean && !scene.fault().empty() ? scene.takeFault() : std::string();
   if (status == Status::kConverged) {
     // v1 = v0 + h a,  q1 = q0 ⊕ (h v0 + c h² a) (q0 + ... for points, R exp(...) for frames).
     if (scene.hasInternalDofs()) {
@@ -341,6 +347,8 @@ bool ImplicitStepSolver::advance(Scene& scene, SceneState& s, double h, double t
     s.time += h;
     return true;
   }
+  if (!clean) return false;  // a fault from before the step's solve (the scene rolls the step back)
+  if (!attempt_fault.empty()) failure_ += " (" + attempt_fault + ")";
   // Two more solves at least: within the step's budget, and h/2 within the depth allowed.
   if (depth >= settings_.max_halvings || step_solves_ + 2 > settings_.max_step_solves) {
     if (status == Status::kNotConverged)

@@ -75,6 +75,28 @@ TEST(ImplicitIntegrators, HalveTheStepWhenNewtonDoesNotConvergeAndNeverAcceptAnU
   EXPECT_LT(problem.error(*scene), 2e-4);  // as with 5 ms steps (catenary_validation_test.cpp)
 }
 
+TEST(ImplicitIntegrators, AnAttemptWhoseConstraintSolveFailsIsHalvedNotRolledBack) {
+  // adaptive_suture.json with its moduli × 1000 (the stress suite's stiff1000: a 2e12 Pa suture
+  // drawn onto a peg): at its 10th step the step matrix M − h²K is not definite where the thread
+  // is compressed, W = L A⁻¹ Lᵀ has negative diagonal entries, and the contact solve's λ is not
+  // finite. That attempt's fault belongs to it: the step is taken again in halves (where M/h²
+  // outweighs the negative stiffness), and the next solves do not start from the NaN λ. Before,
+  // the fault rolled the run back at that step.
+  static const Factory factory = app::makeFactory();
+  const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/adaptive_suture.json";
+  json document = readJsonFile(path);
+  for (json& component : document["nodes"][0]["components"])
+    if (component.contains("youngs_modulus")) component["youngs_modulus"] = 1000.0 * component["youngs_modulus"].get<double>();
+  auto scene = loadScene(document, path, factory);
+  for (int k = 0; k < 30; ++k) {
+    const StepReport report = scene->step();
+    ASSERT_TRUE(report.ok) << "step " << k << ": " << report.message;
+  }
+  const auto& solver = dynamic_cast<const mechanics::ImplicitEuler&>(scene->integrator()).solver();
+  EXPECT_GT(solver.halvings(), 0);
+  EXPECT_TRUE(scene->state().allFinite());
+}
+
 TEST(ImplicitIntegrators, LinearizedImplicitEulerIsOneNewtonIteration) {
   // newton_iterations = 1: the scheme of Baraff & Witkin, one factorization per step, always
   // accepted; on a linear problem (quadratic bending only, no gravity) it is exact backward Euler.

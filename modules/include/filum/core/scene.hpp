@@ -10,6 +10,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "filum/core/block_inverse.hpp"
@@ -114,6 +115,12 @@ class Scene {
   void noteFault(const std::string& message) {
     if (fault_.empty()) fault_ = message;
   }
+  /// The fault recorded in the current step so far ("" if none).
+  const std::string& fault() const { return fault_; }
+  /// Takes back the fault recorded by a trial that its caller discards — an implicit step's Newton
+  /// attempt that is taken again in halves (implicit_step_solver.hpp): the step goes on clean, and
+  /// the caller reports the message if the step fails in the end.
+  std::string takeFault() { return std::exchange(fault_, std::string()); }
 
   /// Kinetic and potential energy at state s.
   Energy energy(const SceneState& s) const;
