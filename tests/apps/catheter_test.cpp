@@ -21,6 +21,7 @@
 #include "filum/core/scene_loader.hpp"
 #include "filum/haptics/navigation_metrics.hpp"
 #include "filum/run_command.hpp"
+#include "support/navigation_scene_run.hpp"
 #include "support/tube_axis.hpp"
 
 namespace filum {
@@ -39,31 +40,26 @@ struct NavigationRun {
 // (0.76 mm apart), where the union of the spheres is thinnest.
 constexpr int kSamples = 400;
 NavigationRun navigate(bool turn) {
-  const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/guidewire.json";
-  nlohmann::json document = readJsonFile(path);
-  if (!turn) {  // the negative control: the hub pushed the same way, never turned
+  test::NavigationSceneRun navigation("guidewire.json", [turn](nlohmann::json& document) {
+    if (turn) return;  // the negative control: the hub pushed the same way, never turned
     for (auto& component : document["nodes"][1]["components"])
       if (component["type"] == "RodEndFrame") component["path"] = {{{"time", 0.0}, {"roll", 0.0}}};
-  }
-  auto scene = loadScene(document, path, app::makeFactory());
-  auto metrics = haptics::NavigationMetrics::fromScene(document, path, *scene);
-  scene->init();
-  metrics->start(*scene);
+  });
+  const auto& scene = navigation.scene;
+  const auto& metrics = navigation.metrics;
   const CurveBody& wire = *scene->bodies()[0]->curve();
   const geometry::VesselTree& tree = metrics->lumen().tree();
   NavigationRun run;
-  const double dt = scene->settings().dt;
-  const long steps = std::lround(scene->settings().duration / dt);
+  const long steps = navigation.steps();
   for (long k = 0; k < steps && run.ok; ++k) {
-    const StepReport report = scene->step();
+    const StepReport report = navigation.step();
     run.ok = report.ok;
     EXPECT_TRUE(report.ok) << report.message;
-    metrics->afterStep(*scene, dt);
     for (int i = 0; i <= kSamples; ++i) {
       const Vec3 x = wire.position(scene->state().q, static_cast<double>(i) / kSamples);
       const geometry::VesselTree::Sample s = tree.sample(x, tree.maxRadius());
       if (s.branch < 0) continue;
-      const double depth = (wire.radius() - s.value / s.gradient.norm()) / wire.radius();
+      const double depth = test::wallDepth(s, wire.radius());
       if (depth > run.worst_penetration) {
         run.worst_penetration = depth;
         run.worst_time = scene->state().time;
@@ -174,13 +170,11 @@ TEST(CatheterScene, AHandOnAHapticDeviceFeedsTheWireIntoTheCarotidInStrokes) {
 TEST(CatheterScene, TheCatheterFollowsTheWireIntoTheCarotid) {
   // apps/scenes/catheter.json: the wire steered into the left common carotid with the
   // catheter behind it (0-6 s), then the catheter pushed 15 cm over the held wire (6-10 s).
-  const std::string path = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/catheter.json";
-  const nlohmann::json document = readJsonFile(path);
-  auto scene = loadScene(document, path, app::makeFactory());
-  auto metrics = haptics::NavigationMetrics::fromScene(document, path, *scene);
+  test::NavigationSceneRun run("catheter.json");
+  const nlohmann::json& document = run.document;
+  const auto& scene = run.scene;
+  const auto& metrics = run.metrics;
   ASSERT_NE(metrics, nullptr);
-  scene->init();
-  metrics->start(*scene);
   // The scene's nodes: vessels, catheter, guidewire (bodies in that order); the navigation block
   // lists the guidewire first.
   ASSERT_EQ(document["nodes"][1]["name"], "catheter");
@@ -191,24 +185,22 @@ TEST(CatheterScene, TheCatheterFollowsTheWireIntoTheCarotid) {
   const CurveBody& catheter = *scene->bodies()[0]->curve();
   const CurveBody& wire = *scene->bodies()[1]->curve();
   const geometry::VesselTree& tree = metrics->lumen().tree();
-  const double dt = scene->settings().dt;
-  const long steps = std::lround(scene->settings().duration / dt);
+  const long steps = run.steps();
   // The centre lines sampled every 0.5 mm, closer than neighbouring spheres (0.75 mm on the wire,
   // 0.83 mm on the catheter), where the union of the spheres is thinnest; at every step.
   const int wire_samples = 700, catheter_samples = 360;
   double deepest = 0.0;  // into the vessel's wall, of each instrument's own radius
   Vec3 wire_tip_held(0, 0, 0);  // where the wire's tip was when its hub stopped (6 s)
   for (long k = 0; k < steps; ++k) {
-    const StepReport report = scene->step();
+    const StepReport report = run.step();
     ASSERT_TRUE(report.ok) << report.message;
-    metrics->afterStep(*scene, dt);
     if (k + 1 == 6000) wire_tip_held = wire.position(scene->state().q, 1.0);
     for (const auto& [body, samples] : {std::pair{&catheter, catheter_samples}, std::pair{&wire, wire_samples}})
       for (int i = 0; i <= samples; ++i) {
         const Vec3 x = body->position(scene->state().q, static_cast<double>(i) / samples);
         const geometry::VesselTree::Sample s = tree.sample(x, tree.maxRadius());
         if (s.branch < 0) continue;
-        deepest = std::max(deepest, (body->radius() - s.value / s.gradient.norm()) / body->radius());
+        deepest = std::max(deepest, test::wallDepth(s, body->radius()));
       }
   }
   const auto& wire_metrics = metrics->instrument(0);

@@ -32,24 +32,22 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/haptics/navigation_metrics.hpp"
+#include "support/navigation_scene_run.hpp"
 
 namespace filum {
 namespace {
 
-const std::string kScene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/coil.json";
 constexpr double kPushSpeed = 0.02;  // m/s (apps/tools/make_coil_delivery_scene.py)
 constexpr double kBendRadius = 2e-3;  // m, the microcatheter's tip bend (the same)
 constexpr double kSegment = 2.5e-4;   // m, its polyline's segments (the same)
 constexpr double kCoilCurvature = 333.2;  // 1/m, the coil's rest curvature (the same)
 
 TEST(CoilDelivery, TheCoilGoesInAtThePushersSpeedAndStaysInTheLumen) {
-  const nlohmann::json document = readJsonFile(kScene);
-  auto scene = loadScene(document, kScene, app::makeFactory());
-  auto metrics = haptics::NavigationMetrics::fromScene(document, kScene, *scene);
+  test::NavigationSceneRun run("coil.json");
+  const auto& scene = run.scene;
+  const auto& metrics = run.metrics;
   ASSERT_NE(metrics, nullptr);
   ASSERT_NE(metrics->packing(), nullptr);
-  scene->init();
-  metrics->start(*scene);
   const CurveBody& coil = *scene->bodies()[0]->curve();
   const geometry::VesselTree& tree = metrics->lumen().tree();
   const auto* channel = dynamic_cast<const constraints::ChannelConstraint*>(scene->constraints().back());
@@ -61,9 +59,8 @@ TEST(CoilDelivery, TheCoilGoesInAtThePushersSpeedAndStaysInTheLumen) {
   double worst_length = 0.0, worst_axis = 0.0, worst_tip = 0.0, deepest = 0.0;
   const long steps = std::lround(0.6 / dt);  // 12 mm of coil pushed out
   for (long k = 1; k <= steps; ++k) {
-    const StepReport report = scene->step();
+    const StepReport report = run.step();
     ASSERT_TRUE(report.ok) << report.message;
-    metrics->afterStep(*scene, dt);
     if (k % 20) continue;
     const SceneState& s = scene->state();
     const double pushed = kPushSpeed * s.time;
@@ -77,8 +74,7 @@ TEST(CoilDelivery, TheCoilGoesInAtThePushersSpeedAndStaysInTheLumen) {
     for (int i = 0; i <= 960; ++i) {
       const Vec3 x = coil.position(s.q, i / 960.0);
       if (x.z() < -8e-3) continue;  // the channel below the parent's open inlet: outside the vessel data
-      const geometry::VesselTree::Sample sample = tree.sample(x, tree.maxRadius());
-      deepest = std::max(deepest, (r - sample.value / sample.gradient.norm()) / r);
+      deepest = std::max(deepest, test::wallDepth(tree.sample(x, tree.maxRadius()), r));
     }
   }
   const double v = kPushSpeed, kick = v * dt * std::sin(kSegment / kBendRadius);

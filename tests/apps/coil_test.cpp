@@ -14,6 +14,7 @@
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
 #include "filum/haptics/navigation_metrics.hpp"
+#include "support/navigation_scene_run.hpp"
 
 namespace filum {
 namespace {
@@ -29,13 +30,11 @@ double polylineLength(const CurveBody& body, const VecX& q, int samples) {
 }
 
 TEST(CoilScene, StaysInTheSacWithItsWeightOnTheWall) {
-  const nlohmann::json document = readJsonFile(kCoilScene);
-  auto scene = loadScene(document, kCoilScene, app::makeFactory());
-  auto metrics = haptics::NavigationMetrics::fromScene(document, kCoilScene, *scene);
+  test::NavigationSceneRun run("coil_in_sac.json");
+  const auto& scene = run.scene;
+  const auto& metrics = run.metrics;
   ASSERT_NE(metrics, nullptr);
   ASSERT_NE(metrics->packing(), nullptr);
-  scene->init();
-  metrics->start(*scene);
   const CurveBody& coil = *scene->bodies()[0]->curve();
   const geometry::VesselTree& tree = metrics->lumen().tree();
   const haptics::CoilPacking& aneurysm = *metrics->packing();
@@ -48,14 +47,12 @@ TEST(CoilScene, StaysInTheSacWithItsWeightOnTheWall) {
   int outside = 0;
   constexpr int kSamples = 480;  // every 0.125 mm, half a sphere spacing
   for (long k = 0; k < steps; ++k) {
-    const StepReport report = scene->step();
+    const StepReport report = run.step();
     ASSERT_TRUE(report.ok) << report.message;
-    metrics->afterStep(*scene, dt);
     for (int i = 0; i <= kSamples; ++i) {
       const Vec3 x = coil.position(scene->state().q, static_cast<double>(i) / kSamples);
       if (!aneurysm.contains(x)) ++outside;
-      const geometry::VesselTree::Sample s = tree.sample(x, tree.maxRadius());
-      deepest = std::max(deepest, (r - s.value / s.gradient.norm()) / r);
+      deepest = std::max(deepest, test::wallDepth(tree.sample(x, tree.maxRadius()), r));
     }
   }
   std::printf("  deepest %.3f r, %d samples outside the aneurysm\n", deepest, outside);
