@@ -96,44 +96,71 @@ void BlockBandLdlt::solveColumns(Eigen::Ref<MatX> x, int first) const {
   // reload x_j r times, one dependent store-to-load per block), and D_i⁻¹ applied on the way.
   // The sweeps are sequential (row i needs row i ∓ 1): the terms of the farther rows are summed
   // first, so that only the nearest block's product waits for the row just solved.
+  // Columns go four at a time (kColumnChunk): each block is loaded once for the four, and their
+  // four sums are independent chains where one column's is a chain of dependent subtractions. The
+  // arithmetic of each column is the same in a chunk as alone, term by term and in the same order
+  // (no contraction into fused multiply-adds: -ffp-contract=off), so a column's result does not
+  // depend on the columns solved beside it (solve() is one column of this).
   // Rows before `first` are zero in every column and stay zero in the forward sweep
   // (y_i = x_i − Σ L_ij y_j = 0); row `first` has no non-zero term above it.
-  const Eigen::Index columns = x.cols(), stride = x.outerStride();
-  double* data = x.data();
+  const Eigen::Index columns = x.cols();
   first = std::clamp(first, 0, std::max(n_ - 1, 0));
+  Eigen::Index k = 0;
+  for (; k + kColumnChunk <= columns; k += kColumnChunk) sweepColumns<kColumnChunk>(x, k, first);
+  for (; k < columns; ++k) sweepColumns<1>(x, k, first);
+}
+
+template <int Width>
+void BlockBandLdlt::sweepColumns(Eigen::Ref<MatX>& x, Eigen::Index column, int first) const {
+  const Eigen::Index stride = x.outerStride();
+  double* v[Width];
+  for (int c = 0; c < Width; ++c) v[c] = x.data() + (column + c) * stride;
   for (int i = first + 1; i < n_; ++i) {
     const int j0 = std::max(first, i - r_);
-    for (Eigen::Index k = 0; k < columns; ++k) {
-      double* v = data + k * stride;
-      double s0 = v[3 * i], s1 = v[3 * i + 1], s2 = v[3 * i + 2];
-      for (int j = j0; j < i; ++j) {
-        const double* b = block(i, j).data();
-        const double y0 = v[3 * j], y1 = v[3 * j + 1], y2 = v[3 * j + 2];
-        s0 -= b[0] * y0 + b[3] * y1 + b[6] * y2;
-        s1 -= b[1] * y0 + b[4] * y1 + b[7] * y2;
-        s2 -= b[2] * y0 + b[5] * y1 + b[8] * y2;
+    double s[Width][3];
+    for (int c = 0; c < Width; ++c) {
+      s[c][0] = v[c][3 * i];
+      s[c][1] = v[c][3 * i + 1];
+      s[c][2] = v[c][3 * i + 2];
+    }
+    for (int j = j0; j < i; ++j) {
+      const double* b = block(i, j).data();
+      for (int c = 0; c < Width; ++c) {
+        const double y0 = v[c][3 * j], y1 = v[c][3 * j + 1], y2 = v[c][3 * j + 2];
+        s[c][0] -= b[0] * y0 + b[3] * y1 + b[6] * y2;
+        s[c][1] -= b[1] * y0 + b[4] * y1 + b[7] * y2;
+        s[c][2] -= b[2] * y0 + b[5] * y1 + b[8] * y2;
       }
-      v[3 * i] = s0;
-      v[3 * i + 1] = s1;
-      v[3 * i + 2] = s2;
+    }
+    for (int c = 0; c < Width; ++c) {
+      v[c][3 * i] = s[c][0];
+      v[c][3 * i + 1] = s[c][1];
+      v[c][3 * i + 2] = s[c][2];
     }
   }
   for (int i = n_ - 1; i >= 0; --i) {
     const int k1 = std::min(n_ - 1, i + r_);
-    for (Eigen::Index c = 0; c < columns; ++c) {
-      double* v = data + c * stride;
-      Eigen::Vector3d xi(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+    double s[Width][3];
+    for (int c = 0; c < Width; ++c) {
+      Eigen::Vector3d xi(v[c][3 * i], v[c][3 * i + 1], v[c][3 * i + 2]);
       solvePivot(block(i, i), reciprocals_[i], xi);
-      for (int k = k1; k > i; --k) {
-        const double* b = block(k, i).data();
-        const double y0 = v[3 * k], y1 = v[3 * k + 1], y2 = v[3 * k + 2];
-        xi[0] -= b[0] * y0 + b[1] * y1 + b[2] * y2;
-        xi[1] -= b[3] * y0 + b[4] * y1 + b[5] * y2;
-        xi[2] -= b[6] * y0 + b[7] * y1 + b[8] * y2;
+      s[c][0] = xi[0];
+      s[c][1] = xi[1];
+      s[c][2] = xi[2];
+    }
+    for (int k = k1; k > i; --k) {
+      const double* b = block(k, i).data();
+      for (int c = 0; c < Width; ++c) {
+        const double y0 = v[c][3 * k], y1 = v[c][3 * k + 1], y2 = v[c][3 * k + 2];
+        s[c][0] -= b[0] * y0 + b[1] * y1 + b[2] * y2;
+        s[c][1] -= b[3] * y0 + b[4] * y1 + b[5] * y2;
+        s[c][2] -= b[6] * y0 + b[7] * y1 + b[8] * y2;
       }
-      v[3 * i] = xi[0];
-      v[3 * i + 1] = xi[1];
-      v[3 * i + 2] = xi[2];
+    }
+    for (int c = 0; c < Width; ++c) {
+      v[c][3 * i] = s[c][0];
+      v[c][3 * i + 1] = s[c][1];
+      v[c][3 * i + 2] = s[c][2];
     }
   }
 }

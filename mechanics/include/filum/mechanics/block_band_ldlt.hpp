@@ -48,8 +48,8 @@ class BlockBandLdlt {
   void solve(Eigen::Ref<VecX> x) const;
   /// In place X := A⁻¹ X for each column of X, whose block rows before `first` are zero (the
   /// forward sweep starts there). The same operations on each column as solve(): the same result
-  /// bit for bit. Each block of the factors is read once per block row for all the columns, and
-  /// the columns' dependent chains (row i waits for row i ∓ 1) overlap.
+  /// bit for bit. Each block of the factors is read once per block row for four columns, and the
+  /// four columns' dependent chains (row i waits for row i ∓ 1) overlap.
   void solveColumns(Eigen::Ref<MatX> x, int first = 0) const;
   /// The blocks of A⁻¹ within the band (after factor()), laid out as blocks(): row I holding
   /// (A⁻¹)_{I, I − r .. I} (the blocks above the diagonal are their transposes). O(n r²), by
@@ -67,6 +67,11 @@ class BlockBandLdlt {
   int halfBandwidth() const { return 3 * r_ + 2; }
 
  private:
+  static constexpr int kColumnChunk = 4;  // columns swept together by solveColumns
+  /// Both sweeps of solveColumns on columns [column, column + Width) of x.
+  template <int Width>
+  void sweepColumns(Eigen::Ref<MatX>& x, Eigen::Index column, int first) const;
+
   int n_ = 0;      // block rows
   int r_ = 0;      // block half bandwidth
   int width_ = 1;  // r + 1 blocks per row
