@@ -4,12 +4,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "filum/core/collision_pipeline.hpp"
 #include "filum/core/curve_body.hpp"
 #include "filum/core/scene.hpp"
 
 namespace filum::mechanics {
+
+namespace {
+/// A (sub-)step's length for a message: "4.88e-04 s" (fixed decimals would print the deepest
+/// sub-steps as 0).
+std::string duration(double h) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g s", h);
+  return text;
+}
+}  // namespace
 
 NewtonSettings NewtonSettings::fromParams(const Params& p, const NewtonSettings& defaults) {
   NewtonSettings settings = defaults;
@@ -51,12 +62,17 @@ ImplicitStepSolver::Status ImplicitStepSolver::solve(Scene& scene, const SceneSt
                          reuse_skip_ == 0 && !fresh_next_;
   fresh_next_ = false;
   if (reuse_skip_ > 0) --reuse_skip_;
+  // An attempt on a reused matrix that failed outright (a non-finite force or constraint solve at
+  // its iterate) counts as a stale one: taken again from a fresh matrix, its fault taken back.
+  const bool clean = scene.fault().empty();
   Attempt attempt = iterate(scene, s0, h, theta, kappa, a, may_reuse);
-  if (attempt == Attempt::kStale) {
+  const bool failed_on_reuse = attempt == Attempt::kFailed && attempt_reused_;
+  if (attempt == Attempt::kStale || failed_on_reuse) {
     ++refreshes_;
     reuse_skip_ = reuse_backoff_;
     reuse_backoff_ = std::min(2 * reuse_backoff_ + 1, kMaxReuseBackoff);
-    attempt = iterate(scene, s0, h, theta, kappa, a, false, /*first_force_known=*/true);
+    if (failed_on_reuse && clean) scene.takeFault();
+    attempt = iterate(scene, s0, h, theta, kappa, a, false, /*first_force_known=*/!failed_on_reuse);
   } else if (may_reuse) {
     reuse_backoff_ = 0;
   }
@@ -92,6 +108,7 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
   double linearized_displacement = 0.0;  // linearized mode: max(|θh v0 + κh² a_1|∞, floor)
 
   bool reused = false;  // the first iteration solved with an earlier step's matrix
+  attempt_reused_ = false;
   for (int k = 0; k < settings_.max_iterations; ++k) {
     // Residual r = Q(q, v) − M a at the iterate. At a_0 = 0 (M a_0 = 0) after a stale attempt:
     // Q(q0 + θh v0, v0), which that attempt evaluated and kept.
@@ -114,6 +131,7 @@ ImplicitStepSolver::Attempt ImplicitStepSolver::iterate(Scene& scene, const Scen
         matrix_key_[1] == theta && matrix_key_[2] == kappa && matrix_.laidOutFor(scene)) {
       refactor = false;  // a chord step on an earlier factorization; the estimate guards it
       reused = true;
+      attempt_reused_ = true;
       ++reuses_;
       first_force_ = force_;  // for the fresh attempt, should this one be stale
     }
@@ -327,15 +345,21 @@ bool ImplicitStepSolver::step(Scene& scene, SceneState& s, double h, double thet
 
 bool ImplicitStepSolver::advance(Scene& scene, SceneState& s, double h, double theta, double kappa,
                                  double position_factor, int depth) {
+  if (step_solves_ >= settings_.max_step_solves) {  // the halves before this one spent the budget
+    failure_ = "the step's Newton solves (max_step_solves " + std::to_string(settings_.max_step_solves) +
+               ") ran out before its sub-steps of " + duration(h) + " were taken";
+    return false;
+  }
   ++step_solves_;
   // A fault a component records during the attempt (a non-finite force or constraint solve at a
-  // wild iterate) belongs to the attempt: it is taken back when the attempt is discarded for its
-  // halves, or when a fresh iteration converged after it (solve(): a stale matrix's attempt), and
-  // reported with the step's failure if the halves fail too.
+  // wild iterate: its accelerations are then not finite, and the attempt fails) belongs to the
+  // attempt: it is taken back when the attempt is discarded for its halves, and reported with the
+  // step's failure if the halves fail too. (An attempt that converged would keep it.)
   const bool clean = scene.fault().empty();
   const Status status = solve(scene, s, h, theta, kappa, a_);
   const std::string attempt_fault = clean && !scene.fault().empty() ? scene.takeFault() : std::string();
   if (status == Status::kConverged) {
+    if (!attempt_fault.empty()) scene.noteFault(attempt_fault);
     // v1 = v0 + h a,  q1 = q0 ⊕ (h v0 + c h² a) (q0 + ... for points, R exp(...) for frames).
     if (scene.hasInternalDofs()) {
       increment_ = h * s.v + (position_factor * h * h) * a_;
@@ -353,7 +377,7 @@ bool ImplicitStepSolver::advance(Scene& scene, SceneState& s, double h, double t
   if (depth >= settings_.max_halvings || step_solves_ + 2 > settings_.max_step_solves) {
     if (status == Status::kNotConverged)
       failure_ = "Newton did not converge in " + std::to_string(settings_.max_iterations) +
-                 " iterations, even in sub-steps of " + std::to_string(h) + " s (" + std::to_string(step_solves_) +
+                 " iterations, even in sub-steps of " + duration(h) + " (" + std::to_string(step_solves_) +
                  " Newton solves for this step; " +
                  (depth >= settings_.max_halvings ? "max_halvings " + std::to_string(settings_.max_halvings) + " reached)"
                                                   : "max_step_solves " + std::to_string(settings_.max_step_solves) + " reached)");

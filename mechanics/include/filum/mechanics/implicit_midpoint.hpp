@@ -35,7 +35,8 @@ class ImplicitMidpoint final : public Integrator {
   bool needsJacobians() const override { return true; }
   /// A rod's frames (internal DOFs): their shear modes (ω ~ 1e5–1e6 rad/s) are stiff, and the
   /// midpoint rule does not damp them (|R(∞)| = 1): apps/scenes/j_tip_catheter.json under it
-  /// failed Newton at t = 0.15 s even with 1024 sub-steps. Backward Euler damps them.
+  /// failed Newton at t = 0.15 s even with 1024 sub-steps (when halving stopped at depth 10).
+  /// Backward Euler damps them.
   std::string internalDofsRefusal() const override {
     return "ImplicitEuler or an explicit integrator (the midpoint rule leaves a rod's stiff frame modes undamped)";
   }

@@ -81,7 +81,12 @@
 // transient of microseconds: catenary.json's first steps need sub-steps of 15 µs) needs a few
 // very short sub-steps and then climbs back to long ones (after a converged half, its sibling is
 // tried whole). Only if that fails too is the step reported to the scene (Scene::noteFault),
-// which rolls it back. The iteration is also abandoned early when the update stops shrinking
+// which rolls it back. "Newton solves" are attempts (solve() calls, up to max_iterations
+// iterations each; solves() counts them with the fresh retries of stale matrices); the budget is
+// per call of step(), so per contact sub-step of the scene. A fault a component notes during an
+// attempt (a non-finite force, or a constraint solve through a step matrix that is not definite)
+// is the attempt's: taken back (Scene::takeFault) when the attempt is taken again in halves — or,
+// on a reused matrix, from a fresh one — and reported with the step's failure. The iteration is also abandoned early when the update stops shrinking
 // above √tolerance (from the third iteration).
 //
 // Bodies with internal DOFs (a rod's frames): their rotations are unknowns of the same system,
@@ -191,6 +196,7 @@ class ImplicitStepSolver {
   bool advance(Scene& scene, SceneState& s, double h, double theta, double kappa, double position_factor,
                int depth);
   int step_solves_ = 0;  // Newton solves of the current step (halves included)
+  bool attempt_reused_ = false;  // the last iterate() started on an earlier step's matrix
   /// What solve() does once: with may_reuse, the first iteration may solve with an earlier
   /// factorization; kStale when it did and its estimate failed.
   enum class Attempt { kConverged, kNotConverged, kFailed, kStale };
