@@ -395,7 +395,7 @@ int viewScene(const ViewOptions& options, std::ostream& log) {
                                                   (fluoroscopy ? " | f: X-ray pedal | x: monitor/3D" : "") + " | space | q"
                                             : "left: push | shift+left or g: grab | right: orbit | wheel: zoom | space: pause | r | q");
       window.show(frame);
-      if (options.on_frame) options.on_frame(ViewFrame{index, window, *scene, camera, *probe, instruments.get(), selected});
+      if (options.on_frame) options.on_frame(ViewFrame{index, window, *scene, camera, *probe, instruments.get(), selected, hud});
     }
     if (!options.screenshot.empty() && !frame.empty()) visual::writePng(options.screenshot, frame);
   } catch (const SceneError& e) {

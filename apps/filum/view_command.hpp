@@ -32,6 +32,7 @@ struct ViewFrame {
   const haptics::ToolState& probe;
   const haptics::InstrumentSet* instruments;  // the scene's "instruments" (null without)
   int selected;                               // the instrument the mouse drives (−1: the probe)
+  const std::string& heads_up;                // the frame's heads-up line, as drawn
 };
 
 struct ViewOptions {

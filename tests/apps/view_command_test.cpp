@@ -177,7 +177,10 @@ TEST(ViewCommand, TabPassesTheArrowsFromTheWiresHubToTheCatheters) {
   const Vec3 axis = Vec3::UnitZ();
   Vec3 catheter_before = Vec3::Zero(), catheter_after = Vec3::Zero(), wire_before = Vec3::Zero(), wire_after = Vec3::Zero();
   double t_before = 0.0, t_after = 0.0, catheter_roll = 0.0, wire_roll = -1.0;
+  std::string hud_before, hud_after;  // the heads-up line names the hub the arrows drive
   options.on_frame = [&](const ViewFrame& f) {
+    if (f.index == 2) hud_before = f.heads_up;
+    if (f.index == 11) hud_after = f.heads_up;
     const Hub wire = hubOf(f.scene, "guidewire"), catheter = hubOf(f.scene, "catheter");
     ASSERT_TRUE(wire.point && wire.frame && catheter.point && catheter.frame);
     const double t = f.scene.state().time;
@@ -206,6 +209,8 @@ TEST(ViewCommand, TabPassesTheArrowsFromTheWiresHubToTheCatheters) {
   EXPECT_LT((wire_after - wire_before - 0.195 / 6.0 * (t_after - t_before) * axis).norm(), 1e-12)
       << (wire_after - wire_before).transpose();
   EXPECT_EQ(wire_roll, 0.0);
+  EXPECT_NE(hud_before.find("arrows: guidewire"), std::string::npos) << hud_before;
+  EXPECT_NE(hud_after.find("arrows: catheter"), std::string::npos) << hud_after;
 }
 
 TEST(ViewCommand, KeysGiveAnInstrumentToTheMouseAndCloseItsJaws) {
