@@ -58,17 +58,18 @@ TEST(CatenaryValidation, ThreadComesToRestOnTheCatenaryAndConvergesWithN) {
 }
 
 TEST(CatenaryValidation, StepsAHundredTimesLongerHalveThroughTheStartAndEndOnTheSameCurve) {
-  // catenary.json's settings (Newton to 1e-10, 10 iterations, n = 30) at dt × 100 = 0.5 s. The
-  // stiff string's first steps are a strain transient of microseconds (its stiffest mode has a
-  // period of 2.3 µs; the initial arc's moved end points are strained): Newton converges there
-  // only in sub-steps of ~15 µs, 2^15 below 0.5 s, and then climbs back to whole steps. The
-  // halving is bounded by the step's Newton solves, not by its depth (implicit_step_solver.hpp).
+  // catenary.json's settings (Newton to 1e-10, 10 iterations, up to 16 halvings, n = 30) at
+  // dt × 100 = 0.5 s. The stiff string's first steps are a strain transient of microseconds (its
+  // stiffest mode has a period of 2.3 µs; the initial arc's moved end points are strained): Newton
+  // converges there only in sub-steps of ~15 µs, 2^15 below 0.5 s, and then climbs back to whole
+  // steps; the step's budget of Newton solves bounds its work (implicit_step_solver.hpp).
   // At rest, a backward Euler step's fixed point is the static equilibrium whatever h, so the
   // thread ends on the curve the 5 ms steps reach: the same bound on the distance, 2e-4 m
   // (measured 9e-5 m at n = 30; the difference between the two runs is Newton's tolerance).
   const validation::Catenary problem;
   validation::RunSettings settings;
-  settings.integrator = {{"type", "ImplicitEuler"}, {"solve", "newton"}, {"newton_iterations", 10}, {"newton_tolerance", 1e-10}};
+  settings.integrator = {{"type", "ImplicitEuler"}, {"solve", "newton"}, {"newton_iterations", 10}, {"newton_tolerance", 1e-10},
+                         {"max_halvings", 16}};
   settings.dt = 0.5;
   settings.control_points = 30;
   auto scene = validation::loadProblem(problem, settings);
@@ -80,16 +81,16 @@ TEST(CatenaryValidation, StepsAHundredTimesLongerHalveThroughTheStartAndEndOnThe
   EXPECT_LT(problem.error(*scene), 2e-4);
   EXPECT_LT(scene->energy(scene->state()).kinetic, 1e-20);
 
-  // Halving no deeper than 10 (the depth cap of before: sub-steps of 0.49 ms), the start is not
-  // got through: the first step is refused at that depth.
-  settings.integrator["max_halvings"] = 10;
+  // Halving no deeper than 10 (the default: sub-steps of 0.49 ms), the start is not got through:
+  // the first step is refused at that depth.
+  settings.integrator.erase("max_halvings");
   scene = validation::loadProblem(problem, settings);
   EXPECT_FALSE(validation::advance(*scene, problem.duration(), &failure));
   EXPECT_NE(failure.find("max_halvings 10 reached"), std::string::npos) << failure;
-  settings.integrator.erase("max_halvings");
 
-  // With a budget of 15 Newton solves for the step, the start cannot be reached: the step is
-  // refused, and the message says which limit stopped it.
+  // With 16 levels but a budget of 15 Newton solves for the step, the start cannot be reached:
+  // the step is refused, and the message says which limit stopped it.
+  settings.integrator["max_halvings"] = 16;
   settings.integrator["max_step_solves"] = 15;
   scene = validation::loadProblem(problem, settings);
   EXPECT_FALSE(validation::advance(*scene, problem.duration(), &failure));

@@ -74,14 +74,16 @@
 // compressed thread has negative stiffness directions, so M − κh²K may be indefinite and the
 // Newton step overshoots. A non-converged iterate is never accepted (it can carry enormous
 // energy): step() then halves h and takes two steps, recursively, towards sub-steps where M/h²
-// dominates −K again. The halving is bounded by work, not by depth: at most max_step_solves
-// Newton solves for one step (2047 by default: every attempt of ten levels of halving, the worst
-// case of a step that needs sub-steps of h/1024 throughout), however deep the sub-steps (down to
-// h/2^max_halvings, 30 by default) — a stiff string started away from equilibrium (a strain
-// transient of microseconds: catenary.json's first steps need sub-steps of 15 µs) needs a few
-// very short sub-steps and then climbs back to long ones (after a converged half, its sibling is
-// tried whole). Only if that fails too is the step reported to the scene (Scene::noteFault),
-// which rolls it back. "Newton solves" are attempts (solve() calls, up to max_iterations
+// dominates −K again: down to h/2^max_halvings (10 by default), and at most max_step_solves
+// Newton solves for one step (2047 by default: every attempt of ten levels of halving). A scene
+// may allow deeper sub-steps: a stiff string started away from equilibrium (a strain transient
+// of microseconds: catenary.json's first steps need sub-steps of 15 µs) needs a few very short
+// sub-steps and then climbs back to long ones (after a converged half, its sibling is tried
+// whole), and the budget still bounds the step's work. The default depth stays 10: deeper, a
+// step that cannot be taken at all is refused later — organ.json at dt × 100 took more than
+// 200 s to refuse its first step at a depth of 30, 31 s at 10 (each attempt there is costly).
+// Only if the halves fail too is the step reported to the scene (Scene::noteFault), which rolls
+// it back. "Newton solves" are attempts (solve() calls, up to max_iterations
 // iterations each; solves() counts them with the fresh retries of stale matrices); the budget is
 // per call of step(), so per contact sub-step of the scene. A fault a component notes during an
 // attempt (a non-finite force, or a constraint solve through a step matrix that is not definite)
@@ -118,7 +120,7 @@ struct NewtonSettings {
   bool reuse_factorization = true;        // "reuse_factorization" (linearized mode, with the estimate), see above
   int max_iterations = 10;
   double tolerance = 1e-10;
-  int max_halvings = 30;       // depth: sub-steps down to h / 2^30
+  int max_halvings = 10;       // depth: sub-steps down to h / 2^10
   int max_step_solves = 2047;  // work: Newton solves (attempts) for one step, see above
   bool refactor_every_iteration = true;
   LinearSolverChoice linear_solver = LinearSolverChoice::Auto;
@@ -129,7 +131,8 @@ struct NewtonSettings {
   /// "newton_iterations": max iterations >= 1 (default 10; 1 in linearized mode is Baraff &
   /// Witkin's step without the estimate), "newton_tolerance": relative
   /// tolerance >= 0 (default 1e-10; 0 runs every iteration and accepts the last),
-  /// "max_halvings": how deep a step may be halved when Newton does not converge (default 30),
+  /// "max_halvings": how deep a step may be halved when Newton does not converge (default 10, at
+  /// most 60),
   /// "max_step_solves": Newton solves allowed for one step, the halves' included (default 2047),
   /// "jacobian_update": "every_iteration" (Newton, default) or "every_step" (the chord method:
   /// A factored once per step from the start of the iteration, later iterations only evaluate
