@@ -115,14 +115,15 @@ void BlockBandLdlt::sweepColumns(Eigen::Ref<MatX>& x, Eigen::Index column, int f
   const Eigen::Index stride = x.outerStride();
   double* v[Width];
   for (int c = 0; c < Width; ++c) v[c] = x.data() + (column + c) * stride;
+  double s[Width][3];  // block row i of each column, summed in registers
+  const auto store = [&](int i) {
+    for (int c = 0; c < Width; ++c)
+      for (int a = 0; a < 3; ++a) v[c][3 * i + a] = s[c][a];
+  };
   for (int i = first + 1; i < n_; ++i) {
     const int j0 = std::max(first, i - r_);
-    double s[Width][3];
-    for (int c = 0; c < Width; ++c) {
-      s[c][0] = v[c][3 * i];
-      s[c][1] = v[c][3 * i + 1];
-      s[c][2] = v[c][3 * i + 2];
-    }
+    for (int c = 0; c < Width; ++c)
+      for (int a = 0; a < 3; ++a) s[c][a] = v[c][3 * i + a];
     for (int j = j0; j < i; ++j) {
       const double* b = block(i, j).data();
       for (int c = 0; c < Width; ++c) {
@@ -132,15 +133,10 @@ void BlockBandLdlt::sweepColumns(Eigen::Ref<MatX>& x, Eigen::Index column, int f
         s[c][2] -= b[2] * y0 + b[5] * y1 + b[8] * y2;
       }
     }
-    for (int c = 0; c < Width; ++c) {
-      v[c][3 * i] = s[c][0];
-      v[c][3 * i + 1] = s[c][1];
-      v[c][3 * i + 2] = s[c][2];
-    }
+    store(i);
   }
   for (int i = n_ - 1; i >= 0; --i) {
     const int k1 = std::min(n_ - 1, i + r_);
-    double s[Width][3];
     for (int c = 0; c < Width; ++c) {
       Eigen::Vector3d xi(v[c][3 * i], v[c][3 * i + 1], v[c][3 * i + 2]);
       solvePivot(block(i, i), reciprocals_[i], xi);
@@ -157,11 +153,7 @@ void BlockBandLdlt::sweepColumns(Eigen::Ref<MatX>& x, Eigen::Index column, int f
         s[c][2] -= b[6] * y0 + b[7] * y1 + b[8] * y2;
       }
     }
-    for (int c = 0; c < Width; ++c) {
-      v[c][3 * i] = s[c][0];
-      v[c][3 * i + 1] = s[c][1];
-      v[c][3 * i + 2] = s[c][2];
-    }
+    store(i);
   }
 }
 

@@ -25,6 +25,16 @@ namespace {
 namespace fs = std::filesystem;
 using visual::WindowEvent;
 
+/// apps/scenes/<scene_file> played for `frames` frames of `fixed_step` of simulation each (20 ms by
+/// default), whatever the machine's speed.
+ViewOptions playing(const std::string& scene_file, int frames, double fixed_step = 0.02) {
+  ViewOptions view;
+  view.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/" + scene_file;
+  view.frames = frames;
+  view.fixed_step = fixed_step;
+  return view;
+}
+
 /// Shift + left press on the middle of the scene's first thread, a drag of 120 pixels right and
 /// 60 up, then 0.26 s held still: the grabbed point must be at the probe.
 void expectMouseGrabsAndPulls(const std::string& scene_file, const std::string& screenshot) {
@@ -32,10 +42,7 @@ void expectMouseGrabsAndPulls(const std::string& scene_file, const std::string& 
 
   const fs::path out = fs::path(FILUM_BINARY_DIR) / "test_output" / "view";
   fs::create_directories(out);
-  ViewOptions options;
-  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/" + scene_file;
-  options.frames = 24;
-  options.fixed_step = 0.02;  // 20 ms of simulation per frame, whatever the machine's speed
+  ViewOptions options = playing(scene_file, 24);
   options.screenshot = (out / screenshot).string();
   bool grabbed = false, mapped = false;
   double grab_abscissa = 0.0;
@@ -115,10 +122,7 @@ TEST(ViewCommand, ArrowsPushAndTurnACathetersHubAndTheMonitorShowsTheXRay) {
   FILUM_REQUIRE_RENDERING();
   const fs::path out = fs::path(FILUM_BINARY_DIR) / "test_output" / "view";
   fs::create_directories(out);
-  ViewOptions options;
-  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/guidewire.json";
-  options.frames = 30;
-  options.fixed_step = 0.02;
+  ViewOptions options = playing("guidewire.json", 30);
   options.screenshot = (out / "catheter_monitor.png").string();
   // The wire starts straight up the introducer's axis, +z: the hub's initial tangent, exactly.
   const Vec3 axis = Vec3::UnitZ();
@@ -170,10 +174,7 @@ TEST(ViewCommand, TabPassesTheArrowsFromTheWiresHubToTheCatheters) {
   // instrument of the "navigation" block, the wire; Tab passes them to the catheter. Its Up and
   // Left then move the catheter's hub (5 mm along the axis, 15°) and leave the wire on its script.
   FILUM_REQUIRE_RENDERING();
-  ViewOptions options;
-  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/catheter.json";
-  options.frames = 12;
-  options.fixed_step = 0.02;
+  ViewOptions options = playing("catheter.json", 12);
   const Vec3 axis = Vec3::UnitZ();
   Vec3 catheter_before = Vec3::Zero(), catheter_after = Vec3::Zero(), wire_before = Vec3::Zero(), wire_after = Vec3::Zero();
   double t_before = 0.0, t_after = 0.0, catheter_roll = 0.0, wire_roll = -1.0;
@@ -218,10 +219,7 @@ TEST(ViewCommand, KeysGiveAnInstrumentToTheMouseAndCloseItsJaws) {
   // where it was), a left press and a drag carry its hinge to the pointer (at the hinge's depth),
   // c closes its jaws (at 5 per second: shut within 0.2 s, 10 frames of 20 ms).
   FILUM_REQUIRE_RENDERING();
-  ViewOptions options;
-  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/instruments.json";
-  options.frames = 30;
-  options.fixed_step = 0.02;
+  ViewOptions options = playing("instruments.json", 30);
   int selected = -2;
   double jaw = -1.0;
   Vec3 hinge = Vec3::Zero(), pointer = Vec3::Zero(), start_hinge = Vec3::Zero();
@@ -261,10 +259,7 @@ TEST(ViewCommand, BracketsTurnTheNeedleTheMousesHolderHolds) {
   // centre and normal: its centre stays and its swage turns by 30°, to the round-off of composing
   // rigid placements (1e-16 of 0.1 m, a few dozen operations).
   FILUM_REQUIRE_RENDERING();
-  ViewOptions options;
-  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/stitch.json";
-  options.frames = 30;
-  options.fixed_step = 0.02;
+  ViewOptions options = playing("stitch.json", 30);
   haptics::RigidPose before;
   double centre_moved = -1.0, swage_error = -1.0;
   options.on_frame = [&](const ViewFrame& f) {
@@ -293,10 +288,7 @@ TEST(ViewCommand, BracketsTurnTheNeedleTheMousesHolderHolds) {
 /// sending the `keys` at frame `at`; the view must end normally. Returns the frames played.
 int framesPlayedWithKeys(const std::string& scene_file, int frames, double fixed_step, int at,
                          const std::vector<std::string>& keys) {
-  ViewOptions options;
-  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/" + scene_file;
-  options.frames = frames;
-  options.fixed_step = fixed_step;
+  ViewOptions options = playing(scene_file, frames, fixed_step);
   int played = 0;
   options.on_frame = [&](const ViewFrame& f) {
     played = f.index + 1;
@@ -322,10 +314,7 @@ TEST(ViewCommand, AHapticDeviceOnTheHubPushesItAndTheArrowsDoNot) {
   // target from the stylus by arithmetic; the hub within the constraint's error, asked within
   // 0.1 mm while it moves). Up, pressed at frame 2, would push it 5 mm more: not with a device.
   FILUM_REQUIRE_RENDERING();
-  ViewOptions options;
-  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/catheter_device.json";
-  options.frames = 25;
-  options.fixed_step = 0.02;
+  ViewOptions options = playing("catheter_device.json", 25);
   double hub_z = 0.0, time = 0.0;
   options.on_frame = [&](const ViewFrame& f) {
     if (f.index == 2) f.window.sendToSelf({WindowEvent::Type::kKey, 0, 0, 0, false, "Up"});

@@ -3,6 +3,7 @@
 // it; and how deep an instrument's surface lies in a vessel's wall.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <string>
