@@ -167,8 +167,18 @@ Capsule Instrument::partNow(int index) const {
 }
 
 bool Instrument::jawsCollide() const {
-  return settings_.collide && settings_.kind != InstrumentKind::kScissors && !holding() && !holds_object_ &&
-         jaws_clear_ && opening_ <= settings_.close_below;
+  if (!settings_.collide || settings_.kind == InstrumentKind::kScissors || holds_object_) return false;
+  if (holding()) return held_span_;
+  return jaws_clear_ && opening_ <= settings_.close_below;
+}
+
+void Instrument::setHeldSpan(double from, double to) {
+  held_span_ = holding();
+  for (int i = 1; i < kParts; ++i) {
+    if (!parts_[i]) continue;
+    parts_[i]->setPassage(held_span_ ? hold_->grasp.body() : nullptr, from, to);
+    parts_[i]->setEnabled(jawsCollide());
+  }
 }
 
 void Instrument::holdObject() {
@@ -322,6 +332,7 @@ void Instrument::startHolding(const CurveBody& body, double abscissa, double alo
   held_for_ = 0.0;
   grasp(*hold_, body, abscissa);
   aimHold();
+  held_span_ = false;  // until setHeldSpan says which piece the jaws hold
   for (int i = 1; i < kParts; ++i)
     if (parts_[i]) parts_[i]->setEnabled(false);
 }
@@ -329,9 +340,13 @@ void Instrument::startHolding(const CurveBody& body, double abscissa, double alo
 void Instrument::stopHolding() {
   release(*hold_);
   held_for_ = 0.0;
+  held_span_ = false;
   jaws_clear_ = opening_ > settings_.close_below;
-  for (int i = 1; i < kParts; ++i)
-    if (parts_[i]) parts_[i]->setEnabled(jawsCollide());
+  for (int i = 1; i < kParts; ++i) {
+    if (!parts_[i]) continue;
+    parts_[i]->setPassage(nullptr, 0.0, 0.0);
+    parts_[i]->setEnabled(jawsCollide());
+  }
 }
 
 }  // namespace filum::haptics

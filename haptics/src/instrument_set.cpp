@@ -125,6 +125,7 @@ void InstrumentSet::attach(Scene& scene, const std::string& source) {
   fields_.assign(count, {});
   released_.assign(count, {});
   coagulating_done_.assign(count, 0);
+  held_strands_.assign(count, {});
   touching_.assign(count * count, 0);
   for (int i = 0; i < count; ++i) {
     Instrument& inst = *instruments_[i];
@@ -231,6 +232,7 @@ void InstrumentSet::beforeStep(Scene& scene) {
     }
   }
   moveNeedles(t);
+  setHeldSpans(scene);
   if (wound_)
     for (const std::string& what : wound_->follow(scene, needles_)) event(t, what);
 }
@@ -400,6 +402,31 @@ void InstrumentSet::coagulate(int i, const Scene& scene) {
   coagulated_.push_back({point.body(), from, to});
   ++metrics_.instrument(i).coagulations;
   event(scene.state().time, "'" + inst.name() + "' coagulated s in [" + eventNumber(from) + ", " + eventNumber(to) + "]");
+}
+
+void InstrumentSet::setHeldSpans(const Scene& scene) {
+  for (int i = 0; i < size(); ++i) {
+    Instrument& inst = *instruments_[i];
+    if (!inst.holding()) continue;
+    const BodyPoint& point = inst.hold()->grasp;
+    const double s = point.abscissa();
+    HeldStrand& held = held_strands_[i];
+    if (held.body != point.body() || held.revision != scene.layoutRevision() || s < held.strand.begin ||
+        s > held.strand.end) {
+      held.body = point.body();
+      held.revision = scene.layoutRevision();
+      held.strand = strandAt(point.body()->basis(), s);
+    }
+    // The thread between the jaws: along them, within a jaw's length of the held point, plus
+    // the jaw's radius and the thread's where it leaves them; across them, within
+    // √(2 R r + r²) < R + r of it (a jaw of radius R pressed onto a thread of radius r) — so
+    // the held point ± (jaw length + R + r) along the thread, in abscissa through |P'(s*)|.
+    const InstrumentShape& shape = inst.settings().shape;
+    const double speed = point.mapTangent(scene.state().q).norm();
+    const double reach = shape.jaw_length + shape.jaw_radius + point.body()->radius();
+    const double half = speed > 0.0 ? reach / speed : held.strand.end - held.strand.begin;
+    inst.setHeldSpan(std::max(held.strand.begin, s - half), std::min(held.strand.end, s + half));
+  }
 }
 
 bool InstrumentSet::coagulated(const CurveBody& body, double s) const {

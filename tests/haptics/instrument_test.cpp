@@ -1,10 +1,12 @@
 // Instruments (haptics/instrument_set.hpp): a grasp holds below its holding force and slips
-// above it, to where the spring–slider puts it; scissors cut at the abscissa between their blades
+// above it, to where the spring–slider puts it; jaws holding a thread let the held piece through
+// and push another thread that comes down on them; scissors cut at the abscissa between their blades
 // at the step their gap closes onto the thread, and cut nothing in the air; a cut that needs
 // coagulation is refused until bipolar forceps have coagulated the span; the trainee metrics of a
 // scripted path against values worked out by hand; every instrument field refused at its JSON path.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "filum/collision/register_components.hpp"
@@ -12,6 +14,7 @@
 #include "filum/core/curve_body.hpp"
 #include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
+#include "filum/geometry/spline_curve.hpp"
 #include "filum/haptics/instrument_set.hpp"
 #include "filum/mechanics/register_components.hpp"
 
@@ -155,6 +158,63 @@ TEST(Grasp, SlipsAboveItsHoldingForceToWhereTheSliderStops) {
   const double strain = hold / kAxialStiffness;
   EXPECT_NEAR(run.instruments->metrics().instrument(0).slip_length, 0.05 + pull - hold / k - 0.05 * (1 + strain),
               2 * 1.5 * pull * 1e-3);
+}
+
+TEST(Grasp, TheJawsLetTheHeldPieceThroughAndPushEverythingElse) {
+  // The grasper of pullingGrasper holds the test thread A at s = 0.5 (x = 0.05) and stays; its
+  // closed jaws are one capsule of radius R = 1 mm along +y from the hinge (0.05, −0.01, 0), 18 mm
+  // long, A crossing it 10 mm from the hinge. A second thread B, 4 cm along x at y = 4 mm (14 mm
+  // along the jaws) and 3 mm above them, is drawn taut first (its ends 0.1 mm apart each over
+  // 0–0.1 s: 0.5 % strain, 1.7 N, so that it moves as a string), then its ends are carried 4 mm
+  // down over 0.2–0.7 s: it comes down onto the jaws and drapes over them. Before the jaws pushed
+  // while holding (the hold was then the jaws' only contact), B went through them.
+  constexpr double kJawRadius = 1e-3;
+  json document = threadScene(pullingGrasper(5.0, 0.0));
+  json b = document["nodes"][0];
+  b["name"] = "other";
+  b["components"][0]["control_points"] = {{"from", {0.03, 0.004, 0.003}}, {"to", {0.07, 0.004, 0.003}}, {"count", 20}};
+  auto end = [](double s, double x0, double x1) {
+    return json{{"type", "FixedPointConstraint"}, {"abscissa", s}, {"interpolation", "smooth"},
+                {"path", json::array({{{"time", 0.0}, {"position", {x0, 0.004, 0.003}}},
+                                      {{"time", 0.1}, {"position", {x1, 0.004, 0.003}}},
+                                      {{"time", 0.2}, {"position", {x1, 0.004, 0.003}}},
+                                      {{"time", 0.7}, {"position", {x1, 0.004, -0.001}}}})}};
+  };
+  b["components"][4] = end(0.0, 0.03, 0.0299);
+  b["components"].push_back(end(1.0, 0.07, 0.0701));
+  document["nodes"].push_back(b);
+  InstrumentRun run(document);
+  const Vec3 hinge(0.05, -0.01, 0.0), tip(0.05, 0.008, 0.0);
+  auto distanceToJaws = [&](const Vec3& x) {
+    const double u = std::clamp((x - hinge).dot(tip - hinge) / (tip - hinge).squaredNorm(), 0.0, 1.0);
+    return (x - (hinge + u * (tip - hinge))).norm();
+  };
+  const CurveBody& other = *run.scene->bodies()[1]->curve();
+  double nearest = 1.0;  // of B's centre line to the jaws' axis, over the run (m)
+  for (int k = 0; k < 900; ++k) {
+    ASSERT_TRUE(run.step()) << "step " << k;
+    const auto q = other.block(run.scene->state().q);
+    for (int i = 0; i <= 200; ++i) nearest = std::min(nearest, distanceToJaws(geometry::curvePoint(other.basis(), q, i / 200.0)));
+  }
+  const Instrument& grasper = run.instruments->instrument(0);
+  ASSERT_TRUE(grasper.holding());
+  // B rests on the jaws: its centre line R + r from their axis, less what the contact rows let it
+  // sink in (Baumgarte's correction, within max_penetration's tenth of r); half of r is far more
+  // than that, and far less than going through (distance 0).
+  EXPECT_GT(nearest, kJawRadius + 0.5 * kRadius);
+  EXPECT_LT(nearest, kJawRadius + 2.0 * kRadius);  // it did come down onto them
+  // A's held point stays between the jaws, at their axis: the hold holds it, no contact pushes it.
+  EXPECT_LT(distanceToJaws(grasper.hold()->grasp.map(run.scene->state().q)), 0.5 * kJawRadius);
+  // The piece let through: the held point ± (jaw length + R + r) along A, 19.11 mm of its 10 cm
+  // (0.1911 in s, A being nearly unstretched); farther along, A is pushed as B is.
+  const double s = grasper.hold()->grasp.abscissa();
+  for (int part = 1; part <= 2; ++part) {
+    EXPECT_TRUE(grasper.part(part)->passesThrough(run.thread(), s + 0.19));
+    EXPECT_TRUE(grasper.part(part)->passesThrough(run.thread(), s - 0.19));
+    EXPECT_FALSE(grasper.part(part)->passesThrough(run.thread(), s + 0.195));
+    EXPECT_FALSE(grasper.part(part)->passesThrough(other, s));
+    EXPECT_TRUE(grasper.part(part)->enabled());
+  }
 }
 
 /// Scissors from −y (blades opening up and down) at x = `x`, `height` above the thread, closing

@@ -44,8 +44,11 @@
 //     whoever held it; with no needle there, holds a thread as a grasper does. Opening lets go.
 // Jaws that reach close_below holding nothing have missed (a grasper's missed grasp). Collision:
 // the shaft always pushes threads; the jaws of a grasper or forceps only when closed (at or
-// below close_below) on nothing — open, the space between them is where a thread is caught, and
-// holding, the hold is their contact; scissors' blades never push (they cut what is between them).
+// below close_below) on nothing — open, the space between them is where a thread is caught — or
+// when they hold a thread: then the piece of it between them (the held point ± a jaw's length,
+// its radius and the thread's: setHeldSpan) passes, the hold being its contact, and everything
+// else is pushed; holding a needle, they do not push; scissors' blades never push (they cut what
+// is between them).
 #pragma once
 
 #include <algorithm>
@@ -170,6 +173,11 @@ class Instrument {
   void releaseObject();
   bool holdsObject() const { return holds_object_; }
   void stopHolding();
+  /// The piece of the held thread that lies in the jaws, abscissas [from, to] (InstrumentSet sets
+  /// it at every step's start): the jaws let it through — the hold is its contact — and push
+  /// everything else, the rest of that thread too (the wraps of an instrument tie lie on the jaws
+  /// of the needle holder that holds the short end).
+  void setHeldSpan(double from, double to);
   /// Seconds the jaws have held their current point (BipolarForceps coagulation).
   double heldFor() const { return held_for_; }
   void addHeldTime(double h) { held_for_ += h; }
@@ -196,6 +204,7 @@ class Instrument {
   bool latched_ = false;
   bool holds_object_ = false;       // a needle
   bool jaws_clear_ = true;          // false from a release until the jaws open past close_below
+  bool held_span_ = false;          // holding, and the held piece is known (setHeldSpan)
   /// The jaws push threads (see above).
   bool jawsCollide() const;
   std::shared_ptr<ToolState> hold_ = std::make_shared<ToolState>();

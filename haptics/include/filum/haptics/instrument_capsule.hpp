@@ -16,9 +16,20 @@ class InstrumentCapsule final : public collision::Obstacle {
 
   /// The part at time t0 (`start`) and at t0 + h (`end`), h > 0; the radius is start's.
   void setMotion(const Capsule& start, const Capsule& end, double t0, double h);
-  /// A part that does not collide (jaws holding a thread: the grasp holds it instead).
+  /// A part that does not collide (jaws closed on what they let go of, scissors' blades).
   void setEnabled(bool enabled) { enabled_ = enabled; }
   bool enabled() const { return enabled_; }
+  /// The span [from, to] of abscissas of `body` that this part lets through: the piece of a
+  /// thread its jaws hold (the hold is that piece's contact; the rest of the thread, and every
+  /// other thread, is pushed). Null body: none.
+  void setPassage(const CurveBody* body, double from, double to) {
+    passage_body_ = body;
+    passage_from_ = from;
+    passage_to_ = to;
+  }
+  bool passesThrough(const CurveBody& body, double s) const override {
+    return &body == passage_body_ && s >= passage_from_ && s <= passage_to_;
+  }
 
   void moveTo(double t) override;
   bool sample(const Vec3& x, double max_distance, collision::SurfaceSample& out) const override;
@@ -32,6 +43,8 @@ class InstrumentCapsule final : public collision::Obstacle {
   Vec3 velocity_a_ = Vec3::Zero(), velocity_b_ = Vec3::Zero();
   double t0_ = 0.0, h_ = 1.0;
   bool enabled_ = true;
+  const CurveBody* passage_body_ = nullptr;
+  double passage_from_ = 0.0, passage_to_ = 0.0;
 };
 
 }  // namespace filum::haptics

@@ -114,6 +114,8 @@ class InstrumentSet {
   /// A grasper's thread slipping through its jaws (spring–slider, instrument.hpp).
   void slip(int i, const Scene& scene, const Vec3& force);
   void coagulate(int i, const Scene& scene);
+  /// Tells every holding instrument which piece of its thread lies in its jaws (Instrument::setHeldSpan).
+  void setHeldSpans(const Scene& scene);
   /// |Σ contact forces on instrument i's parts| at the scene's state (N).
   double partsForce(int i, const Scene& scene) const;
   void countToolContacts(double t);
@@ -133,6 +135,14 @@ class InstrumentSet {
   std::vector<std::vector<const CurveBody*>> released_;   // per instrument: bodies it let go of
   std::vector<char> coagulating_done_;                    // per instrument: this hold coagulated
   std::vector<Span> coagulated_;
+  /// Per instrument: the strand its held point was last found on, and the scene's layout then
+  /// (found again only when the layout, the body or the strand changed: finding it allocates).
+  struct HeldStrand {
+    const CurveBody* body = nullptr;
+    long revision = -1;
+    Strand strand;
+  };
+  std::vector<HeldStrand> held_strands_;
   std::vector<char> touching_;                            // per instrument pair: parts in contact
   TraineeMetrics metrics_;
   std::vector<std::string> events_;
