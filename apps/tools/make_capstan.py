@@ -2,7 +2,9 @@
 """Writes apps/scenes/capstan_held.json and capstan_sliding.json: a silicone cord hanging over a
 fixed peg by its own weight, the geometry of tests/collision/capstan_scene.hpp (see there for the
 material, the capstan limit and the settling pin released at 0.5 s). Held: the heavy arm at 0.85 of
-the limit (the simulated threshold is at 0.93-0.96 of it, docs/contact-solver.md); sliding: at 1.2.
+the limit (the simulated threshold is at 0.93-0.96 of it: this solid cord's bending stiffness,
+which the capstan equation leaves out, costs it a few per cent; docs/contact-solver.md); sliding:
+at 1.2.
 
     python3 apps/tools/make_capstan.py [--out apps/scenes]
 """
