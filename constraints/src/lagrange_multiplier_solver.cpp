@@ -155,6 +155,8 @@ std::unique_ptr<LagrangeMultiplierSolver> LagrangeMultiplierSolver::fromParams(c
   if (o.newton_damping > 1e-3)
     p.fail("newton_damping", "a proximal shift in [0, 1e-3] (relative to J's unit diagonal; larger ones slow Newton to "
                              "Gauss-Seidel's pace)");
+  o.newton_presweeps = p.integer("newton_presweeps", 0, 1000, o.newton_presweeps,
+                                 "sweeps of Gauss-Seidel before Newton; more than a few undo its progress");
   o.newton_rows = p.integer("newton_rows", 0, o.newton_rows);
   const std::string linear = p.string("newton_linear_solve", "auto");
   if (linear == "dense")
@@ -499,12 +501,19 @@ bool LagrangeMultiplierSolver::assembleGeneralByColumns(const ConstraintProblem&
   const int width = 3 * problem.dof_points;
   if (yt_.rows() < c || yt_.cols() < width)  // grows only, in both dimensions
     yt_.resize(std::max<Eigen::Index>(2 * c, yt_.rows()), std::max<Eigen::Index>(width, yt_.cols()));
+  if (static_cast<int>(y_start_.size()) < c) y_start_.resize(2 * c);  // grows only
   for (int b : bodies) {  // Yᵀ on the columns' bodies (the other coordinates are never read)
     const BodyBlock& body = problem.bodies[b];
     for (int k = 0; k < c; ++k) {
       const Column& col = current_[k];
       const int seg = static_cast<int>(std::find(col.bodies.begin(), col.bodies.end(), b) - col.bodies.begin());
-      for (int i = 0; i < 3 * body.pointCount(); ++i) yt_(k, 3 * body.offset() + i) = col.y[col.starts[seg] + i];
+      y_start_[k] = col.y.data() + col.starts[seg];
+    }
+    // Coordinate by coordinate, the c columns' entries into one contiguous column of Yᵀ (its
+    // writes in order; the c reads are c sequential streams).
+    for (int i = 0; i < 3 * body.pointCount(); ++i) {
+      double* out = yt_.col(3 * body.offset() + i).data();
+      for (int k = 0; k < c; ++k) out[k] = y_start_[k][i];
     }
   }
   for (int r = 0; r < c; ++r) {
@@ -1114,6 +1123,12 @@ void LagrangeMultiplierSolver::solveWithNewton(const ConstraintProblem& problem,
   settings.damping = options_.newton_damping;
   settings.structured = options_.newton_structured;
   const ContactNewton::Structure structure{&inverse, &problem, &point_body_, deferred ? &band_product_ : nullptr};
+  // With W formed, a few Gauss–Seidel sweeps first: each row's projection onto its cone releases
+  // the warm start's contacts that now pull (λ_n < 0 once w_n is counted) and moves the rest
+  // towards stick or slide, so Newton starts from a better active set — it otherwise releases
+  // the redundant rows of a knot about one contact per short line-search step. (Deferred, W is
+  // not formed and the sweeps would form it: not done.)
+  if (!deferred && options_.newton_presweeps > 0) projectedGaussSeidel(rows, dense, options_.newton_presweeps);
   // Newton, and where it stalls (its active set still moving) a few Gauss–Seidel sweeps to
   // smooth λ before the next Newton round, within newton_iterations Newton iterations in all.
   constexpr int kSmoothingSweeps = 8;

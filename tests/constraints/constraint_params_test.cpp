@@ -83,6 +83,8 @@ TEST(ConstraintParams, BadSolverSettingsAreRefused) {
       {{{"type", "LagrangeMultiplierSolver"}, {"sparse_above", -1}}, "/constraint_solver/sparse_above"},
       {{{"type", "LagrangeMultiplierSolver"}, {"contact_form", "sparse"}}, "/constraint_solver/contact_form"},
       {{{"type", "LagrangeMultiplierSolver"}, {"newton_linear_solve", "band"}}, "/constraint_solver/newton_linear_solve"},
+      {{{"type", "LagrangeMultiplierSolver"}, {"newton_presweeps", -1}}, "/constraint_solver/newton_presweeps"},
+      {{{"type", "LagrangeMultiplierSolver"}, {"newton_presweeps", 1001}}, "/constraint_solver/newton_presweeps"},
   };
   for (const auto& [solver, where] : cases) {
     const std::string message = errorOf(fixed, solver);

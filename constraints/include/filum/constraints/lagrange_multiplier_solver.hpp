@@ -109,6 +109,11 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     int newton_iterations = 100;    // Newton iterations at most (contact rows; measured: 50 left 1.5 % of the
                                     // sliding capstan's solves to the costlier Gauss–Seidel fallback, 100 none)
     double newton_damping = 1e-9;   // floor of ContactNewton's shift δ (its rows have a unit diagonal)
+    int newton_presweeps = 0;       // Gauss–Seidel sweeps on the warm start before Newton, W formed: its
+                                    // active set corrected by projection (docs/contact-solver.md: knot.json
+                                    // sets 2, 14 → 11 Newton iterations a solve; not the default, as under a
+                                    // full Newton integrator the sweeps' pick among redundant rows changes from
+                                    // one iteration to the next and a stiff scene failed to converge)
     int newton_rows = 2000;         // Newton on W kept dense up to this many rows; above, Gauss–Seidel
     bool newton_structured = true;  // Newton's steps through A's band when cheaper (ContactNewton::Structure)
     bool point_blocks = true;       // Newton's W from A⁻¹'s blocks between touched points when cheaper (point_inverse_blocks.hpp)
@@ -330,6 +335,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   VecX band_wl_;  // W λ by band_product_ (BandProductDelassus; grows only)
   VecX saved_diagonal_;  // diagonal_ across a deferred formDelassus (grows only)
   MatX yt_;  // Yᵀ: the columns y_k = A⁻¹ l_k as rows (assembleGeneralByColumns; grows only)
+  std::vector<const double*> y_start_;  // where each column's entries on a body start (the same)
   VecX diagonal_;
   std::vector<int> bucket_, bucket_start_, cursor_;  // columns to solve, grouped by body
   MatX batch_;  // right-hand sides solved together (prepareColumns: 3 n_b × kColumnBatch, grows only)
