@@ -3,7 +3,8 @@
 fixed peg by its own weight, the geometry of tests/collision/capstan_scene.hpp (see there for the
 material, the capstan limit and the settling pin released at 0.5 s). Held: the heavy arm at 0.85 of
 the limit (the simulated threshold is at 0.93-0.96 of it: this solid cord's bending stiffness,
-which the capstan equation leaves out, costs it a few per cent; docs/contact-solver.md); sliding:
+which the capstan equation leaves out, and the 10 mm spacing cost it a few per cent;
+docs/contact-solver.md); sliding:
 at 1.2.
 
     python3 apps/tools/make_capstan.py [--out apps/scenes]

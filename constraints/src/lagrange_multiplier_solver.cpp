@@ -156,7 +156,7 @@ std::unique_ptr<LagrangeMultiplierSolver> LagrangeMultiplierSolver::fromParams(c
     p.fail("newton_damping", "a proximal shift in [0, 1e-3] (relative to J's unit diagonal; larger ones slow Newton to "
                              "Gauss-Seidel's pace)");
   o.newton_presweeps = p.integer("newton_presweeps", 0, 1000, o.newton_presweeps,
-                                 "sweeps of Gauss-Seidel before Newton; more than a few undo its progress");
+                                 "Gauss-Seidel sweeps before Newton (0: none)");
   o.newton_rows = p.integer("newton_rows", 0, o.newton_rows);
   const std::string linear = p.string("newton_linear_solve", "auto");
   if (linear == "dense")

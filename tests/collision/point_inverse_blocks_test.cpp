@@ -37,6 +37,7 @@ struct CapstanRun {
 
 CapstanRun runCapstan(bool point_blocks) {
   test::CapstanCord cord;
+  cord.bending_modulus = cord.youngs_modulus;  // the solid cord these figures were measured with
   cord.settle = 0.1;
   nlohmann::json document = test::capstanScene(cord);
   document["constraint_solver"] = {{"type", "LagrangeMultiplierSolver"},

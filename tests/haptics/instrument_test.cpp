@@ -199,8 +199,8 @@ TEST(Grasp, TheJawsLetTheHeldPieceThroughAndPushEverythingElse) {
   const Instrument& grasper = run.instruments->instrument(0);
   ASSERT_TRUE(grasper.holding());
   // B rests on the jaws: its centre line R + r from their axis, less what the contact rows let it
-  // sink in (Baumgarte's correction, within max_penetration's tenth of r); half of r is far more
-  // than that, and far less than going through (distance 0).
+  // sink in (Baumgarte's correction of a gap held near zero: a small fraction of r under a 1 N
+  // press); half of r is a margin for that, and far above going through (distance 0).
   EXPECT_GT(nearest, kJawRadius + 0.5 * kRadius);
   EXPECT_LT(nearest, kJawRadius + 2.0 * kRadius);  // it did come down onto them
   // A's held point stays between the jaws, at their axis: the hold holds it, no contact pushes it.
