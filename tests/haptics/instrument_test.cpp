@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "filum/collision/register_components.hpp"
+#include "filum/collision/segment_closest_points.hpp"
 #include "filum/constraints/register_components.hpp"
 #include "filum/core/curve_body.hpp"
 #include "filum/core/scene_error.hpp"
@@ -186,7 +187,7 @@ TEST(Grasp, TheJawsLetTheHeldPieceThroughAndPushEverythingElse) {
   InstrumentRun run(document);
   const Vec3 hinge(0.05, -0.01, 0.0), tip(0.05, 0.008, 0.0);
   auto distanceToJaws = [&](const Vec3& x) {
-    const double u = std::clamp((x - hinge).dot(tip - hinge) / (tip - hinge).squaredNorm(), 0.0, 1.0);
+    const double u = collision::closestParameterOnSegment(hinge, tip, x);
     return (x - (hinge + u * (tip - hinge))).norm();
   };
   const CurveBody& other = *run.scene->bodies()[1]->curve();
