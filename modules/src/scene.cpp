@@ -140,6 +140,7 @@ void Scene::init() {
   resizeWorkspace();
   contact_halvings_ = 0;
   solve_halvings_ = 0;
+  substeps_ = 0;
   step_count_ = 0;
   initialized_ = true;
 }
@@ -361,7 +362,7 @@ StepReport Scene::step() {
   report.time = state_.time;
   beginStep();
   try {
-    if (fault_.empty()) advance(settings_.dt, 0);
+    if (fault_.empty()) advanceStep(settings_.dt);
   } catch (const std::exception& e) {
     // A numerical routine that refused its input (a non-finite query point, a resampling
     // beyond its limit): a fault of the step like any other, rolled back by endStep.
@@ -473,7 +474,24 @@ long Scene::unconvergedContactSolves() const {
   return tally.solves - tally.converged;
 }
 
+void Scene::advanceStep(double dt) {
+  // Step-size memory, as an adaptive integrator starts from its last accepted step (Hairer,
+  // Nørsett & Wanner, Solving ODEs I, §II.4): a step begins as 2^d sub-steps of dt / 2^d, d the
+  // depth the last step needed, rather than at dt, to be halved again d times. While a thread
+  // runs through a knot every 1 ms step needs 1/8 ms sub-steps: from dt, that is 1 + 2 + 4
+  // attempts thrown away for 8 kept. The depth then comes back by one level per step taken
+  // without a halving, so a scene that stops needing short sub-steps returns to dt in d steps.
+  const int start = std::clamp(state_.memory.substep_depth, 0, kMaxContactHalvings);
+  deepest_depth_ = start;
+  const int count = 1 << start;
+  const double h = dt / static_cast<double>(count);
+  for (int k = 0; k < count && fault_.empty(); ++k) advance(h, start);
+  next_substep_depth_ = deepest_depth_ > start ? deepest_depth_ : std::max(0, start - 1);
+}
+
 void Scene::advance(double h, int depth) {
+  ++substeps_;
+  deepest_depth_ = std::max(deepest_depth_, depth);
   detectCollisions(h);
   substep_start_[depth] = state_;  // preallocated: no allocation
   const long unconverged = unconvergedContactSolves();
@@ -716,6 +734,7 @@ void Scene::setState(const SceneState& s) {
 
 void Scene::saveMemory() {
   state_.memory.layout_revision = layout_revision_;
+  state_.memory.substep_depth = next_substep_depth_;
   if (collision_) collision_->saveMemory(state_.memory);
   if (constraint_solver_) constraint_solver_->saveMemory(state_.memory);
   integrator_->saveMemory(state_.memory);

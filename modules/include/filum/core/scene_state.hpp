@@ -55,6 +55,8 @@ struct StepMemory {
   std::vector<int> row_kinds;
   // Collision pipeline: its last contacts with their forces, packed by the pipeline.
   std::vector<double> contacts;
+  // Scene: the halving depth the next step starts its sub-steps at (Scene::advanceStep).
+  int substep_depth = 0;
 };
 
 inline StepMemory& StepMemory::operator=(const StepMemory& other) {
@@ -71,6 +73,7 @@ inline StepMemory& StepMemory::operator=(const StepMemory& other) {
   assignGrowing(multipliers, other.multipliers);
   assignGrowing(row_kinds, other.row_kinds);
   assignGrowing(contacts, other.contacts);
+  substep_depth = other.substep_depth;
   return *this;
 }
 
