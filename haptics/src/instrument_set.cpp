@@ -376,7 +376,7 @@ void InstrumentSet::slip(int i, const Scene& scene, const Vec3& force) {
   metrics_.instrument(i).slip_length += std::abs(ds) * speed;
   const double t = scene.state().time;
   // Pulled past the end of its strand (the thread's end, or a cut's), the thread leaves the jaws.
-  const Strand strand = strandAt(point.body()->basis(), point.abscissa());
+  const Strand strand = heldStrand(i, scene, point.body(), point.abscissa());
   if (s <= strand.begin || s >= strand.end) {
     released_[i].push_back(point.body());
     event(t, "thread pulled out of '" + inst.name() + "'");
@@ -410,13 +410,7 @@ void InstrumentSet::setHeldSpans(const Scene& scene) {
     if (!inst.holding()) continue;
     const BodyPoint& point = inst.hold()->grasp;
     const double s = point.abscissa();
-    HeldStrand& held = held_strands_[i];
-    if (held.body != point.body() || held.revision != scene.layoutRevision() || s < held.strand.begin ||
-        s > held.strand.end) {
-      held.body = point.body();
-      held.revision = scene.layoutRevision();
-      held.strand = strandAt(point.body()->basis(), s);
-    }
+    const Strand& strand = heldStrand(i, scene, point.body(), s);
     // The thread between the jaws: along them, within a jaw's length of the held point, plus
     // the jaw's radius and the thread's where it leaves them; across them, within
     // √(2 R r + r²) < R + r of it (a jaw of radius R pressed onto a thread of radius r) — so
@@ -424,9 +418,19 @@ void InstrumentSet::setHeldSpans(const Scene& scene) {
     const InstrumentShape& shape = inst.settings().shape;
     const double speed = point.mapTangent(scene.state().q).norm();
     const double reach = shape.jaw_length + shape.jaw_radius + point.body()->radius();
-    const double half = speed > 0.0 ? reach / speed : held.strand.end - held.strand.begin;
-    inst.setHeldSpan(std::max(held.strand.begin, s - half), std::min(held.strand.end, s + half));
+    const double half = speed > 0.0 ? reach / speed : strand.end - strand.begin;
+    inst.setHeldSpan(std::max(strand.begin, s - half), std::min(strand.end, s + half));
   }
+}
+
+const Strand& InstrumentSet::heldStrand(int i, const Scene& scene, const CurveBody* body, double s) {
+  HeldStrand& held = held_strands_[i];
+  if (held.body != body || held.revision != scene.layoutRevision() || s < held.strand.begin || s > held.strand.end) {
+    held.body = body;
+    held.revision = scene.layoutRevision();
+    held.strand = strandAt(body->basis(), s);
+  }
+  return held.strand;
 }
 
 bool InstrumentSet::coagulated(const CurveBody& body, double s) const {

@@ -143,6 +143,9 @@ class InstrumentSet {
     Strand strand;
   };
   std::vector<HeldStrand> held_strands_;
+  /// The strand of instrument i's held point s on `body`, from held_strands_, found again only
+  /// when it is stale (another body, a layout change, or s outside it).
+  const Strand& heldStrand(int i, const Scene& scene, const CurveBody* body, double s);
   std::vector<char> touching_;                            // per instrument pair: parts in contact
   TraineeMetrics metrics_;
   std::vector<std::string> events_;
