@@ -55,6 +55,10 @@ def scene(name, fraction, duration):
         "duration": duration,
         "gravity": [0, 0, -9.81],
         "integrator": {"type": "ImplicitEuler"},
+        # Two Gauss-Seidel sweeps before each contact Newton solve: the cord's redundant rows on
+        # the peg are released by them instead of one per Newton iteration (docs/contact-solver.md,
+        # "A better start").
+        "constraint_solver": {"type": "LagrangeMultiplierSolver", "newton_presweeps": 2},
         "collision": {"type": "ContactPipeline", "response": "unilateral"},
         "output": {"interval": 0.01, "curve_samples": 200},
         "camera": {"position": [0.0, -1.2, -0.2], "look_at": [0.0, 0.0, -0.2], "up": [0, 0, 1], "fov": 40,
