@@ -371,8 +371,8 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
   const double keep = 1.0 - settings_.max_penetration;  // centre lines kept (1 − p) R apart
   const int model_count = static_cast<int>(models_.size());
   if (static_cast<int>(after_centers_.size()) != model_count) after_centers_.resize(model_count);
-  chords_.clear();
-  chord_owner_.clear();
+  // (The chords in beginStep's order: the same models, skipped and cut alike.)
+  end_chords_.clear();
   for (int m = 0; m < model_count; ++m) {
     const SphereCollisionModel& model = *models_[m];
     if (model_count == 1 && !model.selfCollision()) continue;
@@ -384,15 +384,21 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
       if (!model.mapping().joinsNext(k)) continue;  // a cut: no chord across it
       const Vec3 a0 = start.row(k).transpose(), a1 = start.row(k + 1).transpose();
       const Vec3 b0 = end.row(k).transpose(), b1 = end.row(k + 1).transpose();
-      chords_.push_back(sweptChordBound(a0, a1, b0, b1, depth_test ? keep * model.radius() : 0.0));  // centre lines
-      chord_owner_.emplace_back(m, k);
+      end_chords_.push_back(sweptChordBound(a0, a1, b0, b1, depth_test ? keep * model.radius() : 0.0));  // centre lines
     }
   }
   if (depth_test && leftLumen()) return Miss::kOverlapOrSlide;
-  if (chords_.size() < 2) return Miss::kNone;
-  if (!broad_phase_.findPairs(chords_, pairs_)) return Miss::kTooFar;
+  if (end_chords_.size() < 2) return Miss::kNone;
+  bool from_start = false;
+  const std::vector<IndexPair>* candidates = endPairs(from_start);
+  if (!candidates) return Miss::kTooFar;
   Miss miss = Miss::kNone;
-  for (const IndexPair& pair : pairs_) {
+  for (const IndexPair& pair : *candidates) {
+    if (from_start) {  // beginStep's pairs: those whose end bounds do not overlap cannot meet
+      const BoundingSphere &u = end_chords_[pair.first], &w = end_chords_[pair.second];
+      const double reach = u.radius + w.radius;
+      if ((u.center - w.center).squaredNorm() > reach * reach) continue;
+    }
     const auto [ma, k] = chord_owner_[pair.first];
     const auto [mb, l] = chord_owner_[pair.second];
     const SphereCollisionModel& a = *models_[ma];
@@ -422,6 +428,23 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
       miss = Miss::kOverlapOrSlide;
   }
   return miss;
+}
+
+const std::vector<IndexPair>* ContactPipeline::endPairs(bool& from_start) {
+  // Sphere B ⊂ sphere A when |c_B − c_A| + ρ_B <= ρ_A. If every chord's end bound lies in its
+  // start bound, two end bounds that overlap have start bounds that overlap (|c_A,i − c_A,j| <=
+  // |c_B,i − c_B,j| + (ρ_A,i − ρ_B,i) + (ρ_A,j − ρ_B,j) <= ρ_A,i + ρ_A,j), so beginStep's pairs hold
+  // every candidate: the usual case, as a step ends near where its start's velocities predicted
+  // and the start bounds are padded by r + margin/2 against the end's (1 − p) r. The slack of
+  // 1e-9 ρ_A covers the round-off of the broad phase's squared-distance test.
+  from_start = stats_.chords == static_cast<int>(end_chords_.size()) && chords_.size() == end_chords_.size();
+  for (std::size_t i = 0; from_start && i < end_chords_.size(); ++i) {
+    const BoundingSphere &start = chords_[i], &end = end_chords_[i];
+    from_start = (end.center - start.center).norm() + end.radius <= (1.0 - 1e-9) * start.radius;
+  }
+  if (from_start) return &pairs_;
+  if (!broad_phase_.findPairs(end_chords_, end_pairs_)) return nullptr;
+  return &end_pairs_;
 }
 
 bool ContactPipeline::leftLumen() const {
