@@ -1,6 +1,7 @@
 #include "filum/collision/contact_pipeline.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <tuple>
@@ -443,6 +444,7 @@ const std::vector<IndexPair>* ContactPipeline::endPairs(bool& from_start) {
     from_start = (end.center - start.center).norm() + end.radius <= (1.0 - 1e-9) * start.radius;
   }
   if (from_start) return &pairs_;
+  assert(chord_owner_.size() == end_chords_.size() && "missedContact's chords are beginStep's");
   if (!broad_phase_.findPairs(end_chords_, end_pairs_)) return nullptr;
   return &end_pairs_;
 }

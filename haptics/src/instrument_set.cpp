@@ -425,7 +425,10 @@ void InstrumentSet::setHeldSpans(const Scene& scene) {
 
 const Strand& InstrumentSet::heldStrand(int i, const Scene& scene, const CurveBody* body, double s) {
   HeldStrand& held = held_strands_[i];
-  if (held.body != body || held.revision != scene.layoutRevision() || s < held.strand.begin || s > held.strand.end) {
+  // Stale as strandAt would answer otherwise: its strands are half-open, [begin, end), but for
+  // the last one, which holds the curve's end (s = 1).
+  const bool outside = s < held.strand.begin || s > held.strand.end || (s == held.strand.end && held.strand.end < 1.0);
+  if (held.body != body || held.revision != scene.layoutRevision() || outside) {
     held.body = body;
     held.revision = scene.layoutRevision();
     held.strand = strandAt(body->basis(), s);

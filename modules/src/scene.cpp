@@ -141,6 +141,8 @@ void Scene::init() {
   contact_halvings_ = 0;
   solve_halvings_ = 0;
   substeps_ = 0;
+  state_.memory.substep_depth = 0;  // a fresh start takes whole steps first
+  next_substep_depth_ = 0;
   step_count_ = 0;
   initialized_ = true;
 }
@@ -481,12 +483,14 @@ void Scene::advanceStep(double dt) {
   // runs through a knot every 1 ms step needs 1/8 ms sub-steps: from dt, that is 1 + 2 + 4
   // attempts thrown away for 8 kept. The depth then comes back by one level per step taken
   // without a halving, so a scene that stops needing short sub-steps returns to dt in d steps.
-  const int start = std::clamp(state_.memory.substep_depth, 0, kMaxContactHalvings);
+  // The depth remembered is at most kMaxRememberedDepth (dt / 8): a rare deeper halving (a
+  // pass-through caught at dt / 64) then costs the next steps 8 + 4 + 2 sub-steps, not 64 + 32 + ….
+  const int start = std::clamp(state_.memory.substep_depth, 0, kMaxRememberedDepth);
   deepest_depth_ = start;
   const int count = 1 << start;
   const double h = dt / static_cast<double>(count);
   for (int k = 0; k < count && fault_.empty(); ++k) advance(h, start);
-  next_substep_depth_ = deepest_depth_ > start ? deepest_depth_ : std::max(0, start - 1);
+  next_substep_depth_ = deepest_depth_ > start ? std::min(deepest_depth_, kMaxRememberedDepth) : std::max(0, start - 1);
 }
 
 void Scene::advance(double h, int depth) {

@@ -287,6 +287,7 @@ class Scene {
   StepReport endStep(StepReport report);
   static constexpr int kMaxContactHalvings = 6;
   static constexpr int kMaxSolveHalvings = 3;  // an unconverged contact solve: down to dt / 8
+  static constexpr int kMaxRememberedDepth = 3;  // a step starts at dt / 8 at the shortest (advanceStep)
   std::vector<SceneState> substep_start_;  // one per halving depth (sized at init)
   long contact_halvings_ = 0;
   long solve_halvings_ = 0;
