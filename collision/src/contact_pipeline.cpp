@@ -390,16 +390,9 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
   }
   if (depth_test && leftLumen()) return Miss::kOverlapOrSlide;
   if (end_chords_.size() < 2) return Miss::kNone;
-  bool from_start = false;
-  const std::vector<IndexPair>* candidates = endPairs(from_start);
-  if (!candidates) return Miss::kTooFar;
+  if (!findEndPairs()) return Miss::kTooFar;
   Miss miss = Miss::kNone;
-  for (const IndexPair& pair : *candidates) {
-    if (from_start) {  // beginStep's pairs: those whose end bounds do not overlap cannot meet
-      const BoundingSphere &u = end_chords_[pair.first], &w = end_chords_[pair.second];
-      const double reach = u.radius + w.radius;
-      if ((u.center - w.center).squaredNorm() > reach * reach) continue;
-    }
+  for (const IndexPair& pair : end_pairs_) {
     const auto [ma, k] = chord_owner_[pair.first];
     const auto [mb, l] = chord_owner_[pair.second];
     const SphereCollisionModel& a = *models_[ma];
@@ -431,22 +424,28 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
   return miss;
 }
 
-const std::vector<IndexPair>* ContactPipeline::endPairs(bool& from_start) {
+bool ContactPipeline::findEndPairs() {
   // Sphere B ⊂ sphere A when |c_B − c_A| + ρ_B <= ρ_A. If every chord's end bound lies in its
   // start bound, two end bounds that overlap have start bounds that overlap (|c_A,i − c_A,j| <=
   // |c_B,i − c_B,j| + (ρ_A,i − ρ_B,i) + (ρ_A,j − ρ_B,j) <= ρ_A,i + ρ_A,j), so beginStep's pairs hold
   // every candidate: the usual case, as a step ends near where its start's velocities predicted
   // and the start bounds are padded by r + margin/2 against the end's (1 − p) r. The slack of
   // 1e-9 ρ_A covers the round-off of the broad phase's squared-distance test.
-  from_start = stats_.chords == static_cast<int>(end_chords_.size()) && chords_.size() == end_chords_.size();
-  for (std::size_t i = 0; from_start && i < end_chords_.size(); ++i) {
-    const BoundingSphere &start = chords_[i], &end = end_chords_[i];
-    from_start = (end.center - start.center).norm() + end.radius <= (1.0 - 1e-9) * start.radius;
-  }
-  if (from_start) return &pairs_;
   assert(chord_owner_.size() == end_chords_.size() && "missedContact's chords are beginStep's");
-  if (!broad_phase_.findPairs(end_chords_, end_pairs_)) return nullptr;
-  return &end_pairs_;
+  bool inside = chords_.size() == end_chords_.size();
+  for (std::size_t i = 0; inside && i < end_chords_.size(); ++i) {
+    const BoundingSphere &start = chords_[i], &end = end_chords_[i];
+    inside = (end.center - start.center).norm() + end.radius <= (1.0 - 1e-9) * start.radius;
+  }
+  if (!inside) return broad_phase_.findPairs(end_chords_, end_pairs_);
+  // beginStep's pairs whose end bounds overlap: the broad phase's answer, in its sorted order.
+  end_pairs_.clear();  // (capacity kept: grows only)
+  for (const IndexPair& pair : pairs_) {
+    const BoundingSphere &u = end_chords_[pair.first], &w = end_chords_[pair.second];
+    const double reach = u.radius + w.radius;
+    if ((u.center - w.center).squaredNorm() <= reach * reach) end_pairs_.push_back(pair);
+  }
+  return true;
 }
 
 bool ContactPipeline::leftLumen() const {

@@ -142,7 +142,6 @@ void Scene::init() {
   solve_halvings_ = 0;
   substeps_ = 0;
   state_.memory.substep_depth = 0;  // a fresh start takes whole steps first
-  next_substep_depth_ = 0;
   step_count_ = 0;
   initialized_ = true;
 }
@@ -490,7 +489,11 @@ void Scene::advanceStep(double dt) {
   const int count = 1 << start;
   const double h = dt / static_cast<double>(count);
   for (int k = 0; k < count && fault_.empty(); ++k) advance(h, start);
-  next_substep_depth_ = deepest_depth_ > start ? std::min(deepest_depth_, kMaxRememberedDepth) : std::max(0, start - 1);
+  // The next step's start, in the state: a step that fails is rolled back with the depth it
+  // began with (endStep restores the last good state).
+  if (fault_.empty())
+    state_.memory.substep_depth =
+        deepest_depth_ > start ? std::min(deepest_depth_, kMaxRememberedDepth) : std::max(0, start - 1);
 }
 
 void Scene::advance(double h, int depth) {
@@ -738,7 +741,6 @@ void Scene::setState(const SceneState& s) {
 
 void Scene::saveMemory() {
   state_.memory.layout_revision = layout_revision_;
-  state_.memory.substep_depth = next_substep_depth_;
   if (collision_) collision_->saveMemory(state_.memory);
   if (constraint_solver_) constraint_solver_->saveMemory(state_.memory);
   integrator_->saveMemory(state_.memory);

@@ -176,13 +176,13 @@ class ContactPipeline final : public CollisionPipeline {
   std::vector<std::pair<int, int>> chord_owner_;  // (model, chord) of every broad-phase entry
   std::vector<IndexPair> pairs_;
   // missedContact: the chords' bounds over the step as taken (centre lines, start to end), and
-  // their candidate pairs when beginStep's do not cover them (endPairs).
+  // their candidate pairs (findEndPairs).
   std::vector<BoundingSphere> end_chords_;
   std::vector<IndexPair> end_pairs_;
-  /// The candidate pairs of end_chords_: beginStep's pairs_ when every end bound lies inside the
-  /// same chord's bound of beginStep (then every pair whose end bounds overlap is among them),
-  /// else a new broad phase into end_pairs_ (null when its budget is spent).
-  const std::vector<IndexPair>* endPairs(bool& from_start);
+  /// The pairs of end_chords_ whose bounds overlap, into end_pairs_: taken from beginStep's
+  /// pairs_ when every end bound lies inside the same chord's bound of beginStep (then every such
+  /// pair is among them), else by a new broad phase (false when its budget is spent).
+  bool findEndPairs();
   ContactSet contacts_;
   // Unilateral response: row of each contact's normal relative to the first contact row, its
   // directions (n, t1, t2), and the force of the last solve on thread point A.

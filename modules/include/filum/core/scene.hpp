@@ -271,7 +271,7 @@ class Scene {
   long adaptive_insertions_ = 0, adaptive_removals_ = 0;
   std::vector<Rupture> ruptures_;
   /// Advances state_ by one step dt as 2^d sub-steps of halving depth d, d the depth the last
-  /// step needed (StepMemory::substep_depth), and sets the depth the next step starts at.
+  /// step needed (StepMemory::substep_depth), and leaves there the depth the next step starts at.
   void advanceStep(double dt);
   /// Advances state_ by h (detection at its start, then the integrator); redone as two halves,
   /// recursively, while the collision pipeline finds a contact the step's contact set missed.
@@ -293,7 +293,6 @@ class Scene {
   long solve_halvings_ = 0;
   long substeps_ = 0;       // sub-steps taken (accepted or redone), every step's included
   int deepest_depth_ = 0;   // the deepest halving depth the current step reached
-  int next_substep_depth_ = 0;  // where the next step starts (saved into StepMemory by endStep)
   /// The (sub-)step of length h at halving depth `depth` taken again from its start, as two halves.
   void redoInHalves(double h, int depth);
   /// Contact solves of the constraint solver that did not converge, since its construction.
