@@ -22,6 +22,46 @@ std::string exact(double x) {
   return buffer;
 }
 
+/// The abscissas knot.csv samples a strand at, whatever the output's curve_samples:
+/// kKnotSamplesPerSpan in each span of the basis (refined spans get theirs too). A polyline with
+/// chords of length l keeps within κ l² / 8 of the curve; two strands of the thread never come
+/// closer than about 2r (contact), so the polyline has the curve's crossings whenever
+/// κ l² / 8 < r. A span of control spacing h bends at most to κ ≈ 1/h without a kink in its
+/// control polygon, so 4 samples per span (l = h/4) keep the deviation below h/128: below r for
+/// every thread whose spacing is under 128 radii (knot.json: h = 1 mm, r = 0.15 mm, 6.7 radii).
+constexpr int kKnotSamplesPerSpan = 4;
+
+std::vector<double> knotAbscissas(const CurveBasis& basis, const Strand& strand) {
+  std::vector<double> abscissas;
+  const std::vector<double> breaks = basis.breakpoints();
+  for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+    const double a = breaks[i], b = breaks[i + 1];
+    if (a < strand.begin || b > strand.end || b <= a) continue;
+    for (int k = 0; k < kKnotSamplesPerSpan; ++k) abscissas.push_back(a + (b - a) * k / kKnotSamplesPerSpan);
+  }
+  abscissas.push_back(strand.end);
+  return abscissas;
+}
+
+/// The strand's points at `abscissas` (in [strand.begin, strand.end]), with them as scalars.
+visual::PolyLine sampleStrand(const MechanicalState& body, const Strand& strand, std::vector<double> abscissas,
+                              const SceneState& s, const std::string& t) {
+  visual::PolyLine line{body.node()->path(), Points(abscissas.size(), 3), abscissas};
+  geometry::SplinePointMapping(body.curve()->basis(), std::move(abscissas), strand).apply(body.block(s.q), line.points);
+  if (!line.points.allFinite())
+    throw NonFiniteFrame("refusing to write the non-finite curve of " + body.describe() + " at t = " + t + " s");
+  return line;
+}
+
+/// `count` points of the strand at equal steps of s.
+visual::PolyLine sampleStrand(const MechanicalState& body, const Strand& strand, int count, const SceneState& s,
+                              const std::string& t) {
+  std::vector<double> abscissas = geometry::uniformAbscissas(count);
+  if (strand.begin != 0.0 || strand.end != 1.0)  // a strand of a cut curve: its own range of s
+    for (double& a : abscissas) a = strand.begin + (strand.end - strand.begin) * a;
+  return sampleStrand(body, strand, std::move(abscissas), s, t);
+}
+
 std::ofstream openCsv(const std::string& path, const char* header) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot open for writing");
@@ -51,22 +91,22 @@ void RunOutput::writeFrame(const Scene& scene) {
   // give infinite curve points or energies).
   // One polyline per strand of every curve body (one for an uncut curve, CurveBasis::strands),
   // its samples at equal steps of s, in proportion to its share of [0, 1] (at least 2).
-  std::vector<visual::PolyLine> lines;
+  // knot.csv classifies its own, finer polylines (knotAbscissas): the output's may be too coarse
+  // to resolve a knot.
+  std::vector<visual::PolyLine> lines, knot_lines;
   std::vector<const MechanicalState*> line_body;
   for (const MechanicalState* body : scene.bodies()) {
     const auto* spline = body->curve();
     if (!spline) continue;
     for (const Strand& strand : strands(spline->basis())) {
       const int count = std::max(2, static_cast<int>(std::lround(curve_samples_ * (strand.end - strand.begin))));
-      std::vector<double> abscissas = geometry::uniformAbscissas(count);
-      if (strand.begin != 0.0 || strand.end != 1.0)  // a strand of a cut curve: its own range of s
-        for (double& a : abscissas) a = strand.begin + (strand.end - strand.begin) * a;
-      visual::PolyLine line{body->node()->path(), Points(count, 3), abscissas};
-      geometry::SplinePointMapping(spline->basis(), std::move(abscissas), strand).apply(body->block(s.q), line.points);
-      if (!line.points.allFinite())
-        throw NonFiniteFrame("refusing to write the non-finite curve of " + body->describe() + " at t = " + t + " s");
-      lines.push_back(std::move(line));
+      lines.push_back(sampleStrand(*body, strand, count, s, t));
       line_body.push_back(body);
+      if (knots_.is_open()) {
+        std::vector<double> fine = knotAbscissas(spline->basis(), strand);
+        knot_lines.push_back(static_cast<int>(fine.size()) > count ? sampleStrand(*body, strand, std::move(fine), s, t)
+                                                                   : lines.back());
+      }
     }
   }
   const Energy e = scene.energy(s);
@@ -77,7 +117,7 @@ void RunOutput::writeFrame(const Scene& scene) {
                          " s (kinetic " + exact(e.kinetic) + " J, potential " + exact(e.potential) + " J, violation " +
                          exact(violation) + ")");
 
-  if (knots_.is_open()) classifyKnots(scene, lines, line_body, t);
+  if (knots_.is_open()) classifyKnots(scene, knot_lines, line_body, t);
 
   std::size_t line_index = 0;
   for (const MechanicalState* body : scene.bodies()) {

@@ -77,6 +77,35 @@ TEST(RunCommand, KnotCsvFollowsTheKnotOfKnotJsonAsItIsTightened) {
   EXPECT_LT(resting_slip, 0.01 * tightening_slip);
 }
 
+TEST(RunCommand, KnotCsvSeesTheKnotWhateverTheOutputsSampling) {
+  // knot.json's thread (100 control points 1 mm apart, loops of a few mm) written with 8 curve
+  // samples, one every 14 mm: the output's polyline cannot hold the knot (it projects without a
+  // crossing), but knot.csv samples the thread 4 times per span of its own and still says trefoil.
+  const fs::path dir = freshDirectory("knot_coarse_output");
+  RunOptions options;
+  options.scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/knot.json";
+  options.out = dir.string();
+  options.duration = 0.01;
+  options.curve_samples = 8;
+  options.progress = false;
+  std::ostringstream log, progress;
+  ASSERT_EQ(runScene(options, log, progress), kRunOk) << log.str();
+  std::istringstream curve(readAll(dir / "curve.csv"));
+  std::string line;
+  std::getline(curve, line);
+  int first_frame_samples = 0;
+  while (std::getline(curve, line) && line.rfind("0,", 0) == 0) ++first_frame_samples;
+  EXPECT_EQ(first_frame_samples, 8) << "the output keeps its own sampling";
+  std::istringstream knots(readAll(dir / "knot.csv"));
+  std::getline(knots, line);
+  int rows = 0;
+  while (std::getline(knots, line)) {
+    ++rows;
+    EXPECT_NE(line.find(",trefoil"), std::string::npos) << line;
+  }
+  EXPECT_GT(rows, 1);
+}
+
 TEST(RunCommand, ADivergingSceneIsRolledBackReportedAndItsFilesKept) {
   // Springs 1e4 times stiffer than the demo's: ω dt ≈ 120, far past RK4's stability limit.
   test::ThreadSceneOptions o;
