@@ -58,10 +58,46 @@ bool onSamePieces(const Contact& x, const Contact& y) {
 /// the two kept ones — rows that only made the contact solve's matrix larger and singular (a rod
 /// lying on a table had ~7 spheres per 10 mm segment: 3.5 times the rows). Curved pieces (splines
 /// of degree >= 2) and curved surfaces (normals that differ) keep every contact.
+bool onePlane(const Contact& a, const Contact& b) { return a.normal.dot(b.normal) >= 1.0 - 1e-12; }  // normals equal to round-off
+
+/// The vertex of the linear piece (two control points) contact x lies at: 0 or 1 (its first or
+/// second point, the other's weight zero), or −1 inside the piece or on another kind of point.
+int vertexOfPiece(const Contact& x) {
+  const PointWeights& w = x.a.weights();
+  if (w.count != 2) return -1;
+  if (w.weight[1] == 0.0) return 0;
+  if (w.weight[0] == 0.0) return 1;
+  return -1;
+}
+
+/// The control point at vertex v (0, 1) of x's piece.
+int vertexPoint(const Contact& x, int v) { return x.a.weights().point[v]; }
+
+/// Whether contact y sits at control point p (a vertex of its own piece) against x's plane.
+bool atVertex(const Contact& y, int p, const Contact& x) {
+  const int v = vertexOfPiece(y);
+  return v >= 0 && vertexPoint(y, v) == p && onePlane(x, y);
+}
+
 void keepSpanEnds(ContactSet& out, std::size_t first) {
-  keepRunEnds(out, first, [](const Contact& a, const Contact& b) {
-    return onSamePieces(a, b) && a.normal.dot(b.normal) >= 1.0 - 1e-12;  // one plane: normals equal to round-off
-  });
+  keepRunEnds(out, first, [](const Contact& a, const Contact& b) { return onSamePieces(a, b) && onePlane(a, b); });
+  // Then a contact inside a piece goes too when both vertices of its piece have their own
+  // contact against the same plane (the neighbours in sphere order: the vertex before it ends or
+  // starts the run, the vertex after it starts the next piece's run). The gap is linear along
+  // the piece, so its smallest value is at a vertex: the vertex rows hold the whole piece. A rod
+  // whose vertices are sphere centres (a polyline laid out uniformly, SphereSamplingMapping)
+  // then has one contact per vertex instead of one per vertex and one per piece.
+  std::size_t write = first;
+  for (std::size_t k = first; k < out.size(); ++k) {
+    const Contact& x = out[k];
+    const PointWeights& w = x.a.weights();
+    const bool inside = w.count == 2 && w.weight[0] != 0.0 && w.weight[1] != 0.0;
+    if (inside && x.againstObstacle() && k > first && k + 1 < out.size() && atVertex(out[k - 1], w.point[0], x) &&
+        atVertex(out[k + 1], w.point[1], x))
+      continue;
+    out[write++] = x;
+  }
+  out.resize(write);
 }
 
 }  // namespace

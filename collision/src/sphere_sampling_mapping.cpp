@@ -116,26 +116,51 @@ double SphereSamplingMapping::centresOnStrand(int t) const {
   double count = std::max(2.0, std::ceil(length / spacing_ - 1e-9) + 1.0);
   // A polyline (degree 1: a rod's centre line) bends only at its vertices, and a vertex between
   // two centres pokes out of their spheres towards the outside of the bend, by up to
-  // (h/2) sin(θ/2) for a turn θ — a tenth of the radius at 13° with h = 2r. So the count is a
-  // multiple of the P pieces, ⌈L/(P h)⌉ (at least 1) centres a piece: with the pieces of equal
-  // length (a rod laid out uniformly, which its stretching stiffness keeps so to its strain) every
-  // vertex is a centre.
+  // (h/2) sin(θ/2) for a turn θ — a tenth of the radius at 13° with h = 2r. So its centres are
+  // placed piece by piece (sampleStrand), m = ⌈ℓ_max / h⌉ on each of its P pieces (ℓ_max the
+  // longest), and every vertex is a centre however unequal the pieces.
   if (basis_->degree() == 1) {
     const int pieces = (end - begin - 1) / kTablePerPiece;
-    if (pieces >= 1) count = pieces * std::max(1.0, std::ceil(length / (pieces * spacing_) - 1e-9)) + 1.0;
+    if (pieces >= 1) count = pieces * centresPerPiece(t) + 1.0;
   }
   return count;
+}
+
+double SphereSamplingMapping::centresPerPiece(int t) const {
+  const int begin = strand_table_begin_[t], end = strand_table_begin_[t + 1];
+  double longest = 0.0;
+  for (int j = begin; j + kTablePerPiece < end; j += kTablePerPiece)
+    longest = std::max(longest, table_length_[j + kTablePerPiece] - table_length_[j]);
+  return std::max(1.0, std::ceil(longest / spacing_ - 1e-9));
+}
+
+void SphereSamplingMapping::samplePolylineStrand(int t, int first, int count) {
+  // Piece by piece: a linear piece has |P'| constant, so equal steps of s are equal steps of arc
+  // length on it; the vertices (the table entries at the pieces' ends) are centres.
+  const int begin = strand_table_begin_[t];
+  const int per_piece = static_cast<int>(centresPerPiece(t));
+  strand_spacing_[t] = 0.0;
+  for (int i = 0; i < count; ++i) {
+    const int piece = std::min(i / per_piece, (count - 2) / per_piece);
+    const int a = begin + piece * kTablePerPiece, b = a + kTablePerPiece;
+    const double u = static_cast<double>(i - piece * per_piece) / per_piece;
+    abscissas_[first + i] = table_s_[a] + u * (table_s_[b] - table_s_[a]);
+    arc_of_[first + i] = table_length_[a] + u * (table_length_[b] - table_length_[a]);
+    strand_spacing_[t] = std::max(strand_spacing_[t], (table_length_[b] - table_length_[a]) / per_piece);
+  }
 }
 
 int SphereSamplingMapping::sampleStrand(int t, int first, double base) {
   const int begin = strand_table_begin_[t], end = strand_table_begin_[t + 1];
   const double length = table_length_[end - 1];
   const int count = static_cast<int>(centresOnStrand(t));  // checked against the limit by resample
-  strand_spacing_[t] = length / (count - 1);
+  const bool polyline = basis_->degree() == 1 && (end - begin - 1) / kTablePerPiece >= 1;
+  if (polyline) samplePolylineStrand(t, first, count);
+  else strand_spacing_[t] = length / (count - 1);
   // ℓ ↦ s by cubic Hermite interpolation of the inverse on each table interval, ds/dℓ = 1/|P'|:
   // error O(Δs⁴), about 1e-7 of the spacing for curves bent to the radius of a piece.
   int j = begin;
-  for (int i = 0; i < count; ++i) {
+  for (int i = 0; i < count && !polyline; ++i) {
     const double target = i * strand_spacing_[t];
     while (j + 2 < end && table_length_[j + 1] < target) ++j;
     const double l0 = table_length_[j], l1 = table_length_[j + 1], dl = l1 - l0;
@@ -157,7 +182,7 @@ int SphereSamplingMapping::sampleStrand(int t, int first, double base) {
     evaluateOnStrand(*basis_, strands_[t], abscissas_[first + i], rows_[first + i]);
     left_limit_[first + i] = abscissas_[first + i] >= strands_[t].end;  // as evaluateOnStrand decides
     strand_of_[first + i] = t;
-    arc_of_[first + i] = base + i * strand_spacing_[t];
+    arc_of_[first + i] = base + (polyline ? arc_of_[first + i] : i * strand_spacing_[t]);
   }
   return count;
 }
@@ -170,8 +195,12 @@ double SphereSamplingMapping::chordDistanceBound(int k, int l) const {
 }
 
 double SphereSamplingMapping::arcDistance(int k, double t, int l, double u) const {
-  const double a = arc_of_[k] + (joinsNext(k) ? t * strand_spacing_[strand_of_[k]] : 0.0);
-  const double b = arc_of_[l] + (joinsNext(l) ? u * strand_spacing_[strand_of_[l]] : 0.0);
+  // A chord's own length: a polyline's chords differ from piece to piece.
+  const auto chord = [this](int c) {
+    return basis_->degree() == 1 ? arc_of_[c + 1] - arc_of_[c] : strand_spacing_[strand_of_[c]];
+  };
+  const double a = arc_of_[k] + (joinsNext(k) ? t * chord(k) : 0.0);
+  const double b = arc_of_[l] + (joinsNext(l) ? u * chord(l) : 0.0);
   return std::abs(a - b);
 }
 

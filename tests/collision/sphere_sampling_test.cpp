@@ -44,25 +44,45 @@ TEST(SphereSamplingMapping, SpheresAreEquallySpacedAlongTheCurveAndFollowItsStre
   EXPECT_LE(mapping.spacing(), h);
 }
 
-TEST(SphereSamplingMapping, APolylinesVerticesAreCentres) {
-  // A rod's centre line: degree 1 through 11 equally spaced vertices on a zigzag (pieces of equal
-  // length). K − 1 is a multiple of the 10 pieces, so every vertex is a centre, exactly where the
-  // arc length puts it: abscissa i/10 to the table's interpolation error (1e-7 of a piece).
+TEST(SphereSamplingMapping, APolylinesVerticesAreCentresHoweverUnequalItsPieces) {
+  // A rod's centre line: degree 1 through 11 vertices on a zigzag whose pieces differ in length
+  // (2.2 to 4.2 mm, as a rod stretched unevenly). Its centres are placed piece by piece,
+  // ⌈ℓ_max / h⌉ = 5 on each, so every vertex is a centre, exactly at its breakpoint (i/10, where
+  // the row is the vertex's point alone); inside a piece the centres are equally spaced (a
+  // linear piece has a constant |P'|), at most h apart.
   geometry::SplineBasisSpec spec;
   spec.name = "nubs";
   spec.degree = 1;
   spec.control_points = 11;
   const auto basis = geometry::makeSplineBasis(spec);
   Points q(11, 3);
-  for (int i = 0; i < 11; ++i) q.row(i) << 3e-3 * i, (i % 2) * 1e-3, 0.0;
-  const double h = 1e-3;  // each piece is √10 mm long: 4 centres a piece
+  double x = 0.0;
+  for (int i = 0; i < 11; ++i) {
+    q.row(i) << x, (i % 2) * 1e-3, 0.0;
+    x += 2e-3 + 2e-3 * (i % 3) / 2.0;  // pieces along x of 2, 3 and 4 mm
+  }
+  const double h = 1e-3;
   SphereSamplingMapping mapping(*basis, h);
   mapping.resample(q);
-  ASSERT_EQ((mapping.outputCount() - 1) % 10, 0);
-  EXPECT_EQ(mapping.outputCount(), 10 * 4 + 1);
+  double longest = 0.0;
+  for (int i = 0; i < 10; ++i) longest = std::max(longest, (q.row(i + 1) - q.row(i)).norm());
+  const int per_piece = static_cast<int>(std::ceil(longest / h));
+  ASSERT_EQ(mapping.outputCount(), 10 * per_piece + 1);
   EXPECT_LE(mapping.spacing(), h);
-  const int per_piece = (mapping.outputCount() - 1) / 10;
-  for (int i = 0; i <= 10; ++i) EXPECT_NEAR(mapping.abscissas()[i * per_piece], i / 10.0, 1e-7) << "vertex " << i;
+  const auto& s = mapping.abscissas();
+  for (int i = 0; i <= 10; ++i) {
+    EXPECT_EQ(s[i * per_piece], i / 10.0) << "vertex " << i;
+    const geometry::BasisRow& row = mapping.row(i * per_piece);
+    for (int j = 0; j < row.count; ++j)
+      EXPECT_EQ(row.value[j], row.first + j == i ? 1.0 : 0.0) << "vertex " << i << ", point " << row.first + j;
+  }
+  Points centres(mapping.outputCount(), 3);
+  mapping.apply(q, centres);
+  for (int i = 0; i < 10; ++i) {
+    const double chord = (q.row(i + 1) - q.row(i)).norm() / per_piece;
+    for (int k = i * per_piece; k < (i + 1) * per_piece; ++k)
+      EXPECT_NEAR((centres.row(k + 1) - centres.row(k)).norm(), chord, 1e-12) << "piece " << i << ", centre " << k;
+  }
 }
 
 TEST(SphereSamplingMapping, JacobianIsTheBasisValuesAndApplyJTItsTranspose) {
