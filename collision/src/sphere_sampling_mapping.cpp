@@ -1,6 +1,7 @@
 #include "filum/collision/sphere_sampling_mapping.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -111,50 +112,57 @@ void SphereSamplingMapping::resample(ConstPointsRef q) {
 double SphereSamplingMapping::centresOnStrand(int t) const {
   const int begin = strand_table_begin_[t], end = strand_table_begin_[t + 1];
   const double length = table_length_[end - 1];
-  // K = ⌈L / h⌉ + 1 centres on the strand, spacing L / (K − 1) <= h (in doubles: the caller checks
-  // the total against the limit before anything is cast or allocated).
-  double count = std::max(2.0, std::ceil(length / spacing_ - 1e-9) + 1.0);
   // A polyline (degree 1: a rod's centre line) bends only at its vertices, and a vertex between
   // two centres pokes out of their spheres towards the outside of the bend, by up to
   // (h/2) sin(θ/2) for a turn θ — a tenth of the radius at 13° with h = 2r. So its centres are
-  // placed piece by piece (sampleStrand), m = ⌈ℓ_max / h⌉ on each of its P pieces (ℓ_max the
-  // longest), and every vertex is a centre however unequal the pieces.
-  if (basis_->degree() == 1) {
-    const int pieces = (end - begin - 1) / kTablePerPiece;
-    if (pieces >= 1) count = pieces * centresPerPiece(t) + 1.0;
+  // placed piece by piece (samplePolylineStrand), ⌈ℓ_p / h⌉ on each piece p, and every vertex is
+  // a centre however unequal the pieces.
+  if (isPolyline(t)) {
+    double count = 1.0;
+    for (int j = begin; j + kTablePerPiece < end; j += kTablePerPiece) count += centresOnPiece(j);
+    return count;
   }
-  return count;
+  // K = ⌈L / h⌉ + 1 centres on the strand, spacing L / (K − 1) <= h (in doubles: the caller checks
+  // the total against the limit before anything is cast or allocated).
+  return std::max(2.0, std::ceil(length / spacing_ - 1e-9) + 1.0);
 }
 
-double SphereSamplingMapping::centresPerPiece(int t) const {
-  const int begin = strand_table_begin_[t], end = strand_table_begin_[t + 1];
-  double longest = 0.0;
-  for (int j = begin; j + kTablePerPiece < end; j += kTablePerPiece)
-    longest = std::max(longest, table_length_[j + kTablePerPiece] - table_length_[j]);
-  return std::max(1.0, std::ceil(longest / spacing_ - 1e-9));
+bool SphereSamplingMapping::isPolyline(int t) const {
+  return basis_->degree() == 1 && strand_table_begin_[t + 1] - strand_table_begin_[t] - 1 >= kTablePerPiece;
+}
+
+double SphereSamplingMapping::centresOnPiece(int j) const {
+  return std::max(1.0, std::ceil((table_length_[j + kTablePerPiece] - table_length_[j]) / spacing_ - 1e-9));
 }
 
 void SphereSamplingMapping::samplePolylineStrand(int t, int first, int count) {
   // Piece by piece: a linear piece has |P'| constant, so equal steps of s are equal steps of arc
-  // length on it; the vertices (the table entries at the pieces' ends) are centres.
-  const int begin = strand_table_begin_[t];
-  const int per_piece = static_cast<int>(centresPerPiece(t));
+  // length on it; the vertices (the table entries at the pieces' ends) are centres, the last one
+  // the strand's end.
+  const int begin = strand_table_begin_[t], end = strand_table_begin_[t + 1];
   strand_spacing_[t] = 0.0;
-  for (int i = 0; i < count; ++i) {
-    const int piece = std::min(i / per_piece, (count - 2) / per_piece);
-    const int a = begin + piece * kTablePerPiece, b = a + kTablePerPiece;
-    const double u = static_cast<double>(i - piece * per_piece) / per_piece;
-    abscissas_[first + i] = table_s_[a] + u * (table_s_[b] - table_s_[a]);
-    arc_of_[first + i] = table_length_[a] + u * (table_length_[b] - table_length_[a]);
-    strand_spacing_[t] = std::max(strand_spacing_[t], (table_length_[b] - table_length_[a]) / per_piece);
+  int i = first;
+  for (int a = begin; a + kTablePerPiece < end; a += kTablePerPiece) {
+    const int b = a + kTablePerPiece;
+    const int m = static_cast<int>(centresOnPiece(a));
+    for (int k = 0; k < m; ++k, ++i) {
+      const double u = static_cast<double>(k) / m;
+      abscissas_[i] = table_s_[a] + u * (table_s_[b] - table_s_[a]);
+      arc_of_[i] = table_length_[a] + u * (table_length_[b] - table_length_[a]);
+    }
+    strand_spacing_[t] = std::max(strand_spacing_[t], (table_length_[b] - table_length_[a]) / m);
   }
+  abscissas_[i] = table_s_[end - 1];
+  arc_of_[i] = table_length_[end - 1];
+  assert(i == first + count - 1 && "samplePolylineStrand: the count is centresOnStrand's");
+  (void)count;
 }
 
 int SphereSamplingMapping::sampleStrand(int t, int first, double base) {
   const int begin = strand_table_begin_[t], end = strand_table_begin_[t + 1];
   const double length = table_length_[end - 1];
   const int count = static_cast<int>(centresOnStrand(t));  // checked against the limit by resample
-  const bool polyline = basis_->degree() == 1 && (end - begin - 1) / kTablePerPiece >= 1;
+  const bool polyline = isPolyline(t);
   if (polyline) samplePolylineStrand(t, first, count);
   else strand_spacing_[t] = length / (count - 1);
   // ℓ ↦ s by cubic Hermite interpolation of the inverse on each table interval, ds/dℓ = 1/|P'|:

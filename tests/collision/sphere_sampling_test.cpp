@@ -1,6 +1,7 @@
 // Spheres along a spline at equal curvilinear spacing, resampled as the thread stretches, and a
 // mapping whose Jacobian is the basis values (forces go up through b_i(s_k)).
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -46,8 +47,8 @@ TEST(SphereSamplingMapping, SpheresAreEquallySpacedAlongTheCurveAndFollowItsStre
 
 TEST(SphereSamplingMapping, APolylinesVerticesAreCentresHoweverUnequalItsPieces) {
   // A rod's centre line: degree 1 through 11 vertices on a zigzag whose pieces differ in length
-  // (2.2 to 4.2 mm, as a rod stretched unevenly). Its centres are placed piece by piece,
-  // ⌈ℓ_max / h⌉ = 5 on each, so every vertex is a centre, exactly at its breakpoint (i/10, where
+  // (2.2 to 4.1 mm, as a rod stretched unevenly). Its centres are placed piece by piece,
+  // ⌈ℓ_p / h⌉ on each piece p, so every vertex is a centre, exactly at its breakpoint (i/10, where
   // the row is the vertex's point alone); inside a piece the centres are equally spaced (a
   // linear piece has a constant |P'|), at most h apart.
   geometry::SplineBasisSpec spec;
@@ -64,23 +65,25 @@ TEST(SphereSamplingMapping, APolylinesVerticesAreCentresHoweverUnequalItsPieces)
   const double h = 1e-3;
   SphereSamplingMapping mapping(*basis, h);
   mapping.resample(q);
-  double longest = 0.0;
-  for (int i = 0; i < 10; ++i) longest = std::max(longest, (q.row(i + 1) - q.row(i)).norm());
-  const int per_piece = static_cast<int>(std::ceil(longest / h));
-  ASSERT_EQ(mapping.outputCount(), 10 * per_piece + 1);
+  std::vector<int> vertex_centre{0};
+  for (int i = 0; i < 10; ++i)
+    vertex_centre.push_back(vertex_centre.back() + static_cast<int>(std::ceil((q.row(i + 1) - q.row(i)).norm() / h)));
+  ASSERT_EQ(mapping.outputCount(), vertex_centre.back() + 1);
   EXPECT_LE(mapping.spacing(), h);
   const auto& s = mapping.abscissas();
   for (int i = 0; i <= 10; ++i) {
-    EXPECT_EQ(s[i * per_piece], i / 10.0) << "vertex " << i;
-    const geometry::BasisRow& row = mapping.row(i * per_piece);
+    EXPECT_EQ(s[vertex_centre[i]], i / 10.0) << "vertex " << i;
+    const geometry::BasisRow& row = mapping.row(vertex_centre[i]);
     for (int j = 0; j < row.count; ++j)
       EXPECT_EQ(row.value[j], row.first + j == i ? 1.0 : 0.0) << "vertex " << i << ", point " << row.first + j;
   }
   Points centres(mapping.outputCount(), 3);
   mapping.apply(q, centres);
   for (int i = 0; i < 10; ++i) {
-    const double chord = (q.row(i + 1) - q.row(i)).norm() / per_piece;
-    for (int k = i * per_piece; k < (i + 1) * per_piece; ++k)
+    const int m = vertex_centre[i + 1] - vertex_centre[i];
+    const double chord = (q.row(i + 1) - q.row(i)).norm() / m;
+    EXPECT_LE(chord, h);
+    for (int k = vertex_centre[i]; k < vertex_centre[i + 1]; ++k)
       EXPECT_NEAR((centres.row(k + 1) - centres.row(k)).norm(), chord, 1e-12) << "piece " << i << ", centre " << k;
   }
 }

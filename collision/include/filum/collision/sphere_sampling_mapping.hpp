@@ -107,11 +107,13 @@ class SphereSamplingMapping final : public Mapping {
   std::vector<double> strand_spacing_;  // L_t / (K_t − 1) of every strand at the last resample
   std::vector<double> arc_of_;          // arc length from s = 0 to every centre, strands end to end
   /// K of strand t from its current length (table_length_ filled): ⌈L / h⌉ + 1, or for a polyline
-  /// ⌈ℓ_max / h⌉ per piece plus one, so that its vertices are centres; a double, compared with
-  /// the limit before it is cast.
+  /// Σ ⌈ℓ_p / h⌉ over its pieces plus one, so that its vertices are centres; a double, compared
+  /// with the limit before it is cast.
   double centresOnStrand(int t) const;
-  /// A polyline's centres per piece on strand t: ⌈ℓ_max / h⌉ for its longest piece ℓ_max.
-  double centresPerPiece(int t) const;
+  /// Whether strand t is a polyline (degree 1, at least one piece): sampled piece by piece.
+  bool isPolyline(int t) const;
+  /// Centres a polyline's piece starting at table entry j holds before its end: ⌈ℓ_p / h⌉.
+  double centresOnPiece(int j) const;
   /// Places a polyline strand's `count` centres piece by piece (abscissas, arc lengths from the
   /// strand's start, strand spacing: the longest chord).
   void samplePolylineStrand(int t, int first, int count);
