@@ -22,22 +22,25 @@ std::string exact(double x) {
   return buffer;
 }
 
-/// The abscissas knot.csv samples a strand at, whatever the output's curve_samples:
-/// kKnotSamplesPerSpan in each span of the basis (refined spans get theirs too). A polyline with
-/// chords of length l keeps within κ l² / 8 of the curve; two strands of the thread never come
-/// closer than about 2r (contact), so the polyline has the curve's crossings whenever
-/// κ l² / 8 < r. A span of control spacing h bends at most to κ ≈ 1/h without a kink in its
-/// control polygon, so 4 samples per span (l = h/4) keep the deviation below h/128: below r for
-/// every thread whose spacing is under 128 radii (knot.json: h = 1 mm, r = 0.15 mm, 6.7 radii).
+/// The abscissas knot.csv samples a strand at, whatever the output's curve_samples: the
+/// breakpoints of the basis and, on curved bases (degree >= 2), kKnotSamplesPerSpan − 1 more in
+/// each span (refined spans get theirs too); a polyline's vertices are the curve itself. A
+/// polyline with chords of length l keeps within κ l² / 8 of the curve, and two strands of a
+/// thread in contact with itself stay about 2r apart, so the polyline has the curve's crossings
+/// when κ l² / 8 < r: with 4 samples a span of spacing h, when κ_max h² / 128 < r. A heuristic,
+/// not a bound: it holds for loops down to a radius of h² / (128 r) (knot.json: 1 mm spans,
+/// r = 0.15 mm, loops down to 0.05 mm, far tighter than the thread can lie), not for strands that
+/// pass through each other (no self-collision).
 constexpr int kKnotSamplesPerSpan = 4;
 
 std::vector<double> knotAbscissas(const CurveBasis& basis, const Strand& strand) {
+  const int per_span = basis.degree() >= 2 ? kKnotSamplesPerSpan : 1;
   std::vector<double> abscissas;
   const std::vector<double> breaks = basis.breakpoints();
   for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
     const double a = breaks[i], b = breaks[i + 1];
     if (a < strand.begin || b > strand.end || b <= a) continue;
-    for (int k = 0; k < kKnotSamplesPerSpan; ++k) abscissas.push_back(a + (b - a) * k / kKnotSamplesPerSpan);
+    for (int k = 0; k < per_span; ++k) abscissas.push_back(a + (b - a) * k / per_span);
   }
   abscissas.push_back(strand.end);
   return abscissas;
@@ -91,8 +94,8 @@ void RunOutput::writeFrame(const Scene& scene) {
   // give infinite curve points or energies).
   // One polyline per strand of every curve body (one for an uncut curve, CurveBasis::strands),
   // its samples at equal steps of s, in proportion to its share of [0, 1] (at least 2).
-  // knot.csv classifies its own, finer polylines (knotAbscissas): the output's may be too coarse
-  // to resolve a knot.
+  // knot.csv classifies polylines of its own (knotAbscissas): the output's may be too coarse to
+  // resolve a knot.
   std::vector<visual::PolyLine> lines, knot_lines;
   std::vector<const MechanicalState*> line_body;
   for (const MechanicalState* body : scene.bodies()) {
@@ -103,9 +106,7 @@ void RunOutput::writeFrame(const Scene& scene) {
       lines.push_back(sampleStrand(*body, strand, count, s, t));
       line_body.push_back(body);
       if (knots_.is_open()) {
-        std::vector<double> fine = knotAbscissas(spline->basis(), strand);
-        knot_lines.push_back(static_cast<int>(fine.size()) > count ? sampleStrand(*body, strand, std::move(fine), s, t)
-                                                                   : lines.back());
+        knot_lines.push_back(sampleStrand(*body, strand, knotAbscissas(spline->basis(), strand), s, t));
       }
     }
   }

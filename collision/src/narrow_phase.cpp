@@ -50,15 +50,13 @@ bool onSamePieces(const Contact& x, const Contact& y) {
   return same(x.a.weights(), y.a.weights()) && (x.againstObstacle() || same(x.b.weights(), y.b.weights()));
 }
 
-/// Fewer rows where they would be redundant: of consecutive contacts out[first..] with one linear
-/// piece of the curve (degree 1: a rod's segment, two control points) and one normal (a flat
-/// obstacle face there), keeps the first and the last. Exact: on a straight piece against a
-/// plane the gap n·P(s) − d − r is linear in s, so the spheres between two contacts cannot come
-/// closer than the nearer of them, and their rows n · (b_0 x_i + b_1 x_{i+1}) are combinations of
-/// the two kept ones — rows that only made the contact solve's matrix larger and singular (a rod
-/// lying on a table had ~7 spheres per 10 mm segment: 3.5 times the rows). Curved pieces (splines
-/// of degree >= 2) and curved surfaces (normals that differ) keep every contact.
-bool onePlane(const Contact& a, const Contact& b) { return a.normal.dot(b.normal) >= 1.0 - 1e-12; }  // normals equal to round-off
+/// Whether two obstacle contacts are against one plane: their normals equal to round-off and
+/// their surface points on one plane (a step or a plate of a mesh has parallel faces at other
+/// heights, a bump's crest the normal of the troughs beside it), to 1e-9 of the radius.
+bool onePlane(const Contact& a, const Contact& b) {
+  return a.normal.dot(b.normal) >= 1.0 - 1e-12 &&
+         std::abs(a.normal.dot(a.surface_point - b.surface_point)) <= 1e-9 * std::max(a.radius, b.radius);
+}
 
 /// The vertex of the linear piece (two control points) contact x lies at: 0 or 1 (its first or
 /// second point, the other's weight zero), or −1 inside the piece or on another kind of point.
@@ -79,14 +77,22 @@ bool atVertex(const Contact& y, int p, const Contact& x) {
   return v >= 0 && vertexPoint(y, v) == p && onePlane(x, y);
 }
 
+/// Fewer rows where they would be redundant: of consecutive contacts out[first..] with one linear
+/// piece of the curve (degree 1: a rod's segment, two control points) and one plane (onePlane: a
+/// flat obstacle face there), keeps the first and the last. Exact: on a straight piece against a
+/// plane the gap n·P(s) − d − r is linear in s, so the spheres between two contacts cannot come
+/// closer than the nearer of them, and their rows n · (b_0 x_i + b_1 x_{i+1}) are combinations of
+/// the two kept ones — rows that only made the contact solve's matrix larger and singular (a rod
+/// lying on a table had ~7 spheres per 10 mm segment: 3.5 times the rows). Curved pieces (splines
+/// of degree >= 2) and curved surfaces (normals that differ) keep every contact.
 void keepSpanEnds(ContactSet& out, std::size_t first) {
   keepRunEnds(out, first, [](const Contact& a, const Contact& b) { return onSamePieces(a, b) && onePlane(a, b); });
   // Then a contact inside a piece goes too when both vertices of its piece have their own
   // contact against the same plane (the neighbours in sphere order: the vertex before it ends or
   // starts the run, the vertex after it starts the next piece's run). The gap is linear along
-  // the piece, so its smallest value is at a vertex: the vertex rows hold the whole piece. A rod
-  // whose vertices are sphere centres (a polyline laid out uniformly, SphereSamplingMapping)
-  // then has one contact per vertex instead of one per vertex and one per piece.
+  // the piece, so its smallest value is at a vertex: the vertex rows hold the whole piece. A rod's
+  // vertices are sphere centres (SphereSamplingMapping places a polyline's centres piece by
+  // piece), so a rod lying on a face has one contact per vertex instead of two per piece.
   std::size_t write = first;
   for (std::size_t k = first; k < out.size(); ++k) {
     const Contact& x = out[k];

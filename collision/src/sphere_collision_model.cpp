@@ -39,8 +39,8 @@ void SphereCollisionModel::init(const Scene& scene) {
     throw SceneError(origin() + "/spacing",
                      "a spacing <= 2 radius (" + std::to_string(2.0 * radius_) + " m) so that neighbouring spheres touch",
                      std::to_string(spacing) + " m");
-  // Checked before the mapping allocates its K ≈ L / h + 1 spheres (a rod's K − 1 rounded up to a
-  // multiple of its pieces: at most one sphere a piece more, within the mapping's own 4× margin).
+  // Checked before the mapping allocates its K ≈ L / h + 1 spheres (a rod's ⌈ℓ_p / h⌉ on each of
+  // its pieces: at most one sphere a piece more, within the mapping's own 4× margin).
   const double rest_length = mechanics::arcLength(curve_->basis(), curve_->initialPositions());
   const double spheres = rest_length / spacing + 1.0;
   if (!(spheres <= kMaxSpheresPerThread))

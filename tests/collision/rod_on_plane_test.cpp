@@ -1,13 +1,15 @@
 // A rod (FramedChain, segments of 2 cm) dropped onto a table through ~13 contact spheres per
 // segment: the narrow phase keeps one contact per vertex against the flat table (keepSpanEnds,
 // narrow_phase.cpp: its vertices are sphere centres) and the rod still rests on it with no sphere
-// inside.
+// inside. Parallel faces at other heights keep their contacts.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 
 #include "filum/all_components.hpp"
 #include "filum/collision/contact_pipeline.hpp"
+#include "filum/collision/narrow_phase.hpp"
+#include "filum/collision/obstacle.hpp"
 #include "filum/constraints/lagrange_multiplier_solver.hpp"
 #include "filum/core/curve_body.hpp"
 #include "filum/core/scene.hpp"
@@ -120,6 +122,64 @@ TEST(RodOnPlane, NewtonStepsThroughTheBandMoveTheRodAsDenseOnes) {
   const double apart = (a.head(3 * points) - b.head(3 * points)).lpNorm<Eigen::Infinity>();
   std::printf("  dense and banded runs %.3g m apart after 300 steps, %d structured steps\n", apart, structured);
   EXPECT_LE(apart, 1e-6);
+}
+
+}  // namespace
+}  // namespace filum::collision
+
+namespace filum::collision {
+namespace {
+
+/// A table with a raised plate across it: the top z = 0 outside x ∈ [0.08, 0.12] m and z = h on
+/// it, its normal +z on both: two parallel faces at different heights.
+class SteppedTable final : public Obstacle {
+ public:
+  static constexpr double kPlate = 5e-4;  // h (m)
+  std::string typeName() const override { return "SteppedTable"; }
+  bool sample(const Vec3& x, double max_distance, SurfaceSample& out) const override {
+    const double top = x.x() >= 0.08 && x.x() <= 0.12 ? kPlate : 0.0;
+    out.point = Vec3(x.x(), x.y(), top);
+    out.normal = Vec3::UnitZ();
+    out.distance = x.z() - top;
+    return out.distance < max_distance;
+  }
+};
+
+TEST(RodOnPlane, AContactOnARaisedFaceIsKeptBetweenVerticesOnTheLowerOne) {
+  // A straight 20 cm segment (two nodes) lying with its centre line one radius above z = 0, over
+  // a plate 0.5 mm high in its middle: both vertices touch the table, the spheres over the plate
+  // are 0.5 mm inside it. The plate's rows are not combinations of the vertices' (another plane,
+  // although the same normal): they are kept, and against the plate.
+  const double r = 1e-3;
+  const json document = {
+      {"dt", 1e-3},
+      {"gravity", {0, 0, -9.81}},
+      {"integrator", {{"type", "ImplicitEuler"}}},
+      {"collision", {{"type", "ContactPipeline"}, {"response", "unilateral"}}},
+      {"nodes",
+       {{{"name", "rod"},
+         {"components",
+          {{{"type", "FramedChain"}, {"nodes", {{"from", {0, 0, r}}, {"to", {0.2, 0, r}}, {"count", 2}}}, {"radius", r}, {"density", 1150}},
+           {{"type", "ChainElasticity"}, {"youngs_modulus", 3e7}},
+           {{"type", "SphereCollisionModel"}, {"spacing", 1.5e-3}}}}},
+        {{"name", "far table"}, {"components", {{{"type", "PlaneObstacle"}, {"point", {0, 0, -1}}, {"normal", {0, 0, 1}}}}}}}}};
+  auto scene = loadScene(document, "rod over a plate", app::makeFactory());
+  scene->init();
+  ASSERT_TRUE(scene->step().ok);  // (the spheres placed; the rod falls by g dt² = 10 µm)
+  const auto& pipeline = dynamic_cast<const ContactPipeline&>(*scene->collisionPipeline());
+  const SphereCollisionModel& model = *pipeline.models().front();
+  NarrowPhaseSettings settings;
+  settings.margin = 0.1 * r;
+  ContactSet contacts;
+  findObstacleContacts(model, 0, SteppedTable(), 0, settings, contacts);
+  int on_plate = 0, vertices = 0;
+  for (const Contact& c : contacts) {
+    on_plate += c.surface_point.z() == SteppedTable::kPlate;
+    const PointWeights& w = c.a.weights();
+    vertices += w.count == 2 && (w.weight[0] == 0.0 || w.weight[1] == 0.0);
+  }
+  EXPECT_EQ(vertices, 2) << "both vertices touch the table";
+  EXPECT_GE(on_plate, 1) << "a contact against the plate is kept: dropping it would let the rod sink 0.5 mm into it";
 }
 
 }  // namespace

@@ -13,8 +13,9 @@
 // BodyPoint whose row is (1 − t) W_k + t W_{k+1} (chordPoint): forces at contacts go up through it.
 //
 // A cut curve (CurveBasis::cuts) is sampled strand by strand: each strand has its own centres,
-// from its first end to its last, at its own spacing L_t / (K_t − 1) <= h, and no chord joins the
-// last centre of a strand to the first of the next (joinsNext).
+// from its first end to its last, at its own spacing L_t / (K_t − 1) <= h (a polyline's strand
+// piece by piece, ⌈ℓ_p / h⌉ chords on each piece p: its spacing is its longest chord), and no chord
+// joins the last centre of a strand to the first of the next (joinsNext).
 //
 // Resampling runs at every step, so it is built for speed from fixed tables: L(s) on 8 table
 // intervals per polynomial piece of the basis by 4-point Gauss–Legendre with the basis
