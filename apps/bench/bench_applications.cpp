@@ -135,7 +135,7 @@ void bowelLength(benchmark::State& state) {
 /// A 0.035" nitinol-core guidewire (r = 0.445 mm, E I ≈ 6e-5 N m²) inside a 5 F catheter (outer
 /// radius 0.83 mm, lumen 0.53 mm, a polymer of E = 2 GPa), 100 nodes each over 30 cm, the
 /// catheter held at its hub and tip, the wire pushed from its hub at 5 cm/s.
-json wireInCatheter() {
+json wireInCatheter(bool chord_steps = true) {
   const double length = 0.3;
   const json catheter = json::array(
       {{{"type", "FramedChain"}, {"nodes", {{"from", {0, 0, 0}}, {"to", {length, 0, 0}}, {"count", 100}}},
@@ -156,13 +156,14 @@ json wireInCatheter() {
        {{"type", "SphereCollisionModel"}, {"spacing", 4.45e-4}, {"self_collision", false}, {"inside", "catheter"}}});
   return {{"name", "bench_applications wire in catheter"}, {"dt", 1e-3}, {"duration", 100.0}, {"gravity", {0, 0, -9.81}},
           {"integrator", {{"type", "ImplicitEuler"}}},
-          {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}}},
+          {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}, {"newton_chord_steps", chord_steps}}},
           {"collision", {{"type", "ContactPipeline"}, {"response", "unilateral"}}},
           {"nodes", json::array({{{"name", "catheter"}, {"components", catheter}}, {{"name", "wire"}, {"components", wire}}})}};
 }
 
-void wireThroughCatheter(benchmark::State& state) {
-  auto scene = filum::bench::loadOrSkip(wireInCatheter(), "bench_applications", state);
+/// `chord_steps` false: the contact Newton factors at every iteration (newton_chord_steps).
+void wireThroughCatheter(benchmark::State& state, bool chord_steps) {
+  auto scene = filum::bench::loadOrSkip(wireInCatheter(chord_steps), "bench_applications", state);
   if (!scene) return;
   // 0.2 s untimed: the wire comes down onto the lumen's floor; then 10 steps per iteration.
   filum::bench::timeSteps(*scene, 200, 10, state);
@@ -190,4 +191,5 @@ BENCHMARK_CAPTURE(application, coil, std::string("coil.json"))
 BENCHMARK_CAPTURE(application, stitch, std::string("stitch.json"))
     ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK(bowelLength)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(wireThroughCatheter)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(wireThroughCatheter, chords, true)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(wireThroughCatheter, no_chords, false)->UseRealTime()->Unit(benchmark::kMillisecond);

@@ -196,9 +196,10 @@ void printRow(std::FILE* csv, const std::string& problem, int n, const std::stri
   if (f.estimates >= 0) std::printf("  corrected %ld/%ld halved %ld", f.corrections, f.estimates, f.halvings);
   if (f.reuses > 0) std::printf(" reused %ld refreshed %ld", f.reuses, f.refreshes);
   if (f.contact.solves > 0)
-    std::printf("  contact solves %ld: converged %.1f %%, fell back %ld, %.2g iterations each, worst residual %.2g x tol",
+    std::printf("  contact solves %ld: converged %.1f %%, fell back %ld, %.2g iterations each (%.2g chords), worst residual %.2g x tol",
                 f.contact.solves, 100.0 * f.contact.converged / f.contact.solves, f.contact.fell_back,
-                static_cast<double>(f.contact.iterations) / f.contact.solves, f.contact.worst_ratio);
+                static_cast<double>(f.contact.iterations) / f.contact.solves,
+                static_cast<double>(f.contact.chord_steps) / f.contact.solves, f.contact.worst_ratio);
   std::printf("\n");
   if (print_step_kinds && f.estimates >= 0) {
     std::printf("%-22s %5s  steps by kind (first run): ", "", "");

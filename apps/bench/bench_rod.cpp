@@ -6,7 +6,9 @@
 //   plane: lying on a table (PlaneObstacle, unilateral contact rows, Coulomb friction 0.3), its
 //          s = 0 end dragged sideways along the table at 5 cm/s by a FixedPointConstraint path;
 //          the _dense variants solve the contact Newton's steps by a dense LU instead of through
-//          the step matrix's band (newton_linear_solve, lagrange_multiplier_solver.hpp).
+//          the step matrix's band (newton_linear_solve, lagrange_multiplier_solver.hpp); the
+//          _no_chords one factors the contact Newton's system at every iteration
+//          (newton_chord_steps false: contact_newton.hpp, chord steps).
 // One iteration = 10 steps (10 simulated ms), after 100 ms untimed. Counters: wall_ms_per_sim_ms
 // (the real-time figure: <= 1 runs in real time) and us_per_step. Run:
 //   build/apps/bench/bench_rod --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
@@ -21,7 +23,7 @@ namespace {
 
 using nlohmann::json;
 
-json rodScene(int nodes, bool plane, const char* newton_linear_solve = "auto") {
+json rodScene(int nodes, bool plane, const char* newton_linear_solve = "auto", bool chord_steps = true) {
   const double height = plane ? 1.2e-3 : 0.05;  // just above the table (it settles on it in the warm-up)
   json rod = {{"name", "rod"},
               {"components",
@@ -45,7 +47,10 @@ json rodScene(int nodes, bool plane, const char* newton_linear_solve = "auto") {
                    {"duration", 100.0},
                    {"gravity", {0, 0, -9.81}},
                    {"integrator", {{"type", "ImplicitEuler"}}},
-                   {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}, {"newton_linear_solve", newton_linear_solve}}},
+                   {"constraint_solver",
+                    {{"type", "LagrangeMultiplierSolver"},
+                     {"newton_linear_solve", newton_linear_solve},
+                     {"newton_chord_steps", chord_steps}}},
                    {"nodes", {rod}}};
   if (plane) {
     document["collision"] = {{"type", "ContactPipeline"}, {"response", "unilateral"}, {"friction", 0.3}};
@@ -56,8 +61,9 @@ json rodScene(int nodes, bool plane, const char* newton_linear_solve = "auto") {
   return document;
 }
 
-void rod(benchmark::State& state, int nodes, bool plane, const char* newton_linear_solve = "auto") {
-  auto scene = filum::bench::loadOrSkip(rodScene(nodes, plane, newton_linear_solve), "bench_rod", state);
+void rod(benchmark::State& state, int nodes, bool plane, const char* newton_linear_solve = "auto",
+         bool chord_steps = true) {
+  auto scene = filum::bench::loadOrSkip(rodScene(nodes, plane, newton_linear_solve, chord_steps), "bench_rod", state);
   if (!scene) return;
   if (!filum::bench::stepOrSkip(*scene, 100, state, "warm-up: ")) return;
   for (auto _ : state)
@@ -80,3 +86,4 @@ BENCHMARK_CAPTURE(rod, plane_n400, 400, true)->UseRealTime()->Unit(benchmark::kM
 // The contact Newton's steps by a dense LU always (the structured solve's reference).
 BENCHMARK_CAPTURE(rod, plane_n50_dense, 50, true, "dense")->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(rod, plane_n100_dense, 100, true, "dense")->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(rod, plane_n100_no_chords, 100, true, "auto", false)->UseRealTime()->Unit(benchmark::kMillisecond);

@@ -19,11 +19,14 @@ bool startsFrictionPair(const ConstraintRows& rows, int r) {
 void ContactNewton::grow(int c) {
   if (capacity_ >= c) return;  // grows only: a steady step allocates nothing
   capacity_ = 2 * c;
+  held_ = false;  // (lu_ is reallocated)
   for (VecX* v : {&rho_, &wl_, &f_, &delta_, &trial_, &best_, &rhs_, &compliance_, &diagonal_, &w_free_, &wl_base_,
                   &w_delta_})
     v->resize(capacity_);
   lu_.resize(capacity_, capacity_);
   solved_.reserve(capacity_);
+  held_solved_.reserve(capacity_);
+  held_pattern_.reserve(capacity_);
   free_.reserve(capacity_);
   pivot_.resize(capacity_);
   is_free_.resize(capacity_);
@@ -203,7 +206,22 @@ void ContactNewton::denseSystem(int s, double damping) {
   }
 }
 
-bool ContactNewton::step(double damping, const ConstraintRows& rows, int& structured) {
+bool ContactNewton::heldFits() const {
+  if (!held_ || held_solved_.size() != solved_.size()) return false;
+  for (std::size_t i = 0; i < solved_.size(); ++i)
+    if (held_solved_[i] != solved_[i] || held_pattern_[i] != forms_[solved_[i]].nb) return false;
+  return true;
+}
+
+void ContactNewton::hold(bool structured) {
+  held_ = true;
+  held_structured_ = structured;
+  held_solved_.assign(solved_.begin(), solved_.end());
+  held_pattern_.clear();
+  for (int r : solved_) held_pattern_.push_back(forms_[r].nb);
+}
+
+bool ContactNewton::step(double damping, const ConstraintRows& rows, bool chord) {
   const int c = c_;
   solved_.clear();
   free_.clear();
@@ -211,6 +229,7 @@ bool ContactNewton::step(double damping, const ConstraintRows& rows, int& struct
   // Free rows: Δ_r = −F_r (= −λ_r).
   for (int r : free_) delta_[r] = -f_[r];
   const int s = static_cast<int>(solved_.size());
+  chord_taken_ = step_structured_ = false;
   if (s == 0) return true;
   for (int r = 0; r < c; ++r) row_position_[r] = -1;
   for (int i = 0; i < s; ++i) row_position_[solved_[i]] = i;
@@ -240,13 +259,32 @@ bool ContactNewton::step(double damping, const ConstraintRows& rows, int& struct
       if (row_position_[form.ck[k]] < 0) sum -= form.c[k] * delta_[form.ck[k]];
     rhs_[i] = sum;
   }
-  // (J_SS + δ I) Δ_S = that: through A's band, or by a dense LU.
-  if (structuredStep(damping, rows)) {
-    ++structured;
-  } else {
-    denseSystem(s, damping);
-    if (!factor(s)) return false;
-    substitute(s, rhs_.head(s));
+  // (J_SS + δ I) Δ_S = that: on the held factorization (a chord step: header), through A's
+  // band, or by a dense LU.
+  chord_taken_ = chord && heldFits();
+  if (chord_taken_) {
+    step_structured_ = held_structured_;
+    trial_.head(s) = rhs_.head(s);  // (trial_ is free until the line search)
+    if (held_structured_)
+      augmented_.solve(rhs_.head(s));
+    else
+      substitute(s, rhs_.head(s));
+    if (!rhs_.head(s).allFinite()) {  // not a factorization to go on with: a fresh one
+      chord_taken_ = false;
+      rhs_.head(s) = trial_.head(s);
+    }
+  }
+  if (!chord_taken_) {
+    held_ = false;  // (the band's layout and lu_ are overwritten below)
+    step_structured_ = structuredStep(damping, rows);
+    if (step_structured_) {
+      hold(true);  // (its solution is finite: structuredStep checked)
+    } else {
+      denseSystem(s, damping);
+      if (!factor(s)) return false;
+      substitute(s, rhs_.head(s));
+      if (rhs_.head(s).allFinite()) hold(false);
+    }
   }
   for (int i = 0; i < s; ++i) delta_[solved_[i]] = rhs_[i];
   return delta_.head(c).allFinite();
@@ -314,6 +352,9 @@ ContactNewton::Result ContactNewton::solve(DelassusEntries& w, const Eigen::Ref<
   structure_ = structure;
   structured_ = settings.structured;
   grow(c);
+  // A factorization is carried over only for the same W and rows (Settings::matrix_key).
+  if (settings.matrix_key < 0 || settings.matrix_key != held_key_) held_ = false;
+  held_key_ = settings.matrix_key;
   compliance_.head(c) = compliance;
   diagonal_.head(c) = w_diagonal + compliance;
   scale(diagonal_.head(c), rows);
@@ -349,6 +390,22 @@ ContactNewton::Result ContactNewton::solve(DelassusEntries& w, const Eigen::Ref<
   constexpr int kMemory = 8;
   double history[kMemory];
   for (double& h : history) h = merit;
+  // An accepted iterate's merit: into the history, and kept when it is the best so far.
+  auto remember = [&](double accepted) {
+    history[result.iterations % kMemory] = accepted;
+    if (accepted < best_merit) {
+      best_merit = accepted;
+      best_.head(c) = lambda;
+    }
+  };
+  // A chord step is taken when it divides |F| by 4 at least (θ by 16); else Newton's own step.
+  // Newton near the solution contracts quadratically, so a chord that does less says the
+  // factorization is stale. Measured (`filum run`, mean ms per simulated ms, 2026-11-28) with
+  // 0.1 / 0.25 / 0.5: the rod of bench_rod (100 nodes dragged over a table) 0.54 / 0.49 / 0.52,
+  // capstan_sliding.json 0.86 / 0.95 / 0.81 (its solves' fallbacks 5 / 10 / 5 of ~3700: which solves
+  // fail changes with the iterates, not with the factor); 0.5 raised knot.json's iterations by a
+  // quarter (5979 → 7376) and left a solve unconverged.
+  constexpr double kChordContraction = 0.25;
   while (true) {
     if (max_abs_residual_ <= threshold()) {
       if (exact) break;
@@ -363,10 +420,34 @@ ContactNewton::Result ContactNewton::solve(DelassusEntries& w, const Eigen::Ref<
     // the near-null directions of redundant rows, near it the step is Newton's own.
     const double relative = max_abs_residual_ / std::max({beta_scale, force_scale_, 1e-300});
     const double shift = std::clamp(relative, settings.damping, settings.max_damping);
-    if (!step(shift, rows, result.structured_steps)) break;
+    if (!step(shift, rows, /*chord=*/settings.chords)) break;
     wl_base_.head(c) = wl_.head(c);
     multiplyW(rows, delta_.head(c), w_delta_.head(c));
     w_delta_.head(c) += compliance_.head(c).cwiseProduct(delta_.head(c));
+    if (chord_taken_) {
+      // A chord step is taken whole when it divides |F| by 1/kChordContraction (no line search:
+      // a chord that needs one is not worth keeping), and the factorization stays held.
+      trial_.head(c) = lambda + delta_.head(c);
+      wl_.head(c) = wl_base_.head(c) + w_delta_.head(c);
+      const double chord_merit = evaluate(false, rows, trial_.head(c));
+      if (chord_merit <= kChordContraction * kChordContraction * merit) {
+        ++result.chord_steps;
+        if (step_structured_) ++result.structured_steps;
+        lambda = trial_.head(c);
+        merit = evaluate(true, rows, lambda);  // wl_ is the trial's
+        exact = false;
+        remember(merit);
+        continue;
+      }
+      // Discarded: F and J at λ again, and Newton's own step on a fresh factorization.
+      held_ = false;
+      wl_.head(c) = wl_base_.head(c);
+      merit = evaluate(true, rows, lambda);
+      if (!step(shift, rows, /*chord=*/false)) break;
+      multiplyW(rows, delta_.head(c), w_delta_.head(c));
+      w_delta_.head(c) += compliance_.head(c).cwiseProduct(delta_.head(c));
+    }
+    if (step_structured_) ++result.structured_steps;
     // Armijo: θ(λ + αΔ) <= (1 − 2σα) θ(λ) (θ = |F|², its slope along a Newton step is −2θ).
     double alpha = 1.0;
     bool accepted = false;
@@ -379,15 +460,17 @@ ContactNewton::Result ContactNewton::solve(DelassusEntries& w, const Eigen::Ref<
         break;
       }
     }
-    if (!accepted) break;
+    if (!accepted) {
+      held_ = false;
+      break;
+    }
+    // Chord steps only in Newton's local phase: after a full step (a cut one says the active set
+    // is still moving, where the next step needs its own Jacobian).
+    if (alpha < 1.0) held_ = false;
     lambda = trial_.head(c);
     merit = evaluate(true, rows, lambda);  // wl_ is the accepted trial's
     exact = false;
-    history[result.iterations % kMemory] = merit;
-    if (merit < best_merit) {
-      best_merit = merit;
-      best_.head(c) = lambda;
-    }
+    remember(merit);
     // A short step: the active set is changing under Newton's feet (a contact opens, a pair
     // starts to slide); the caller smooths with a few Gauss–Seidel sweeps and comes back.
     if (alpha < settings.stall_step && max_abs_residual_ > threshold()) {

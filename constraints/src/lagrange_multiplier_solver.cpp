@@ -163,6 +163,7 @@ std::unique_ptr<LagrangeMultiplierSolver> LagrangeMultiplierSolver::fromParams(c
     o.newton_structured = false;
   else if (linear != "auto")
     p.fail("newton_linear_solve", "\"auto\" or \"dense\"", "\"" + linear + "\"");
+  o.newton_chords = p.boolean("newton_chord_steps", o.newton_chords);
   o.contact_compliance = p.nonNegative({"contact_compliance", "1"}, o.contact_compliance);
   o.friction_compliance = p.nonNegative({"friction_compliance", "1"}, o.friction_compliance);
   if (o.contact_compliance > 1.0 || o.friction_compliance > 1.0)
@@ -1007,6 +1008,7 @@ void LagrangeMultiplierSolver::restoreMemory(const StepMemory& memory) {
   }
   for (int r = 0; r < c; ++r) lambda_[r] = memory.multipliers[r];
   c_ = c;
+  step_began_ = true;
   last_kinds_.resize(memory.row_kinds.size());
   for (std::size_t r = 0; r < memory.row_kinds.size(); ++r)
     last_kinds_[r] = static_cast<ConstraintRows::Kind>(memory.row_kinds[r]);
@@ -1122,6 +1124,8 @@ void LagrangeMultiplierSolver::solveWithNewton(const ConstraintProblem& problem,
   ContactNewton::Settings settings;
   settings.damping = options_.newton_damping;
   settings.structured = options_.newton_structured;
+  settings.matrix_key = newton_key_;
+  settings.chords = options_.newton_chords;
   const ContactNewton::Structure structure{&inverse, &problem, &point_body_, deferred ? &band_product_ : nullptr};
   // With W formed, a few Gauss–Seidel sweeps first: each row's projection onto its cone releases
   // the warm start's contacts that now pull (λ_n < 0 once w_n is counted) and moves the rest
@@ -1138,6 +1142,7 @@ void LagrangeMultiplierSolver::solveWithNewton(const ConstraintProblem& problem,
                                                        settings, options_.contact_tolerance, lambda_.head(c), &structure);
     stats_.newton_iterations += result.iterations;
     stats_.structured_steps += result.structured_steps;
+    stats_.chord_steps += result.chord_steps;
     stats_.residual = result.residual;
     stats_.threshold = result.threshold;
     stats_.converged = result.converged;
@@ -1297,6 +1302,14 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   mapPointsToBodies(problem);
   const int c = rows.rows();
   const bool separable = inverse.sameOnEveryAxis() && !inverse.coupled();
+  // W is the last call's when the operator (the same object, its revision) and the rows are,
+  // within one step: the contact Newton may then go on from that call's factorization.
+  const bool same_w = !separable && !step_began_ && last_call_newton_ && inverse.revision() >= 0 &&
+                      &inverse == cached_inverse_ && inverse.revision() == cached_revision_ &&
+                      cached_size_ == problem.state_size && sameRowsAsLastCall(rows);
+  if (!same_w) ++newton_key_;
+  step_began_ = false;
+  last_call_newton_ = false;  // (set at the end of a call that solved by Newton)
   stats_ = Statistics();
   stats_.rows = c;
   stats_.columns = separable ? rows.anchors() : c;
@@ -1424,6 +1437,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   if (newton) {
     solveWithNewton(problem, rows, inverse, deferred);
     factored_last_call_ = false;
+    last_call_newton_ = !separable;
   } else if (factored_form) {
     FactoredDelassus w{*this, problem, rows, u_};
     solveWithContacts(rows, w);
@@ -1450,7 +1464,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   if (stats_.inequalities > 0)
     tally_.add(stats_.converged, stats_.fell_back,
                stats_.newton_iterations > 0 ? stats_.newton_iterations : stats_.sweeps,
-               stats_.threshold > 0.0 ? stats_.residual / stats_.threshold : 0.0);
+               stats_.threshold > 0.0 ? stats_.residual / stats_.threshold : 0.0, stats_.chord_steps);
   // Remember the structure W was built from (mass operator only: nothing else is kept).
   have_factorization_ = separable && lambda_.head(c).allFinite();
   last_sparse_ = stats_.sparse;

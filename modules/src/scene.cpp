@@ -382,6 +382,7 @@ void Scene::beginStep() {
   last_good_ = state_;
   // Scheduled releases (cuts) take effect at the first step that starts at or after their time.
   for (Constraint* c : constraints_) c->updateRelease(state_);
+  if (constraint_solver_) constraint_solver_->beginStep();
 }
 
 void Scene::applyScheduledLayoutChanges() {

@@ -85,6 +85,7 @@ TEST(ConstraintParams, BadSolverSettingsAreRefused) {
       {{{"type", "LagrangeMultiplierSolver"}, {"newton_linear_solve", "band"}}, "/constraint_solver/newton_linear_solve"},
       {{{"type", "LagrangeMultiplierSolver"}, {"newton_presweeps", -1}}, "/constraint_solver/newton_presweeps"},
       {{{"type", "LagrangeMultiplierSolver"}, {"newton_presweeps", 1001}}, "/constraint_solver/newton_presweeps"},
+      {{{"type", "LagrangeMultiplierSolver"}, {"newton_chord_steps", "yes"}}, "/constraint_solver/newton_chord_steps"},
   };
   for (const auto& [solver, where] : cases) {
     const std::string message = errorOf(fixed, solver);

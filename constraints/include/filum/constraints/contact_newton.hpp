@@ -49,12 +49,30 @@
 // free: by a dense LU (3 |S|² to form it from the forms, |S|³/3 to factor it), or — given the
 // matrix A that W was formed with (Structure) — through A's band and the rows' sparsity without
 // W (AugmentedNewtonSystem: Σ envelope² multiply-adds, a few hundred per row against an
-// obstacle), whichever is cheaper. With the Structure the products with W are also taken as
+// obstacle), whichever is cheaper — or, on a chord step (below), a substitution on the factors
+// held from an earlier iteration. With the Structure the products with W are also taken as
 // L (A⁻¹ (Lᵀ x)) — the rows' forces on their points, a band solve per body, the rows' reading of
 // the response: O(terms + Σ_b groups_b · range_b) against c² — when that is cheaper (many rows
 // on few points: a wire lying along a catheter, a rod on a table) — BandDelassusProduct. Then W
 // itself is asked for (DelassusEntries) only by a dense LU step, so a caller may leave it unformed
 // until then: a solve whose every step goes through the band never forms W.
+//
+// Chord steps. J_SS changes with λ only through the active set (which rows are tied, sliding or
+// free) and, on sliding pairs, through the slip direction ẑ and R/|z_t|; with the same W and the
+// same active set, the last factorization is J_SS at a nearby iterate. A step may then be taken
+// on it (a chord step: Newton's simplified iteration, Ortega & Rheinboldt 1970 §7.1; Hairer &
+// Wanner's stiff solvers keep their Jacobian the same way): one substitution instead of a
+// factorization, exact where only tied rows are solved (their forms are ρ_r W_r + ρ_r R_r e_r,
+// constant; up to the Levenberg shift δ, which moves with the residual), a step that contracts the error
+// linearly where pairs slide. It is taken whole, and
+// only when it divides |F| by 4 at least (kChordContraction, in contact_newton.cpp with what was
+// measured); otherwise it is discarded and the iteration is taken by Newton on a fresh
+// factorization, so a chord step is never a poor one. A factorization serves chords only from
+// Newton's local phase: one whose own step the line search had to cut (the active set still
+// moving) is not kept. The factorization is carried from one
+// solve to the next only under the same Settings::matrix_key (the linearized implicit step and
+// its error estimate: two solves on one W, whose right-hand sides differ by the estimate's
+// correction).
 // The workspace only grows: a steady step allocates nothing.
 #pragma once
 
@@ -88,6 +106,11 @@ class ContactNewton {
     double max_damping = 1.0;   // δ's ceiling (δ follows the relative residual in between)
     double stall_step = 1.0 / 65536;  // a line search that had to cut the step below this stops the solve
     bool structured = true;  // the step's system and W's products through A's band when cheaper (false: dense always)
+    // The caller's name for W, its compliance and the rows (>= 0): a solve that passes the key of
+    // the previous solve says they are the same, and that solve's last factorization of J_SS may
+    // serve its steps (chord steps, below). −1: not known to be the same (nothing carried over).
+    long matrix_key = -1;
+    bool chords = true;  // chord steps on the held factorization (false: one factorization per iteration)
   };
   /// What a structured step needs besides W: the matrix A that W = L A⁻¹ Lᵀ was formed with, the
   /// bodies, and the body of each point; and, optionally, W's band product already prepared on
@@ -104,7 +127,8 @@ class ContactNewton {
     bool converged = false;  // residual <= threshold
     bool stalled = false;    // stopped on a short step (stall_step)
     double threshold = 0.0;  // tolerance · max(|β|∞, max_r |λ_r| (W_rr + R_r)) at the returned λ
-    int structured_steps = 0;  // Newton steps solved through A's band (the rest: dense LU)
+    int structured_steps = 0;  // Newton steps solved through A's band, chords on its factors included (the rest: dense LU)
+    int chord_steps = 0;       // steps taken on an earlier factorization (chord steps, kept)
   };
 
   /// Solves for λ (in: the warm start; out: the last iterate, or the best one when it did not
@@ -134,8 +158,14 @@ class ContactNewton {
   /// F and the merit θ at λ, given wl_ = (W + R)λ − β; with `jacobian`, J's rows as forms (forms_:
   /// Σ b_k W_k + Σ c_m e_m, three of each at most) and the free set.
   double evaluate(bool jacobian, const ConstraintRows& rows, const Eigen::Ref<const VecX>& lambda);
-  /// Δ from J Δ = −F (the reduced system); `structured` counts a step solved through A's band.
-  bool step(double damping, const ConstraintRows& rows, int& structured);
+  /// Δ from J Δ = −F (the reduced system). With `chord`, on the held factorization when it fits
+  /// the solved rows (chord_taken_ says so); step_structured_: solved through A's band.
+  bool step(double damping, const ConstraintRows& rows, bool chord);
+  /// Whether the held factorization is of J_SS on the same solved rows, each of the same kind
+  /// (tied or sliding: the forms' pattern).
+  bool heldFits() const;
+  /// Records the solved rows and their kinds of the factorization just made.
+  void hold(bool structured);
   /// J_SS Δ_S = rhs_ through A's band (AugmentedNewtonSystem), when structure_ allows it and it
   /// costs less than the dense LU; false: not taken (or refused), the dense LU is used.
   bool structuredStep(double damping, const ConstraintRows& rows);
@@ -169,6 +199,16 @@ class ContactNewton {
   BandDelassusProduct own_product_;         // prepared here when the Structure brings none
   VecX formed_diagonal_;                    // W's diagonal, contiguous (solve with W formed)
   AugmentedNewtonSystem augmented_;
+  // The last factorization of J_SS + δ I (lu_, or augmented_ when held_structured_), for chord
+  // steps: valid while held_, for W named held_key_, on the rows held_solved_ with the forms'
+  // pattern held_pattern_ (nb per solved row).
+  bool held_ = false;
+  bool held_structured_ = false;
+  long held_key_ = -1;
+  std::vector<int> held_solved_;
+  std::vector<int> held_pattern_;
+  bool chord_taken_ = false;      // the last step() was a chord step
+  bool step_structured_ = false;  // the last step() was solved through A's band
   double max_abs_residual_ = 0.0;
   double force_scale_ = 0.0;  // max_r |λ_r|/ρ_r of the last evaluation (m/s²)
 

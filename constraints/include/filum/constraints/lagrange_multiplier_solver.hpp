@@ -116,6 +116,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
                                     // one iteration to the next and a stiff scene failed to converge)
     int newton_rows = 2000;         // Newton on W kept dense up to this many rows; above, Gauss–Seidel
     bool newton_structured = true;  // Newton's steps through A's band when cheaper (ContactNewton::Structure)
+    bool newton_chords = true;      // chord steps on the last factorization (ContactNewton::Settings::chords)
     bool point_blocks = true;       // Newton's W from A⁻¹'s blocks between touched points when cheaper (point_inverse_blocks.hpp)
     double contact_compliance = 1e-6;   // ε_n: R = ε_n W_rr on normal rows
     double friction_compliance = 1e-6;  // ε_t: R = ε_t W_rr on friction rows
@@ -144,7 +145,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     double threshold = 0.0;  // the residual asked for: contact_tolerance · max(|β|∞, max_r |λ_r|(W_rr + R_r)) (m/s²)
     bool converged = true;   // residual <= threshold (always true without contact rows)
     bool fell_back = false;  // Newton did not converge and projected Gauss–Seidel took over
-    int structured_steps = 0;  // Newton steps solved through A's band (the others by a dense LU)
+    int structured_steps = 0;  // Newton steps solved through A's band, chords on its factors included (the others by a dense LU)
+    int chord_steps = 0;       // Newton steps on an earlier factorization (contact_newton.hpp, chord steps)
     bool point_blocks = false;  // W formed from A⁻¹'s blocks between touched points (not from per-row columns)
     int point_columns = 0;      // columns A⁻¹ E_p solved for points newly touched (3 per point)
     bool equality_band = false;  // equality rows only, solved through A's band (W never formed)
@@ -161,7 +163,10 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// ("newton", default, or "gauss_seidel"), "newton_iterations" (default 100), "newton_damping"
   /// (the floor of Newton's shift δ, in [0, 1e-3], default 1e-9), "newton_linear_solve" ("auto",
   /// default: each step's system through the step matrix's band when that is cheaper, or "dense":
-  /// always a dense LU; the same steps up to round-off), "point_blocks" (default true: W from A⁻¹'s
+  /// always a dense LU; the same steps up to round-off), "newton_chord_steps" (default true: steps on
+  /// the last factorization of the step's system while they contract, within a solve and between
+  /// the solves of one step on the same W; false: a factorization per Newton iteration; the same
+  /// solution to the tolerance), "point_blocks" (default true: W from A⁻¹'s
   /// blocks between the rows' points, kept while A is, when that takes fewer multiply-adds than a
   /// column per row; false: always a column per row), "contact_compliance" and
   /// "friction_compliance" (ε in [0, 1], default 1e-6), "newton_rows" (default 2000),
@@ -180,6 +185,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// λ of the last call and its rows' kinds: the warm start of the next call (warmStart).
   void saveMemory(StepMemory& memory) const override;
   void restoreMemory(const StepMemory& memory) override;
+  /// Drops the contact Newton's factorization carried between the solves of a step.
+  void beginStep() override { step_began_ = true; }
   const Statistics& statistics() const { return stats_; }
   const Options& options() const { return options_; }
 
@@ -292,6 +299,13 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   const BlockInverse* cached_inverse_ = nullptr;
   long cached_revision_ = -1;
   long cached_size_ = -1;
+  // The contact Newton's Settings::matrix_key: the same number while the calls of one step solve
+  // with the same operator (its revision) and rows, so that the last call's factorization may
+  // serve chord steps (contact_newton.hpp). step_began_: no call yet in this step (or since a
+  // restore); last_call_newton_: the last call solved its contacts by Newton.
+  long newton_key_ = 0;
+  bool step_began_ = true;
+  bool last_call_newton_ = false;
   // Structure of the last assembled W: factors (anchor, direction) per row and the mode.
   std::vector<int> last_factor_start_, last_factor_anchor_;
   std::vector<Vec3> last_factor_direction_;

@@ -22,13 +22,15 @@ struct ContactSolveTally {
   long converged = 0;        // the residual reached the threshold
   long fell_back = 0;        // the main method gave up and a fallback finished the solve
   long iterations = 0;       // of the main method, summed
+  long chord_steps = 0;      // of those iterations, steps on an earlier factorization (contact Newton's chords)
   double worst_ratio = 0.0;  // largest residual / threshold
 
-  void add(bool solve_converged, bool solve_fell_back, int solve_iterations, double ratio) {
+  void add(bool solve_converged, bool solve_fell_back, int solve_iterations, double ratio, int solve_chord_steps = 0) {
     ++solves;
     converged += solve_converged ? 1 : 0;
     fell_back += solve_fell_back ? 1 : 0;
     iterations += solve_iterations;
+    chord_steps += solve_chord_steps;
     if (ratio > worst_ratio || !(ratio == ratio)) worst_ratio = ratio;  // a NaN ratio stays visible
   }
 };
@@ -46,6 +48,10 @@ class ConstraintSolver : public Component {
   /// (Scene::setState): see StepMemory.
   virtual void saveMemory(StepMemory& /*memory*/) const {}
   virtual void restoreMemory(const StepMemory& /*memory*/) {}
+  /// A step begins (Scene::beginStep): what a solver keeps between the solves of one step and
+  /// not in StepMemory (a factorization) is dropped here, so that a step depends on the state and
+  /// its StepMemory alone and a restored run repeats bit for bit.
+  virtual void beginStep() {}
   /// Contact solves since construction or the last resetContactTally().
   const ContactSolveTally& contactTally() const { return tally_; }
   void resetContactTally() { tally_ = ContactSolveTally(); }
