@@ -406,8 +406,10 @@ ContactNewton::Result ContactNewton::solve(DelassusEntries& w, const Eigen::Ref<
   // fail changes with the iterates, not with the factor); 0.5 raised knot.json's iterations by a
   // quarter (5979 → 7376) and left a solve unconverged.
   constexpr double kChordContraction = 0.25;
+  bool measured = false;  // wl_ and F are λ's own, from an exact product (the loop's exit on convergence)
   while (true) {
     if (max_abs_residual_ <= threshold()) {
+      measured = exact;
       if (exact) break;
       merit = at(lambda, true);
       exact = true;
@@ -478,8 +480,9 @@ ContactNewton::Result ContactNewton::solve(DelassusEntries& w, const Eigen::Ref<
       break;
     }
   }
-  // The last evaluation may have been a rejected trial: measure the iterate itself.
-  at(lambda, false);
+  // The last evaluation may have been a rejected trial: measure the iterate itself (unless the
+  // loop stopped on λ's own exact measure: the same product again would give the same bits).
+  if (!measured) at(lambda, false);
   result.converged = max_abs_residual_ <= threshold();
   if (!result.converged) {
     lambda = best_.head(c);
