@@ -240,8 +240,10 @@ bool ContactNewton::step(double damping, const ConstraintRows& rows, bool chord)
     if (delta_[k] != 0.0) ++moving;
   // (The columns' axpys run vectorized, as the dense product: the same rate ratio as chooseProduct's;
   // W not formed yet, the band's product spares forming it.)
-  if (product_ && (w_matrix_ == nullptr ||
-                   static_cast<double>(moving) * c > BandDelassusProduct::kDenseProductRateRatio * product_->cost())) {
+  if (moving == 0) {
+    w_free_.head(c).setZero();  // (no product: the free rows stay at λ = 0)
+  } else if (product_ && (w_matrix_ == nullptr ||
+                          static_cast<double>(moving) * c > BandDelassusProduct::kDenseProductRateRatio * product_->cost())) {
     // (trial_ is free until the line search.)
     trial_.head(c).setZero();
     for (int k : free_) trial_[k] = delta_[k];
