@@ -403,10 +403,11 @@ ContactNewton::Result ContactNewton::solve(DelassusEntries& w, const Eigen::Ref<
   // A chord step is taken when it divides |F| by 4 at least (θ by 16); else Newton's own step.
   // Newton near the solution contracts quadratically, so a chord that does less says the
   // factorization is stale. Measured (`filum run`, mean ms per simulated ms, 2026-11-28) with
-  // 0.1 / 0.25 / 0.5: the rod of bench_rod (100 nodes dragged over a table) 0.54 / 0.49 / 0.52,
-  // capstan_sliding.json 0.86 / 0.95 / 0.81 (its solves' fallbacks 5 / 10 / 5 of ~3700: which solves
-  // fail changes with the iterates, not with the factor); 0.5 raised knot.json's iterations by a
-  // quarter (5979 → 7376) and left a solve unconverged.
+  // 0.1 / 0.25 / 0.5: the rod of bench_rod (100 nodes dragged over a table) 0.54 / 0.57 / 0.52,
+  // capstan_sliding.json 0.86 / 0.95 / 0.81 (single runs, 0.25's the median of 3; the machine's
+  // noise is ~10 %, so the times do not choose; the solves' fallbacks 5 / 10 / 5 of ~3700 move
+  // with the iterates); 0.5 raised knot.json's iterations by a quarter (5979 → 7376) and left a
+  // solve unconverged, so 0.25.
   constexpr double kChordContraction = 0.25;
   bool measured = false;  // wl_ and F are λ's own, from an exact product (the loop's exit on convergence)
   while (true) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <random>
 
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include "filum/constraints/contact_newton.hpp"
@@ -100,16 +101,21 @@ void expectCoulomb(const MatX& w, const VecX& beta, const ConstraintRows& rows, 
   }
 }
 
+/// W = J Jᵀ/c + I/10 for a random c × c J (positive definite, eigenvalues in [0.1, ~4]).
+MatX randomDelassus(int c, std::mt19937& rng, std::normal_distribution<double>& normal) {
+  MatX j(c, c);
+  for (int i = 0; i < c; ++i)
+    for (int k = 0; k < c; ++k) j(i, k) = normal(rng);
+  return j * j.transpose() / c + 0.1 * MatX::Identity(c, c);
+}
+
 TEST(ContactNewton, RandomProblemsSatisfyTheLaws) {
   // W = J Jᵀ + I/10 of random 3-row contacts, β random: some contacts push, some open, some slide.
   std::mt19937 rng(7);
   std::normal_distribution<double> normal(0.0, 1.0);
   for (int trial = 0; trial < 20; ++trial) {
     const int contacts = 2 + trial % 5, c = 3 * contacts;
-    MatX j(c, c);
-    for (int i = 0; i < c; ++i)
-      for (int k = 0; k < c; ++k) j(i, k) = normal(rng);
-    const MatX w = j * j.transpose() / c + 0.1 * MatX::Identity(c, c);
+    const MatX w = randomDelassus(c, rng, normal);
     VecX beta(c);
     for (int i = 0; i < c; ++i) beta[i] = normal(rng);
     const ConstraintRows rows = contactRows(contacts, 0.3);
@@ -144,16 +150,16 @@ TEST(ContactNewton, ChordStepsOnTheLastFactorizationReachTheSameSolution) {
   // a right-hand side moved a little, the first solve's λ as warm start. Its steps may be taken
   // on the first solve's last factorization (chord steps); the solution is the problem's own:
   // the same λ as a solve that carries nothing over, to the solves' accuracy (cond(W) × the
-  // tolerance, cond ≈ 1e2 here: 1e-9 relative leaves a margin), and the laws hold.
+  // tolerance, cond(W) <= 1e2 here, asserted: 1e-9 relative leaves a margin), and the laws hold.
   std::mt19937 rng(11);
   std::normal_distribution<double> normal(0.0, 1.0);
   int chords = 0;
   for (int trial = 0; trial < 20; ++trial) {
     const int contacts = 3 + trial % 4, c = 3 * contacts;
-    MatX j(c, c);
-    for (int i = 0; i < c; ++i)
-      for (int k = 0; k < c; ++k) j(i, k) = normal(rng);
-    const MatX w = j * j.transpose() / c + 0.1 * MatX::Identity(c, c);
+    const MatX w = randomDelassus(c, rng, normal);
+    // The tolerance's premise: cond(W) <= 1e2.
+    const Eigen::SelfAdjointEigenSolver<MatX> spectrum(w);
+    ASSERT_LE(spectrum.eigenvalues().maxCoeff() / spectrum.eigenvalues().minCoeff(), 1e2) << "trial " << trial;
     VecX beta(c), moved(c);
     for (int i = 0; i < c; ++i) beta[i] = normal(rng);
     for (int i = 0; i < c; ++i) moved[i] = beta[i] + 1e-3 * normal(rng);  // the estimate's correction

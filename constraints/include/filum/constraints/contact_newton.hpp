@@ -63,16 +63,15 @@
 // on it (a chord step: Newton's simplified iteration, Ortega & Rheinboldt 1970 §7.1; Hairer &
 // Wanner's stiff solvers keep their Jacobian the same way): one substitution instead of a
 // factorization, exact where only tied rows are solved (their forms are ρ_r W_r + ρ_r R_r e_r,
-// constant; up to the Levenberg shift δ, which moves with the residual), a step that contracts the error
-// linearly where pairs slide. It is taken whole, and
-// only when it divides |F| by 4 at least (kChordContraction, in contact_newton.cpp with what was
-// measured); otherwise it is discarded and the iteration is taken by Newton on a fresh
-// factorization, so a chord step is never a poor one. A factorization serves chords only from
-// Newton's local phase: one whose own step the line search had to cut (the active set still
-// moving) is not kept. The factorization is carried from one
-// solve to the next only under the same Settings::matrix_key (the linearized implicit step and
-// its error estimate: two solves on one W, whose right-hand sides differ by the estimate's
-// correction).
+// constant; up to the Levenberg shift δ, which moves with the residual), a step that contracts
+// the error linearly where pairs slide. It is taken whole, and only when it divides |F| by 4 at
+// least (kChordContraction, in contact_newton.cpp with what was measured); otherwise it is
+// discarded and the iteration is taken by Newton on a fresh factorization, so a chord step is
+// never a poor one. A factorization serves chords only from Newton's local phase: one whose own
+// step the line search had to cut (the active set still moving) is not kept. The factorization
+// is carried from one solve to the next only under the same Settings::matrix_key (the linearized
+// implicit step and its error estimate: two solves on one W, whose right-hand sides differ by the
+// estimate's correction).
 // The workspace only grows: a steady step allocates nothing.
 #pragma once
 
