@@ -57,14 +57,17 @@ std::string checkOverrides(const RunOptions& options, const Scene& scene, double
          std::to_string(kMaxSteps) + " steps of dt = " + describeJson(scene.settings().dt) + " s, found " + steps;
 }
 
-/// metrics.json written, the metrics and the instruments' events logged.
-void finishInstruments(haptics::InstrumentSet& instruments, const std::string& directory, std::ostream& log) {
+/// metrics.json written (with the last frame's knots when the run's output exists), the metrics
+/// and the instruments' events logged.
+void finishInstruments(haptics::InstrumentSet& instruments, const RunOutput* output, const std::string& directory,
+                       std::ostream& log) {
   instruments.finish();  // devices' forces off
   log << instruments.writeDeviceLogs(directory);
-  instruments.writeSummary(directory + "/metrics.json");
+  instruments.writeSummary(directory + "/metrics.json", output ? output->knotSummary() : nlohmann::json());
   for (const std::string& e : instruments.events()) log << "  " << e << '\n';
   log << instruments.metrics().text();
   if (instruments.wound()) log << instruments.wound()->text();
+  if (output && !output->knotText().empty()) log << "  knots: " << output->knotText() << '\n';
   log << "  -> metrics.csv, metrics.json\n";
 }
 
@@ -250,7 +253,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     if (haptic) finishHaptics(*haptic, directory, log);
     finishHubDevice();
     finishNavigation();
-    if (instruments) finishInstruments(*instruments, directory, log);
+    if (instruments) finishInstruments(*instruments, output_files.get(), directory, log);
     else logRuptures(*scene, log);
     log << "error: " << message << '\n';
     // Rolled back to the last good state: its step count is the failed step's index.
@@ -301,7 +304,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
         if (haptic) finishHaptics(*haptic, directory, log);
         finishHubDevice();
         finishNavigation();
-        if (instruments) finishInstruments(*instruments, directory, log);
+        if (instruments) finishInstruments(*instruments, output_files.get(), directory, log);
         log << "interrupted (Ctrl-C) at t = " << scene->state().time << " s: forces off\n";
         if (visuals) visuals->finish(*scene);
         writeSummary(directory, summary(), log);
@@ -330,7 +333,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
     if (haptic) finishHaptics(*haptic, directory, log);
     finishHubDevice();
     finishNavigation();
-    if (instruments) finishInstruments(*instruments, directory, log);
+    if (instruments) finishInstruments(*instruments, output_files.get(), directory, log);
     else logRuptures(*scene, log);
     if (visuals) visuals->finish(*scene);
     log << "wrote " << out.frames() << " frames to " << directory

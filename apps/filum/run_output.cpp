@@ -82,7 +82,7 @@ RunOutput::RunOutput(const std::string& directory, int curve_samples, bool knots
   energy_ = openCsv(directory_ + "/energy.csv", "time,kinetic,potential,total,max_violation");
   if (knots)
     knots_ = openCsv(directory_ + "/knot.csv",
-                     "time,body,strand,type,crossings,jones,loop_length,contacts,contact_force,slip_speed");
+                     "time,body,strand,type,throws,crossings,jones,loop_length,contacts,contact_force,slip_speed");
 }
 
 void RunOutput::writeFrame(const Scene& scene) {
@@ -147,7 +147,7 @@ void RunOutput::writeFrame(const Scene& scene) {
   }
   if (knots_.is_open()) {
     for (const KnotRow& k : knot_rows_)
-      knots_ << t << ',' << k.body << ',' << k.strand << ',' << k.type << ',' << k.crossings << ',' << k.jones << ','
+      knots_ << t << ',' << k.body << ',' << k.strand << ',' << k.type << ',' << k.throws << ',' << k.crossings << ',' << k.jones << ','
              << exact(k.tightness.loop_length) << ',' << k.tightness.contacts << ',' << exact(k.tightness.contact_force)
              << ',' << exact(k.tightness.slip_speed) << '\n';
     flushOrThrow(knots_, "knot.csv");
@@ -177,6 +177,7 @@ void RunOutput::classifyKnots(const Scene& scene, const std::vector<visual::Poly
     const collision::KnotType k = collision::knotType(collision::closeFarAway(lines[i].points), kFrameCrossings);
     row.name = k.name;
     row.type = k.name + (k.mirrored ? " (mirror)" : "");
+    row.throws = collision::throwsString(k.throws);
     row.crossings = k.crossings;
     row.jones = collision::toString(k.jones);
     row.tightness = collision::knotTightness(pipeline, *line_body[i]->curve(), lines[i].scalars,
@@ -191,6 +192,21 @@ void RunOutput::classifyKnots(const Scene& scene, const std::vector<visual::Poly
 void RunOutput::flushOrThrow(std::ofstream& out, const char* name) const {
   out.flush();
   if (!out) throw std::runtime_error(directory_ + "/" + name + ": write failed (disk full or file size limit?)");
+}
+
+nlohmann::json RunOutput::knotSummary() const {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const KnotRow& k : knot_rows_)
+    rows.push_back({{"body", k.body},
+                    {"strand", k.strand},
+                    {"type", k.type},
+                    {"throws", k.throws},
+                    {"crossings", k.crossings},
+                    {"loop_length", k.tightness.loop_length},
+                    {"contacts", k.tightness.contacts},
+                    {"contact_force", k.tightness.contact_force},
+                    {"slip_speed", k.tightness.slip_speed}});
+  return rows;
 }
 
 std::string RunOutput::knotText() const {

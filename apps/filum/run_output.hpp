@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "filum/collision/knot_tightness.hpp"
 #include "filum/core/scene.hpp"
 #include "filum/visual/vtp_writer.hpp"
@@ -42,6 +44,9 @@ class RunOutput {
   /// The knotted strands of the last frame for a heads-up display ("" when none is knotted or
   /// knots are off): body, type, thread held, contacts and their force, slip speed.
   std::string knotText() const;
+  /// The last frame's knot rows for metrics.json: per strand, its type, throws, crossings and
+  /// tightness (an empty array when knot.csv is off).
+  nlohmann::json knotSummary() const;
   const std::string& directory() const { return directory_; }
 
  private:
@@ -55,6 +60,7 @@ class RunOutput {
     std::string body;
     int strand = 0;
     std::string name, type;  // the table's name; with " (mirror)" when it matched the mirror image
+    std::string throws;      // "+2 -1": the signed wraps of each throw (collision::throwsString)
     int crossings = -1;
     std::string jones;
     collision::KnotTightness tightness;

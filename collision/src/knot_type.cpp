@@ -120,9 +120,79 @@ LaurentPolynomial bracket(const std::vector<DiagramCrossing>& list) {
   return sum;
 }
 
-const LaurentPolynomial& trefoil() {
-  static const LaurentPolynomial v{{1, 1}, {3, 1}, {4, -1}};
+/// a / b when b divides a exactly in Z[t, t⁻¹], by long division from the highest exponent;
+/// false otherwise. While the span of the remainder is at least b's, the remainder's highest
+/// exponent falls and its lowest does not, so the loop ends.
+bool divideExactly(LaurentPolynomial a, const LaurentPolynomial& b, LaurentPolynomial& quotient) {
+  quotient.clear();
+  const int b_low = b.begin()->first, b_high = b.rbegin()->first;
+  const long b_lead = b.rbegin()->second;
+  while (!a.empty()) {
+    const auto [a_high, a_lead] = *a.rbegin();
+    if (a_high - a.begin()->first < b_high - b_low || a_lead % b_lead != 0) return false;
+    const int shift = a_high - b_high;
+    const long factor = a_lead / b_lead;
+    quotient[shift] = factor;
+    for (const auto& [e, c] : b) a[e + shift] -= factor * c;
+    for (auto it = a.begin(); it != a.end();) it = it->second == 0 ? a.erase(it) : std::next(it);
+  }
+  return true;
+}
+
+/// V of a throw of k wraps closed far away: the (2, 2k + 1) torus knot (k = 1 the half knot, the
+/// trefoil; k = 2 the surgeon's double throw, the cinquefoil). For the torus knot T(p, q)
+/// (Jones, "Hecke algebra representations of braid groups and link polynomials", Ann. Math. 126
+/// (1987) 335, Thm. 14.1), V(t) = t^((p−1)(q−1)/2) (1 − t^(p+1) − t^(q+1) + t^(p+q)) / (1 − t²);
+/// here V = t^k (1 − t³ − t^(2k+2) + t^(2k+3)) / (1 − t²): k = 1 gives t + t³ − t⁴.
+LaurentPolynomial throwPolynomial(int wraps) {
+  const LaurentPolynomial numerator{{wraps, 1}, {wraps + 3, -1}, {3 * wraps + 2, -1}, {3 * wraps + 3, 1}};
+  LaurentPolynomial v;
+  divideExactly(numerator, {{0, 1}, {2, -1}}, v);  // exact: 1 − t² divides the numerator
   return v;
+}
+
+constexpr int kMaxWraps = 3;
+
+/// The throws (signed wraps, in the order of `candidates`) whose product of V is `jones`: every
+/// multiset of throw polynomials with at most `crossings` crossings in all (2k + 1 per throw, the
+/// crossing number of a connected sum of alternating knots being the sum of theirs), counted in
+/// `found` (the search stops at 2: the decomposition is then not unique).
+void searchThrows(const LaurentPolynomial& jones, int crossings, std::size_t first, std::vector<int>& current,
+                  std::vector<int>& throws, int& found) {
+  if (jones == LaurentPolynomial{{0, 1}}) {
+    if (++found == 1) throws = current;
+    return;
+  }
+  static const std::vector<std::pair<int, LaurentPolynomial>> candidates = [] {
+    std::vector<std::pair<int, LaurentPolynomial>> list;  // by wraps down, + before −
+    for (int k = kMaxWraps; k >= 1; --k) {
+      list.emplace_back(k, throwPolynomial(k));
+      list.emplace_back(-k, mirror(throwPolynomial(k)));
+    }
+    return list;
+  }();
+  LaurentPolynomial rest;
+  for (std::size_t i = first; i < candidates.size() && found < 2; ++i) {
+    const int cost = 2 * std::abs(candidates[i].first) + 1;
+    if (cost > crossings || !divideExactly(jones, candidates[i].second, rest)) continue;
+    current.push_back(candidates[i].first);
+    searchThrows(rest, crossings - cost, i, current, throws, found);
+    current.pop_back();
+  }
+}
+
+/// The knot's name from its throws (sorted by wraps down, + before −).
+std::string nameOfThrows(const std::vector<int>& throws) {
+  const auto wraps = [&](std::size_t i) { return std::abs(throws[i]); };
+  if (throws.empty()) return "unknot";
+  if (throws.size() == 1) {
+    const char* single[] = {"", "trefoil", "cinquefoil", "septafoil"};
+    return single[wraps(0)];
+  }
+  const bool same_sense = throws.size() == 2 && (throws[0] > 0) == (throws[1] > 0);
+  if (throws.size() == 2 && wraps(0) == 1) return same_sense ? "granny" : "square";
+  if (throws.size() == 2 && wraps(0) == 2 && wraps(1) == 1) return same_sense ? "surgeon's granny" : "surgeon's";
+  return std::to_string(throws.size()) + " throws";
 }
 
 /// Thirteen directions spread over the half sphere (a Fibonacci lattice, skewed off the axes).
@@ -201,26 +271,28 @@ KnotType knotType(const Points& closed, int max_crossings) {
   if (!found || !jonesOfDiagram(fewest, best.jones)) return best;
   best.crossings = static_cast<int>(fewest.size());
   for (const DiagramCrossing& c : fewest) best.crossing_passages.emplace_back(c.over, c.under);
-  const LaurentPolynomial& t = trefoil();
-  const std::pair<const char*, LaurentPolynomial> table[] = {
-      {"unknot", {{0, 1}}},
-      {"trefoil", t},
-      {"figure-eight", {{-2, 1}, {-1, -1}, {0, 1}, {1, -1}, {2, 1}}},
-      {"granny", multiply(t, t)},
-      {"square", multiply(t, mirror(t))}};
-  best.name = "other";
-  for (const auto& [name, v] : table) {
-    if (best.jones == v) {
-      best.name = name;
-      return best;
-    }
-    if (best.jones == mirror(v)) {
-      best.name = name;
-      best.mirrored = true;
-      return best;
-    }
+  // The figure-eight (amphichiral), then a product of throws: the Jones polynomial of a
+  // connected sum is the product of its summands' (Jones 1987, §7).
+  const LaurentPolynomial figure_eight{{-2, 1}, {-1, -1}, {0, 1}, {1, -1}, {2, 1}};
+  if (best.jones == figure_eight) {
+    best.name = "figure-eight";
+    return best;
   }
+  std::vector<int> current, throws;
+  int decompositions = 0;
+  searchThrows(best.jones, best.crossings, 0, current, throws, decompositions);
+  best.name = "other";
+  if (decompositions != 1) return best;
+  best.throws = throws;
+  best.name = nameOfThrows(throws);
+  best.mirrored = !throws.empty() && throws.front() < 0;  // an amphichiral multiset (the square knot) starts with +
   return best;
+}
+
+std::string throwsString(const std::vector<int>& throws) {
+  std::ostringstream out;
+  for (std::size_t i = 0; i < throws.size(); ++i) out << (i ? " " : "") << (throws[i] > 0 ? "+" : "") << throws[i];
+  return out.str();
 }
 
 KnotSpan knotSpan(const KnotType& type, int open_points) {

@@ -641,9 +641,10 @@ void InstrumentSet::measureSpecimen(const Scene& scene) {
   metrics_.setRemovedLength(length);
 }
 
-void InstrumentSet::writeSummary(const std::string& path) const {
+void InstrumentSet::writeSummary(const std::string& path, const nlohmann::json& knots) const {
   nlohmann::json out = metrics_.summary();
   if (wound_) out["wound"] = wound_->summary();
+  if (!knots.is_null()) out["knots"] = knots;
   out["events"] = events_;
   std::ofstream file(path);
   file << out.dump(2) << '\n';

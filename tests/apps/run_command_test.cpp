@@ -50,25 +50,26 @@ TEST(RunCommand, KnotCsvFollowsTheKnotOfKnotJsonAsItIsTightened) {
   std::istringstream csv(readAll(dir / "knot.csv"));
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line, "time,body,strand,type,crossings,jones,loop_length,contacts,contact_force,slip_speed");
+  EXPECT_EQ(line, "time,body,strand,type,throws,crossings,jones,loop_length,contacts,contact_force,slip_speed");
   double first_held = -1.0, last_held = 0.0, tightening_slip = 0.0, resting_slip = 0.0;
   int resting_contacts = 0, rows = 0;
   while (std::getline(csv, line)) {
     std::vector<std::string> f;
     std::stringstream cells(line);
     for (std::string cell; std::getline(cells, cell, ',');) f.push_back(cell);
-    ASSERT_EQ(f.size(), 10u) << line;
+    ASSERT_EQ(f.size(), 11u) << line;
     ++rows;
     EXPECT_EQ(f[3].substr(0, 7), "trefoil") << line;
-    const double t = std::stod(f[0]), held = std::stod(f[6]), slip = std::stod(f[9]);
-    ASSERT_TRUE(std::isfinite(held) && std::isfinite(slip) && std::isfinite(std::stod(f[8]))) << line;
+    EXPECT_TRUE(f[4] == "+1" || f[4] == "-1") << "one single throw: " << line;
+    const double t = std::stod(f[0]), held = std::stod(f[7]), slip = std::stod(f[10]);
+    ASSERT_TRUE(std::isfinite(held) && std::isfinite(slip) && std::isfinite(std::stod(f[9]))) << line;
     if (first_held < 0) first_held = held;
     last_held = held;
     if (t > 0.05 && t < 0.18) tightening_slip = std::max(tightening_slip, slip);
     if (t > 0.3) {
       resting_slip = std::max(resting_slip, slip);
-      resting_contacts = std::stoi(f[7]);
-      EXPECT_GT(std::stod(f[8]), 0.0) << "its contacts press: " << line;
+      resting_contacts = std::stoi(f[8]);
+      EXPECT_GT(std::stod(f[9]), 0.0) << "its contacts press: " << line;
     }
   }
   EXPECT_GT(rows, 30);

@@ -1,5 +1,6 @@
 // Which knot a thread is tied in: unknot, trefoil (the overhand knot closed), figure-eight,
-// granny or square (two overhand knots of the same or of opposite handedness) — by the Jones
+// granny or square (two overhand knots of the same or of opposite handedness), a surgeon's knot
+// (a double throw and a single one), and the throws it is made of — by the Jones
 // polynomial of a diagram of the thread closed far away (knot_determinant.hpp: closeFarAway).
 // The Alexander polynomial (and the determinant |Δ(−1)|) cannot tell the square knot from the
 // granny: both are 3₁ # 3₁ up to mirror, determinant 9; the Jones polynomial can — the square
@@ -16,10 +17,26 @@
 //             over end to the under end clockwise of it;
 //   Jones     V(t) = (−A³)^(−w) ⟨K⟩ at A = t^(−1/4), w the writhe (the sum of the signs).
 // Kinks (a crossing whose two passages follow each other along the curve: Reidemeister I) are
-// removed first; of 13 projection directions, the one with the fewest crossings is used. V is
-// compared with the table (and its mirror t → 1/t):
-//   unknot 1;  trefoil t + t³ − t⁴;  figure-eight t⁻² − t⁻¹ + 1 − t + t²;
-//   granny (t + t³ − t⁴)²;  square (t + t³ − t⁴)(t⁻¹ + t⁻³ − t⁻⁴).
+// removed first; of 13 projection directions, the one with the fewest crossings is used.
+//
+// Throws. A surgeon's throw of k wraps (the thread's two strands wound k times round each other,
+// then pulled apart) makes, closed far away, the (2, 2k + 1) torus knot: k = 1 (a single throw,
+// the half knot) the trefoil, k = 2 (the double throw of a surgeon's knot) the cinquefoil 5₁.
+// Throws tied one on another make their connected sum, whose V is the product of theirs
+// (Jones, Ann. Math. 126 (1987) 335, §7 and Thm. 14.1 for V of a torus knot). So V is
+// factored into throws of 1 to 3 wraps and either sense (+: the sense whose single throw has
+// V = t + t³ − t⁴; −: its mirror, t → 1/t), by exact division; the factoring must be unique.
+// The names, besides figure-eight (t⁻² − t⁻¹ + 1 − t + t², no throw) and "other":
+//   unknot   no throw                        V = 1
+//   trefoil  one single throw                V = t + t³ − t⁴
+//   cinquefoil one double throw              V = t² + t⁴ − t⁵ + t⁶ − t⁷
+//   square   two single throws, opposite senses (amphichiral: V(t) = V(1/t))
+//   granny   two single throws, the same sense
+//   surgeon's        a double and a single throw, opposite senses (the surgeon's knot)
+//   surgeon's granny a double and a single throw, the same sense
+//   "N throws" any other product of N throws (their wraps and senses in `throws`).
+// The order of the throws along the thread is not told (a connected sum commutes): a double
+// throw on a single one reads as a surgeon's knot tied upside down would.
 // Cost 2ⁿ · n: up to kMaxCrossings crossings (a tied surgeon's knot seen from a good side has
 // 6 to 10); beyond, the type is "unknown".
 #pragma once
@@ -37,10 +54,13 @@ namespace filum::collision {
 using LaurentPolynomial = std::map<int, long>;
 
 struct KnotType {
-  std::string name = "unknown";  // "unknot", "trefoil", "figure-eight", "granny", "square", "other", "unknown"
+  std::string name = "unknown";  // see the header: "unknot", "trefoil", ..., "N throws", "other", "unknown"
   int crossings = -1;            // of the diagram used (after removing kinks)
   LaurentPolynomial jones;       // V(t) (empty when unknown)
-  bool mirrored = false;         // matched the table's mirror image (a left-handed trefoil, granny)
+  /// The throws V factors into: signed wraps (+2 a double throw of sense +), by wraps down and
+  /// + before −; empty for the unknot, the figure-eight, "other" and "unknown".
+  std::vector<int> throws;
+  bool mirrored = false;  // the first throw is of sense − (a left-handed trefoil, granny)
   /// Where the crossings of the diagram used lie along the polygon: each crossing's over and
   /// under passage, as vertex index + fraction of the edge from it (knotSpan reads them).
   std::vector<std::pair<double, double>> crossing_passages;
@@ -70,5 +90,8 @@ bool jonesPolynomial(const Points& closed, const Vec3& direction, LaurentPolynom
 
 /// "t + t^3 - t^4" (for messages and knot.csv).
 std::string toString(const LaurentPolynomial& p);
+
+/// "+2 -1" (a surgeon's knot; for knot.csv and metrics).
+std::string throwsString(const std::vector<int>& throws);
 
 }  // namespace filum::collision

@@ -94,8 +94,9 @@ class InstrumentSet {
   /// metrics.csv from now on: time, then per instrument tip x y z (m), jaw, speed (m/s), force on
   /// tissue (N), holding (0/1); one row per step. Throws std::runtime_error when it cannot open.
   void openCsv(const std::string& path);
-  /// metrics.json (summary and events).
-  void writeSummary(const std::string& path) const;
+  /// metrics.json (summary and events; with `knots`, not null, under "knots": the run's knot
+  /// types at its last frame, which the run's output classifies).
+  void writeSummary(const std::string& path, const nlohmann::json& knots = nullptr) const;
 
   /// The coupling force the hold of instrument i exerts on its thread at the scene's state (N;
   /// zero when it holds nothing).
