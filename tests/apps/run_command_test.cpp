@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "filum/run_command.hpp"
 #include "support/run_scene.hpp"
 #include "support/scenes.hpp"
@@ -105,6 +107,38 @@ TEST(RunCommand, KnotCsvSeesTheKnotWhateverTheOutputsSampling) {
     EXPECT_NE(line.find(",trefoil"), std::string::npos) << line;
   }
   EXPECT_GT(rows, 1);
+}
+
+TEST(RunCommand, MetricsJsonHasTheKnotsOfTheLastFrameAsKnotCsvHasThem) {
+  // instruments.json (graspers and a thread): metrics.json lists, under "knots", each strand's
+  // row of knot.csv's last frame, with its type and throws.
+  const fs::path dir = freshDirectory("metrics_knots");
+  std::string log;
+  ASSERT_EQ(runQuietly(std::string(FILUM_SOURCE_DIR) + "/apps/scenes/instruments.json", dir, 0.05, log), kRunOk) << log;
+  std::istringstream csv(readAll(dir / "knot.csv"));
+  std::string line, last_time;
+  std::vector<std::vector<std::string>> last_frame;
+  std::getline(csv, line);
+  while (std::getline(csv, line)) {
+    std::vector<std::string> f;
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) f.push_back(cell);
+    ASSERT_EQ(f.size(), 11u) << line;  // an unknot's empty throws cell is kept: "unknot,,0"
+    if (f[0] != last_time) last_frame.clear();
+    last_time = f[0];
+    last_frame.push_back(f);
+  }
+  const nlohmann::json metrics = nlohmann::json::parse(readAll(dir / "metrics.json"));
+  ASSERT_TRUE(metrics.contains("knots")) << metrics.dump(2);
+  const nlohmann::json& knots = metrics.at("knots");
+  ASSERT_EQ(knots.size(), last_frame.size());
+  ASSERT_FALSE(last_frame.empty());
+  for (std::size_t i = 0; i < knots.size(); ++i) {
+    EXPECT_EQ(knots[i].at("body").get<std::string>(), last_frame[i][1]);
+    EXPECT_EQ(knots[i].at("type").get<std::string>(), last_frame[i][3]);
+    EXPECT_EQ(knots[i].at("throws").get<std::string>(), last_frame[i][4]);
+    EXPECT_EQ(knots[i].at("crossings").get<int>(), std::stoi(last_frame[i][5]));
+  }
 }
 
 TEST(RunCommand, ADivergingSceneIsRolledBackReportedAndItsFilesKept) {
