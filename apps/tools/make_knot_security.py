@@ -32,7 +32,8 @@ Status (measured 2026-11-28, not yet a test):
   contact detection found more candidate pairs than its budget"). That is a failed step, rolled
   back, not a slip: from 0.844 s the whole thread swings 0.5-1.8 mm per step, and the knot's
   contact force grows from 1.7 to 13 N in three steps. With the holes as FixedPointConstraints
-  the same granny runs to 1.2 s; with "newton_chord_steps": false it fails at 0.86 s.
+  the same granny runs to 1.2 s; so it does with "friction": 0.01 (N·s/m) in its holes, the
+  tails then at 2.9-3.0 N (not with 5e-4); with "newton_chord_steps": false it fails at 0.86 s.
 - At dt = 1 ms, the square stops the same way at 0.93 s, near 7 N on its loop.
 - With force-controlled tails (PointLoad ramps to 3 N), the free tails whip, and the granny
   stops at 0.22 s.
