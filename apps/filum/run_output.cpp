@@ -169,11 +169,13 @@ void RunOutput::classifyKnots(const Scene& scene, const std::vector<visual::Poly
   // state sum costs 2ⁿ: 16 keeps a frame within milliseconds).
   constexpr int kFrameCrossings = 16;
   const auto* pipeline = dynamic_cast<const collision::ContactPipeline*>(scene.collisionPipeline());
-  knot_rows_.clear();
+  // The rows are built aside and kept only when all are finite: knotText and knotSummary never
+  // report a frame that was not written.
+  std::vector<KnotRow> rows;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     KnotRow row;
     row.body = lines[i].name;
-    row.strand = i > 0 && line_body[i - 1] == line_body[i] ? knot_rows_.back().strand + 1 : 0;
+    row.strand = i > 0 && line_body[i - 1] == line_body[i] ? rows.back().strand + 1 : 0;
     const collision::KnotType k = collision::knotType(collision::closeFarAway(lines[i].points), kFrameCrossings);
     row.name = k.name;
     row.type = k.name + (k.mirrored ? " (mirror)" : "");
@@ -185,8 +187,9 @@ void RunOutput::classifyKnots(const Scene& scene, const std::vector<visual::Poly
     if (!row.tightness.allFinite())
       throw NonFiniteFrame("refusing to write the non-finite knot tightness of " + line_body[i]->describe() + " at t = " +
                            t + " s");
-    knot_rows_.push_back(std::move(row));
+    rows.push_back(std::move(row));
   }
+  knot_rows_ = std::move(rows);
 }
 
 void RunOutput::flushOrThrow(std::ofstream& out, const char* name) const {

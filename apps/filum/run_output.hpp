@@ -29,7 +29,7 @@ class NonFiniteFrame : public std::runtime_error {
 class RunOutput {
  public:
   /// Creates `directory` (and vtk/ inside). curve_samples >= 2.
-  /// knots: also knot.csv (time, body, strand, type, crossings, jones, loop_length, contacts,
+  /// knots: also knot.csv (time, body, strand, type, throws, crossings, jones, loop_length, contacts,
   /// contact_force, slip_speed): each strand of each thread closed far away and classified
   /// (collision/knot_type.hpp), its knot's tightness and slip (collision/knot_tightness.hpp), at
   /// every frame.

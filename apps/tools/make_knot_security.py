@@ -5,7 +5,7 @@ senses (the square knot) or of the same sense (the granny), drawn tight by its t
 half of the knot-security test of issue 30 (the tails pulled apart with a rising force: the
 square knot should hold, the granny slip first).
 
-    apps/tools/make_knot_security.py [--filum build/apps/filum] [--out DIR]
+    apps/tools/make_knot_security.py [--filum build/apps/filum] [--out DIR (default .)]
 
 1. The stitch, in units of U = 1.5 mm: the construction of tests/collision/knot_type_test.cpp
    (`suture`), which knot_type names square and granny. The thread runs straight through the
@@ -21,8 +21,9 @@ square knot should hold, the granny slip first).
 3. The scene: knot.json's material and numerics (2-0 silk, E·A = 615 N, μ = 0.2, backward Euler)
    at dt = 0.5 ms, 20 /s of viscous damping; the holes are SlidingPointConstraints (the thread
    slides through the tissue), the tails are drawn 1 cm outwards along x on smooth paths over
-   0.02-1.2 s. The tails' tension is E·A ε at s = 0.01 and 0.99, ε = (|P'|²/|P0'|² − 1)/2 from
-   control_points.csv (P0: the relaxed curve, the stretching's rest state).
+   0.02-1.2 s. The figures below read the tails' tension by hand (this tool does not) as
+   E·A ε at s = 0.01 and 0.99, ε = (|P'|²/|P0'|² − 1)/2 from the run's control_points.csv (P0:
+   the relaxed curve, the stretching's rest state).
 
 Status (measured 2026-11-28, not yet a test):
 - Both knots keep their type in knot.csv at every frame.
@@ -31,11 +32,11 @@ Status (measured 2026-11-28, not yet a test):
 - Granny: the run stops at t = 0.85 s with the tails at 1.3 N ("the bodies swept so far that
   contact detection found more candidate pairs than its budget"). That is a failed step, rolled
   back, not a slip: from 0.844 s the whole thread swings 0.5-1.8 mm per step, and the knot's
-  contact force grows from 1.7 to 13 N in three steps. With the holes as FixedPointConstraints
-  the same granny runs to 1.2 s; so it does with "friction": 0.01 (N·s/m) in its holes, the
+  contact force grows from 1.7 to 13 N in three steps. Edited by hand: with the holes as
+  FixedPointConstraints the same granny runs to 1.2 s; so it does with "friction": 0.01 (N·s/m) in its holes, the
   tails then at 2.9-3.0 N (not with 5e-4); with "newton_chord_steps": false it fails at 0.86 s.
-- At dt = 1 ms, the square stops the same way at 0.93 s, near 7 N on its loop.
-- With force-controlled tails (PointLoad ramps to 3 N), the free tails whip, and the granny
+- Edited by hand: at dt = 1 ms, the square stops the same way at 0.93 s, near 7 N on its loop.
+- Edited by hand: with force-controlled tails (PointLoad ramps to 3 N), the free tails whip, and the granny
   stops at 0.22 s.
 So the contact step does not yet survive a jammed knot loaded by a few newtons, which the
 security test needs: the granny's slip cannot be told from a failed step.
@@ -44,7 +45,6 @@ import argparse
 import json
 import math
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -91,14 +91,14 @@ def stitch(senses):
 
 
 def control_points(poly, holes):
-    """Control points 0.7 mm apart along the rounded polyline, and the holes' abscissas."""
+    """Control points SPACING apart along the rounded polyline, and the holes' abscissas."""
     corners = [poly[holes[0]], poly[holes[1]]]
     length = sum(math.dist(p, q) for p, q in zip(poly, poly[1:]))
     count = int(round(length / SPACING)) + 1
     rounded = knot.round_corners(poly, corners, 3e-4, 5e-4)
     at = []
     for c in corners:  # arc length of the rounded curve's point nearest to each hole
-        s, best, run = 0.0, (1e9, 0.0), 0.0
+        best, run = (1e9, 0.0), 0.0
         for p, q in zip(rounded, rounded[1:]):
             d = math.dist(p, c)
             if d < best[0]:
@@ -168,7 +168,7 @@ HEADER = """// Knot security, first half: a stitch in 2-0 silk tied by two singl
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--filum", default="build/apps/filum")
-    parser.add_argument("--out", default="apps/scenes")
+    parser.add_argument("--out", default=".")
     args = parser.parse_args()
     for name, senses, what in (("square", (1, -1), " of opposite senses (a square knot)"),
                                ("granny", (1, 1), " of the same sense (a granny knot)")):

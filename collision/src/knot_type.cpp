@@ -151,12 +151,13 @@ LaurentPolynomial throwPolynomial(int wraps) {
   return v;
 }
 
-constexpr int kMaxWraps = 3;
+constexpr int kMaxWraps = 3;  // nameOfThrows names single throws up to septafoil
 
 /// The throws (signed wraps, in the order of `candidates`) whose product of V is `jones`: every
-/// multiset of throw polynomials with at most `crossings` crossings in all (2k + 1 per throw, the
-/// crossing number of a connected sum of alternating knots being the sum of theirs), counted in
-/// `found` (the search stops at 2: the decomposition is then not unique).
+/// multiset of throw polynomials with at most `crossings` crossings in all (2k + 1 per throw:
+/// the span of V of a product of throws is Σ (2k + 1), and the span of V is at most the
+/// crossings of any diagram), counted in `found` (the search stops at 2: the decomposition is
+/// then not unique).
 void searchThrows(const LaurentPolynomial& jones, int crossings, std::size_t first, std::vector<int>& current,
                   std::vector<int>& throws, int& found) {
   if (jones == LaurentPolynomial{{0, 1}}) {
@@ -181,12 +182,25 @@ void searchThrows(const LaurentPolynomial& jones, int crossings, std::size_t fir
   }
 }
 
+/// Whether the throws (sorted by wraps down, + before −) are the mirror of the first of the
+/// pair {throws, their mirror} in that order: the sorted sequences compared lexicographically
+/// by candidate rank (wraps down, + before −). An amphichiral multiset is its own mirror: false.
+bool isMirrorOfCanonical(const std::vector<int>& throws) {
+  const auto rank = [](int w) { return 2 * (kMaxWraps - std::abs(w)) + (w < 0 ? 1 : 0); };
+  std::vector<int> mirrored;
+  for (int w : throws) mirrored.push_back(-w);
+  std::sort(mirrored.begin(), mirrored.end(), [&](int a, int b) { return rank(a) < rank(b); });
+  return std::lexicographical_compare(mirrored.begin(), mirrored.end(), throws.begin(), throws.end(),
+                                      [&](int a, int b) { return rank(a) < rank(b); });
+}
+
 /// The knot's name from its throws (sorted by wraps down, + before −).
 std::string nameOfThrows(const std::vector<int>& throws) {
   const auto wraps = [&](std::size_t i) { return std::abs(throws[i]); };
   if (throws.empty()) return "unknot";
   if (throws.size() == 1) {
-    const char* single[] = {"", "trefoil", "cinquefoil", "septafoil"};
+    static_assert(kMaxWraps == 3, "a name for each single throw up to kMaxWraps");
+    const char* single[kMaxWraps + 1] = {"", "trefoil", "cinquefoil", "septafoil"};
     return single[wraps(0)];
   }
   const bool same_sense = throws.size() == 2 && (throws[0] > 0) == (throws[1] > 0);
@@ -285,7 +299,7 @@ KnotType knotType(const Points& closed, int max_crossings) {
   if (decompositions != 1) return best;
   best.throws = throws;
   best.name = nameOfThrows(throws);
-  best.mirrored = !throws.empty() && throws.front() < 0;  // an amphichiral multiset (the square knot) starts with +
+  best.mirrored = isMirrorOfCanonical(throws);
   return best;
 }
 

@@ -203,6 +203,10 @@ TEST(KnotType, ThrowsTiedOnTissueAreNamedAndCounted) {
   const KnotType fls = typeOfSuture({{2, 1}, {1, -1}, {1, 1}});
   EXPECT_EQ(fls.name, "3 throws");
   EXPECT_EQ(fls.throws, std::vector<int>({2, 1, -1}));
+  // Its mirror (every sense reversed) has other throws, and only one of the two is "mirrored".
+  const KnotType fls_mirror = typeOfSuture({{2, -1}, {1, 1}, {1, -1}});
+  EXPECT_EQ(fls_mirror.throws, std::vector<int>({-2, 1, -1}));
+  EXPECT_NE(fls.mirrored, fls_mirror.mirrored);
 }
 
 TEST(KnotType, JonesPolynomialsAreWritten) {

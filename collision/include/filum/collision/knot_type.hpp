@@ -30,15 +30,20 @@
 //   unknot   no throw                        V = 1
 //   trefoil  one single throw                V = t + t³ − t⁴
 //   cinquefoil one double throw              V = t² + t⁴ − t⁵ + t⁶ − t⁷
+//   septafoil  one triple throw (7₁)
 //   square   two single throws, opposite senses (amphichiral: V(t) = V(1/t))
 //   granny   two single throws, the same sense
 //   surgeon's        a double and a single throw, opposite senses (the surgeon's knot)
 //   surgeon's granny a double and a single throw, the same sense
 //   "N throws" any other product of N throws (their wraps and senses in `throws`).
-// The order of the throws along the thread is not told (a connected sum commutes): a double
+// The order of the throws along the thread is not told (a connected sum commutes): `throws` is
+// in a canonical order (wraps down, + before −), not the order they were tied in; a double
 // throw on a single one reads as a surgeon's knot tied upside down would.
-// Cost 2ⁿ · n: up to kMaxCrossings crossings (a tied surgeon's knot seen from a good side has
-// 6 to 10); beyond, the type is "unknown".
+// `mirrored`: the knot is the mirror of the one whose throws, in that order, come first (the
+// square knot, its own mirror, never is).
+// Cost 2ⁿ · n: up to kMaxKnotCrossings crossings (a tied square knot seen from a good side has 6
+// or more, a surgeon's knot 8 or more); beyond, the type is "unknown". knot.csv stops at 16, so
+// a knot of three throws (11 or more) may read "unknown" from a poor side.
 #pragma once
 
 #include <map>
