@@ -32,10 +32,12 @@ Status (measured 2026-11-28, not yet a test):
 - Granny: the run stops at t = 0.85 s with the tails at 1.3 N ("the bodies swept so far that
   contact detection found more candidate pairs than its budget"). That is a failed step, rolled
   back, not a slip: from 0.844 s the whole thread swings 0.5-1.8 mm per step, and the knot's
-  contact force grows from 1.7 to 13 N in three steps. Edited by hand: with the holes as
+  contact force grows from 1.7 to 13 N over two steps. Edited by hand: with the holes as
   FixedPointConstraints the same granny runs to 1.2 s; so it does with "friction": 0.01 (N·s/m) in its holes, the
   tails then at 2.9-3.0 N (not with 5e-4); with "newton_chord_steps": false it fails at 0.86 s.
-- Edited by hand: at dt = 1 ms, the square stops the same way at 0.93 s, near 7 N on its loop.
+- Edited by hand: at dt = 1 ms, the square stops the same way at 0.93 s, its tails at 27 N at
+  0.90 s (its loop cinched to 17 mm, against 10 mm and 4.4-4.9 N at 0.5 ms: the drawn-tight
+  state is not converged in dt).
 - Edited by hand: with force-controlled tails (PointLoad ramps to 3 N), the free tails whip, and the granny
   stops at 0.22 s.
 So the contact step does not yet survive a jammed knot loaded by a few newtons, which the
