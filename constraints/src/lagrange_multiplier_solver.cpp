@@ -863,6 +863,7 @@ double LagrangeMultiplierSolver::pointBlockEntry(const ConstraintRows& rows, int
 }
 
 double LagrangeMultiplierSolver::inverseBandDiagonal(const ConstraintRows& rows, int r) const {
+  if (far_row_[r] >= 0) return far_diagonal_[far_row_[r]];
   double sum = 0.0;
   for (int t = rows.begin(r); t < rows.end(r); ++t) {
     const int body = point_body_[rows.point(t)];
@@ -898,23 +899,62 @@ bool LagrangeMultiplierSolver::inverseBandCovers(const ConstraintProblem& proble
     if (!inverse.bandBlocks(b, inverse_band_layout_[b])) return false;
     problem_offset_[b] = problem.bodies[b].offset();
   }
-  for (int r = 0; r < rows.rows(); ++r)
-    for (int t = rows.begin(r); t < rows.end(r); ++t)
-      for (int u = rows.begin(r); u < t; ++u) {
+  // The far rows: two points of one body further apart than its band.
+  resizeGrowing(far_row_, rows.rows());
+  resizeGrowing(far_point_mark_, point_body_.size());
+  std::fill(far_point_mark_.begin(), far_point_mark_.end(), -1);
+  int far_rows = 0, far_points = 0;
+  for (int r = 0; r < rows.rows(); ++r) {
+    bool far = false;
+    for (int t = rows.begin(r); t < rows.end(r) && !far; ++t)
+      for (int u = rows.begin(r); u < t && !far; ++u) {
         const int body = point_body_[rows.point(t)];
         if (point_body_[rows.point(u)] != body) continue;
         const BandBlocks& band = inverse_band_layout_[body];
         const int gt = band.point_group[rows.point(t) - problem_offset_[body]];
         const int gu = band.point_group[rows.point(u) - problem_offset_[body]];
-        if (std::abs(gt - gu) > band.range) return false;
+        far = std::abs(gt - gu) > band.range;
       }
+    far_row_[r] = far ? far_rows++ : -1;
+    if (!far) continue;
+    for (int t = rows.begin(r); t < rows.end(r); ++t) {
+      int& mark = far_point_mark_[rows.point(t)];
+      if (mark < 0) ++far_points;
+      mark = r;
+    }
+  }
+  if (far_rows > 3 * far_points) return false;
+  stats_.far_rows = far_rows;
   return true;
 }
 
-void LagrangeMultiplierSolver::computeInverseBands(const ConstraintProblem& problem, const BlockInverse& inverse) {
+void LagrangeMultiplierSolver::computeInverseBands(const ConstraintProblem& problem, const ConstraintRows& rows,
+                                                   const BlockInverse& inverse) {
   // (inverseBandCovers found a band on every touched body: inverseBandBlocks has one too.)
   for (std::size_t b = 0; b < problem.bodies.size(); ++b)
     if (body_touched_[b]) inverse.inverseBandBlocks(static_cast<int>(b), inverse_band_[b]);
+  // A far row's W_rr = Σ_b l_r,b · A_b⁻¹ l_r,b over the bodies it acts on (A⁻¹ block diagonal over
+  // the bodies): the same solve as its column's (prepareColumns), for this row alone.
+  far_diagonal_.clear();
+  for (int r = 0; r < rows.rows(); ++r) {
+    if (far_row_[r] < 0) continue;
+    double sum = 0.0;
+    for (int b = 0; b < static_cast<int>(problem.bodies.size()); ++b) {
+      bool acts = false;
+      for (int t = rows.begin(r); t < rows.end(r) && !acts; ++t) acts = point_body_[rows.point(t)] == b;
+      if (!acts) continue;
+      const int size = 3 * problem.bodies[b].pointCount(), offset = problem_offset_[b];
+      if (far_work_.size() < size) far_work_.resize(2 * size);  // grows only
+      auto x = far_work_.head(size);
+      x.setZero();
+      for (int t = rows.begin(r); t < rows.end(r); ++t)
+        if (point_body_[rows.point(t)] == b) x.segment<3>(3 * (rows.point(t) - offset)) += rows.coeff(t);
+      inverse.solveBlock(b, x);
+      for (int t = rows.begin(r); t < rows.end(r); ++t)
+        if (point_body_[rows.point(t)] == b) sum += rows.coeff(t).dot(x.segment<3>(3 * (rows.point(t) - offset)));
+    }
+    far_diagonal_.push_back(sum);
+  }
 }
 
 double LagrangeMultiplierSolver::diagonalEntry(const ConstraintProblem& problem, const ConstraintRows& rows, int r) const {
@@ -1407,7 +1447,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   if (factored_form) {
     for (int r = 0; r < c; ++r) diagonal_[r] = generalEntry(problem, rows, r, r);
   } else if (deferred && !unchanged) {
-    if (by_band) computeInverseBands(problem, inverse);
+    if (by_band) computeInverseBands(problem, rows, inverse);
     for (int r = 0; r < c; ++r) diagonal_[r] = diagonalEntry(problem, rows, r);
     w_unformed_ = true;
   } else if (!unchanged) {

@@ -90,6 +90,62 @@ TEST(DeferredDelassus, SolvesAsTheFormedWWithoutFormingIt) {
   }
 }
 
+/// `contacts` contacts between two far parts of one body, as a thread touching itself: the gap
+/// P(a) − P(b) between points (a, a + 1) and (b, b + 1), b `apart` to `apart` + 4 points after a.
+void addSelfContacts(test::RowProblem& out, int points, int contacts, int apart, std::mt19937& rng) {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (int k = 0; k < contacts; ++k) {
+    out.rows.beginAnchor();
+    const int a = 5 + static_cast<int>(rng() % (points - apart - 12));
+    const int b = a + apart + static_cast<int>(rng() % 5);
+    const double wa = uniform(rng), wb = uniform(rng);
+    out.rows.addAnchorPoint(a, 1.0 - wa);
+    out.rows.addAnchorPoint(a + 1, wa);
+    out.rows.addAnchorPoint(b, -(1.0 - wb));
+    out.rows.addAnchorPoint(b + 1, -wb);
+    Vec3 n(normal(rng), normal(rng), normal(rng));
+    n.normalize();
+    const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+    out.rows.addContactRows(n, std::abs(normal(rng)), 0.3, t1, normal(rng), t2, normal(rng));
+  }
+}
+
+TEST(DeferredDelassus, SelfContactsFarAlongTheBodyTakeASolveEachNotAColumnPerRow) {
+  // 80 contacts against obstacles and 10 between points 8 to 12 apart (16 groups or more with the
+  // frames; the band reaches 2 groups): the far rows' W_rr take one band solve each (l_r · A⁻¹
+  // l_r), the others come from A⁻¹'s band as before — no column A⁻¹ l_r per row, W never formed
+  // while the steps go through the band — and the solution is the formed W's (the tolerance above:
+  // W_rr by another sum order moves ρ and R by ε).
+  std::mt19937 rng(29);
+  for (int trial = 0; trial < 5; ++trial) {
+    const test::BandMatrix a({{150, 2, true}}, rng);
+    test::RowProblem p = contactProblem(150, 80, 0.6, rng);
+    addSelfContacts(p, 150, 10, 8, rng);
+    const test::RowSolve deferred = solveBothWays(trial, p, a).deferred;
+    EXPECT_EQ(deferred.stats.far_rows, 3 * 10) << trial;  // a normal and two friction rows each
+    EXPECT_FALSE(deferred.stats.reassembled) << trial;
+    EXPECT_EQ(deferred.stats.solved_columns, 0) << trial;
+    EXPECT_EQ(deferred.stats.structured_steps, deferred.stats.newton_iterations) << trial;
+    // W_rr as the solver took it, against W formed densely (test::delassus) from the same point
+    // inverse H: the two sum the same products c_tᵀ H c_u in another order, so they differ by at
+    // most γ_n Σ |c_t|ᵀ |H| |c_u| with n the products' count (Higham, "Accuracy and Stability of
+    // Numerical Algorithms", 2002, §3.1: γ_n = nε/(1 − nε); two sums, each at most that).
+    const MatX w = test::delassus(p.rows, a, p.problem);
+    const MatX h = a.pointInverse(0).cwiseAbs();
+    for (int r = 0; r < p.rows.rows(); ++r) {
+      double magnitude = 0.0;
+      int products = 0;
+      for (int t = p.rows.begin(r); t < p.rows.end(r); ++t)
+        for (int u = p.rows.begin(r); u < p.rows.end(r); ++u, products += 9)
+          magnitude += p.rows.coeff(t).cwiseAbs().dot(h.block<3, 3>(3 * p.rows.point(t), 3 * p.rows.point(u)) *
+                                                      p.rows.coeff(u).cwiseAbs());
+      const double gamma = products * std::numeric_limits<double>::epsilon();
+      EXPECT_LE(std::abs(deferred.diagonal[r] - w(r, r)), 2.0 * gamma / (1.0 - gamma) * magnitude) << trial << " row " << r;
+    }
+  }
+}
+
 TEST(DeferredDelassus, AFewActiveRowsFormWWhenTheDenseStepAsksForIt) {
   // 10 % of 80 contacts pressing: the solved set stays below the band step's 64 rows, the dense
   // LU asks for W's entries, and W is formed from columns A⁻¹ l_r then (A⁻¹'s band gave only the

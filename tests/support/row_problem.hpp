@@ -25,6 +25,7 @@ struct RowProblem {
 struct RowSolve {
   VecX lambda;
   constraints::LagrangeMultiplierSolver::Statistics stats;
+  VecX diagonal;  // W_rr as the solver took it
 };
 
 /// The rows solved from a zero acceleration to the contact tolerance `tolerance`; structured =
@@ -36,7 +37,7 @@ inline RowSolve solveRows(const RowProblem& p, const BandMatrix& a, bool structu
   constraints::LagrangeMultiplierSolver solver(options);
   VecX acceleration = VecX::Zero(p.problem.state_size);
   solver.solve(p.problem, p.rows, a, acceleration);
-  return {solver.multipliers(), solver.statistics()};
+  return {solver.multipliers(), solver.statistics(), solver.delassusDiagonal()};
 }
 
 /// The 2-norm condition number of w (largest over smallest singular value).

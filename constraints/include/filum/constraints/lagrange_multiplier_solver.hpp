@@ -137,6 +137,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     bool refactored = false; // W changed and was factored again
     bool reassembled = false;  // W was assembled (false: unchanged anchors and directions, or never asked for: deferred)
     bool deferred = false;   // W left unformed until the contact Newton asks for it (its products through the band)
+    int far_rows = 0;        // deferred: rows whose W_rr took a solve, their points further apart than A's band
     int inequalities = 0;    // contact rows (normal and friction)
     int sweeps = 0;          // projected Gauss–Seidel sweeps (with contact rows; smoothing and fallback included)
     double change = 0.0;     // the last sweep's largest W_rr |Δλ_r| (m/s²)
@@ -188,6 +189,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// Drops the contact Newton's factorization carried between the solves of a step.
   void beginStep() override { step_began_ = true; }
   const Statistics& statistics() const { return stats_; }
+  /// W_rr of the last solve's rows, as its ρ and compliance were set from (tests).
+  Eigen::Ref<const VecX> delassusDiagonal() const { return diagonal_.head(c_); }
   const Options& options() const { return options_; }
 
  private:
@@ -246,13 +249,17 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   double diagonalEntry(const ConstraintProblem& problem, const ConstraintRows& rows, int r) const;
   /// W_rk = Σ_{t ∈ r} Σ_{t' ∈ k} c_tᵀ H(p_t, p_t') c_t' from A⁻¹'s point blocks (all held).
   double pointBlockEntry(const ConstraintRows& rows, int r, int k) const;
-  /// W_rr = Σ_{t, t' ∈ r} c_tᵀ (A⁻¹)(p_t, p_t') c_t' from the inverse bands (inverseBandCovers).
+  /// W_rr = Σ_{t, t' ∈ r} c_tᵀ (A⁻¹)(p_t, p_t') c_t' from the inverse bands (inverseBandCovers),
+  /// or for a far row (its points further apart on a body than the band) from its solve.
   double inverseBandDiagonal(const ConstraintRows& rows, int r) const;
-  /// Whether every body the rows touch has a band and every row's points lie within a band of
-  /// each other on each body (body_touched_, inverse_band_layout_ and problem_offset_ set).
+  /// Whether W's diagonal comes from the bands: every body the rows touch has a band, and the far
+  /// rows (far_row_: a body touching itself far along it, as a bowel lying in loops) are fewer
+  /// than three times their distinct points — each costs a band solve, where W from A⁻¹'s point
+  /// blocks would take three per point (body_touched_, inverse_band_layout_ and problem_offset_ set).
   bool inverseBandCovers(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse);
-  /// A⁻¹'s blocks within the band of every touched body (inverse_band_), after inverseBandCovers.
-  void computeInverseBands(const ConstraintProblem& problem, const BlockInverse& inverse);
+  /// A⁻¹'s blocks within the band of every touched body (inverse_band_), and each far row's
+  /// W_rr = l_r · A⁻¹ l_r by a solve (far_diagonal_), after inverseBandCovers.
+  void computeInverseBands(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse);
   /// Whether W comes from A⁻¹'s blocks between the rows' points (point_blocks_, brought up to
   /// date then) rather than a column per row: by their multiply-adds with nothing held (solve()).
   bool choosePointBlocks(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse);
@@ -337,6 +344,10 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   std::vector<std::vector<Eigen::Matrix3d>> inverse_band_;  // per body: A⁻¹ within its band (kInverseBand)
   std::vector<BandBlocks> inverse_band_layout_;  // per body: its band's range and point groups
   std::vector<int> problem_offset_;  // per body: its first point (kInverseBand)
+  std::vector<int> far_row_;         // per row: its place in far_diagonal_, −1 within the bands (kInverseBand)
+  std::vector<double> far_diagonal_;  // the far rows' W_rr (computeInverseBands)
+  std::vector<int> far_point_mark_;   // per point: the row that last counted it (inverseBandCovers)
+  VecX far_work_;                     // a body's block for a far row's solve (grows only)
   VecX unit_;  // e_j (BandProductDelassus::equalityBlock; grows only)
   BandDelassusProduct band_product_;  // W x through A's band (the contact Newton's and the deferred polish's)
   AugmentedNewtonSystem equality_system_;  // solveEqualitiesThroughBand's
