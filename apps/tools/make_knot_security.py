@@ -40,6 +40,10 @@ Status (measured 2026-11-28, not yet a test):
   state is not converged in dt).
 - Edited by hand: with force-controlled tails (PointLoad ramps to 3 N), the free tails whip, and the granny
   stops at 0.22 s.
+- Edited by hand, holes as FixedPointConstraints: tails drawn 3 cm at 1 cm/s, neither knot slips
+  (loops cinch to 12 and 11 mm and jam; tails reach about 500 N, no break force set); tails let go
+  at 0.95 s and the holes drawn apart from 1 s, both knots spring open before the holes move
+  (the square's loop 18 -> 51 mm by 1.05 s, the granny's 17 -> 28-30 mm by 1.2 s). docs/applications.md, "Which knot was tied", has the details.
 So the contact step does not yet survive a jammed knot loaded by a few newtons, which the
 security test needs: the granny's slip cannot be told from a failed step.
 """
