@@ -903,7 +903,7 @@ bool LagrangeMultiplierSolver::inverseBandCovers(const ConstraintProblem& proble
   resizeGrowing(far_row_, rows.rows());
   resizeGrowing(far_point_mark_, point_body_.size());
   std::fill(far_point_mark_.begin(), far_point_mark_.end(), -1);
-  int far_rows = 0, far_points = 0;
+  int far_rows = 0, points = 0;  // the far rows, and the distinct points of all rows
   for (int r = 0; r < rows.rows(); ++r) {
     bool far = false;
     for (int t = rows.begin(r); t < rows.end(r) && !far; ++t)
@@ -916,14 +916,15 @@ bool LagrangeMultiplierSolver::inverseBandCovers(const ConstraintProblem& proble
         far = std::abs(gt - gu) > band.range;
       }
     far_row_[r] = far ? far_rows++ : -1;
-    if (!far) continue;
     for (int t = rows.begin(r); t < rows.end(r); ++t) {
       int& mark = far_point_mark_[rows.point(t)];
-      if (mark < 0) ++far_points;
+      if (mark < 0) ++points;
       mark = r;
     }
   }
-  if (far_rows > 3 * far_points) return false;
+  // A far row costs one solve; the columns cost one per row (c >= the far rows), the point blocks
+  // three per distinct point of all rows: the band is left only when those are fewer.
+  if (far_rows > 3 * points) return false;
   stats_.far_rows = far_rows;
   return true;
 }
@@ -1412,9 +1413,10 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   // (DeferredDelassus), and a solve whose steps all go through the band never forms it — O(c²
   // terms), most of a step of a rod lying on a table (bench_rod) before. What it needs then is
   // W's diagonal (ρ, the compliance): from A⁻¹'s blocks within the band (Takahashi's equations,
-  // O(n r²) per body) when each row's points lie a band apart, as on a thread against an
-  // obstacle — no solve per row or per point, which grew as c n; else from the columns or the
-  // point blocks as W would be.
+  // O(n r²) per body) for the rows whose points lie a band apart, as on a thread against an
+  // obstacle — no solve per row or per point, which grew as c n — and by a solve of its own for a
+  // row reaching farther (a self-contact; inverseBandCovers); W formed late takes the columns or
+  // the point blocks.
   const bool deferred = newton && !separable && options_.newton_structured &&
                         band_product_.prepare(rows, inverse, problem, point_body_) && band_product_.cheaperThanDense();
   stats_.deferred = deferred;

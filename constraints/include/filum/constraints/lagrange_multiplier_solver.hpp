@@ -253,9 +253,10 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// or for a far row (its points further apart on a body than the band) from its solve.
   double inverseBandDiagonal(const ConstraintRows& rows, int r) const;
   /// Whether W's diagonal comes from the bands: every body the rows touch has a band, and the far
-  /// rows (far_row_: a body touching itself far along it, as a bowel lying in loops) are fewer
-  /// than three times their distinct points — each costs a band solve, where W from A⁻¹'s point
-  /// blocks would take three per point (body_touched_, inverse_band_layout_ and problem_offset_ set).
+  /// rows (far_row_: a body touching itself far along it, as a bowel lying in loops) are at most
+  /// three times the rows' distinct points — each costs a band solve, where W from A⁻¹'s point
+  /// blocks would take three per point and the columns one per row (body_touched_,
+  /// inverse_band_layout_ and problem_offset_ set).
   bool inverseBandCovers(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse);
   /// A⁻¹'s blocks within the band of every touched body (inverse_band_), and each far row's
   /// W_rr = l_r · A⁻¹ l_r by a solve (far_diagonal_), after inverseBandCovers.
@@ -346,7 +347,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   std::vector<int> problem_offset_;  // per body: its first point (kInverseBand)
   std::vector<int> far_row_;         // per row: its place in far_diagonal_, −1 within the bands (kInverseBand)
   std::vector<double> far_diagonal_;  // the far rows' W_rr (computeInverseBands)
-  std::vector<int> far_point_mark_;   // per point: the row that last counted it (inverseBandCovers)
+  std::vector<int> far_point_mark_;   // per point: the row that last counted it (inverseBandCovers' distinct points)
   VecX far_work_;                     // a body's block for a far row's solve (grows only)
   VecX unit_;  // e_j (BandProductDelassus::equalityBlock; grows only)
   BandDelassusProduct band_product_;  // W x through A's band (the contact Newton's and the deferred polish's)
