@@ -155,7 +155,7 @@ void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double 
     const int t = tube_of_[m];
     if (t < 0) continue;
     const double mu = models_[t]->lumenFriction().value_or(settings_.friction);
-    findLumenContacts(*models_[m], m, *models_[t], t, mu, narrow, contacts_, place_[m]);
+    findLumenContacts(*models_[m], m, *models_[t], t, mu, narrow, contacts_, place_[m], axis_bounds_);
   }
   stats_.lumen_contacts = static_cast<int>(contacts_.size()) - stats_.obstacle_contacts;
 
@@ -462,11 +462,17 @@ bool ContactPipeline::leftLumen() const {
     const double clearance = tube.lumenRadius() - inner.radius();
     const double allowed = (1.0 + settings_.max_penetration) * clearance;
     const std::vector<TubePlace>& place = place_[m];
+    axis_bounds_.build(after_centers_[t]);
+    start_axis_bounds_.build(tube.centers());
+    int hint = -1;  // the last sphere's chord at the step's end: its neighbour's is near
     for (int k = 0; k < inner.sphereCount() && k < static_cast<int>(place.size()); ++k) {
       if (place[k] != TubePlace::kInside) continue;  // not held by the lumen
-      const AxisPoint end = nearestAxisPoint(after_centers_[t], tube.mapping(), after_centers_[m].row(k).transpose());
+      const AxisPoint end = nearestAxisPoint(after_centers_[t], tube.mapping(), after_centers_[m].row(k).transpose(),
+                                             &axis_bounds_, hint);
+      if (end.chord >= 0) hint = end.chord;
       if (end.chord < 0 || end.distance <= allowed) continue;
-      const AxisPoint start = nearestAxisPoint(tube.centers(), tube.mapping(), inner.centers().row(k).transpose());
+      const AxisPoint start = nearestAxisPoint(tube.centers(), tube.mapping(), inner.centers().row(k).transpose(),
+                                               &start_axis_bounds_, end.chord);
       if (end.distance > start.distance) return true;
     }
   }

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "filum/collision/segment_closest_points.hpp"
+#include "filum/core/growing_vector.hpp"
 
 namespace filum::collision {
 
@@ -184,24 +185,62 @@ bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const S
   return true;
 }
 
-AxisPoint nearestAxisPoint(const Points& axis, const SphereSamplingMapping& sampling, const Vec3& x) {
+void AxisBounds::build(const Points& axis) {
+  const int chords = std::max<int>(0, static_cast<int>(axis.rows()) - 1);
+  blocks_ = (chords + kChords - 1) / kChords;
+  resizeGrowing(center_, blocks_);
+  resizeGrowing(radius_, blocks_);
+  for (int b = 0; b < blocks_; ++b) {
+    const int first = b * kChords, last = std::min(first + kChords, chords);  // vertices first..last
+    Vec3 low = axis.row(first).transpose(), high = low;
+    for (int v = first + 1; v <= last; ++v) {
+      low = low.cwiseMin(axis.row(v).transpose());
+      high = high.cwiseMax(axis.row(v).transpose());
+    }
+    center_[b] = 0.5 * (low + high);
+    double radius = 0.0;
+    for (int v = first; v <= last; ++v) radius = std::max(radius, (axis.row(v).transpose() - center_[b]).norm());
+    radius_[b] = radius;
+  }
+}
+
+AxisPoint nearestAxisPoint(const Points& axis, const SphereSamplingMapping& sampling, const Vec3& x,
+                           const AxisBounds* bounds, int hint) {
   AxisPoint best;
   double nearest = std::numeric_limits<double>::infinity();
   bool beyond_end = false;
   const int count = sampling.outputCount();
-  for (int l = 0; l + 1 < count; ++l) {
-    if (!sampling.joinsNext(l)) continue;  // a cut: no chord across it
+  // Chord l measured; kept when nearer than the best so far, or as near and earlier (the
+  // brute-force scan's choice, whatever order the chords are measured in).
+  auto measure = [&](int l) {
+    if (!sampling.joinsNext(l)) return;  // a cut: no chord across it
     const Vec3 y0 = axis.row(l).transpose(), y1 = axis.row(l + 1).transpose(), e = y1 - y0;
     const double length2 = e.squaredNorm();
     const double t = length2 > 0.0 ? (x - y0).dot(e) / length2 : 0.0;
     const double u = std::clamp(t, 0.0, 1.0);
     const double d = (x - (y0 + u * e)).norm();
-    if (d < nearest) {
+    if (d < nearest || (d == nearest && l < best.chord)) {
       nearest = d;
       best = {l, u, d};
       const bool first = l == 0 || !sampling.joinsNext(l - 1);
       const bool last = l + 2 >= count || !sampling.joinsNext(l + 1);
       beyond_end = (first && t < 0.0) || (last && t > 1.0);
+    }
+  };
+  if (bounds == nullptr) {
+    for (int l = 0; l + 1 < count; ++l) measure(l);
+  } else {
+    if (hint >= 0 && hint + 1 < count) measure(hint);
+    for (int b = 0; b < bounds->blocks(); ++b) {
+      // Every point of the block's chords is at least |x − c| − R from x. Skipped only when that
+      // bound, less its round-off and that of the distances measured (a few ε of the
+      // coordinates' size; 64 ε taken), still exceeds the nearest distance found.
+      const double to_center = (x - bounds->center(b)).norm();
+      const double slack = 64.0 * std::numeric_limits<double>::epsilon() *
+                           (x.norm() + bounds->center(b).norm() + bounds->radius(b) + to_center);
+      if (to_center - bounds->radius(b) - slack > nearest) continue;
+      const int end = std::min((b + 1) * AxisBounds::kChords, count - 1);
+      for (int l = b * AxisBounds::kChords; l < end; ++l) measure(l);
     }
   }
   if (beyond_end) {
@@ -225,15 +264,18 @@ TubePlace placeInTube(const AxisPoint& axis, const SphereCollisionModel& tube) {
 
 void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const SphereCollisionModel& tube,
                        int model_tube, double friction, const NarrowPhaseSettings& settings, ContactSet& out,
-                       std::vector<TubePlace>& place) {
+                       std::vector<TubePlace>& place, AxisBounds& bounds) {
   const double clearance = tube.lumenRadius() - inner.radius();  // R_in − r
   const std::size_t first = out.size();
   double tube_speed = 0.0;  // the largest speed of the tube's centre line
   for (int l = 0; l < tube.sphereCount(); ++l) tube_speed = std::max(tube_speed, speed(tube, l));
   place.assign(inner.sphereCount(), TubePlace::kOutside);  // within the capacity reserved at init
+  bounds.build(tube.centers());
+  int hint = -1;  // the last sphere's chord: its neighbour's is near
   for (int k = 0; k < inner.sphereCount(); ++k) {
     const Vec3 x = center(inner, k);
-    const AxisPoint axis = nearestAxisPoint(tube.centers(), tube.mapping(), x);
+    const AxisPoint axis = nearestAxisPoint(tube.centers(), tube.mapping(), x, &bounds, hint);
+    if (axis.chord >= 0) hint = axis.chord;
     place[k] = placeInTube(axis, tube);
     if (place[k] != TubePlace::kInside) continue;  // beyond the tube's ends, or beside it
     const double reach = settings.margin + (speed(inner, k) + tube_speed) * settings.time_step;

@@ -175,10 +175,14 @@ bool ContactNewton::structuredStep(double damping, const ConstraintRows& rows) {
     return false;
   // The dense LU's s³/3 multiply-adds run as long vectorized rank-1 updates (3.4–3.8 G/s on the
   // 2-core machine of the benchmarks, s = 150–600), the envelope LU's as short dot products
-  // (1.4–2.2 G/s for envelopes 12–96 wide): measured, a factor 2 between them.
+  // (1.4–2.2 G/s for envelopes 12–96 wide): measured, a factor 2 between them. With W's products
+  // through the band (W deferred: LagrangeMultiplierSolver), the dense step reads W's entries, so
+  // its cost counts forming W while it is not formed: about a product through the band per column, c of them (by columns;
+  // from A⁻¹'s point blocks it is of the same order, 3 solves per point and 36 per point and row).
   constexpr double kEnvelopeRateRatio = 2.0;
   const double s = static_cast<double>(solved_.size());
-  if (kEnvelopeRateRatio * augmented_.cost() >= s * s * s / 3.0) return false;
+  const double forming = product_ && !entries_->formed() ? static_cast<double>(c_) * product_->cost() : 0.0;
+  if (kEnvelopeRateRatio * augmented_.cost() >= s * s * s / 3.0 + forming) return false;
   if (!augmented_.factor()) return false;
   // A small pivot (sliding rows, an indefinite A: augmented_newton_system.hpp) shows as a
   // non-finite solution: the dense LU, with its partial pivoting, solves the same system then.
@@ -325,6 +329,7 @@ class FormedDelassus final : public DelassusEntries {
  public:
   explicit FormedDelassus(const MatX& w) : w_(w) {}
   const MatX& matrix() override { return w_; }
+  bool formed() const override { return true; }
 
  private:
   const MatX& w_;

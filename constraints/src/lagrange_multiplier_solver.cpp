@@ -843,6 +843,7 @@ class LagrangeMultiplierSolver::DeferredDelassus final : public DelassusEntries 
     return solver_.w_;
   }
   bool asked() const { return asked_; }
+  bool formed() const override { return asked_ || !solver_.w_unformed_; }
 
  private:
   LagrangeMultiplierSolver& solver_;
@@ -869,18 +870,41 @@ double LagrangeMultiplierSolver::inverseBandDiagonal(const ConstraintRows& rows,
     const int body = point_body_[rows.point(t)];
     const BandBlocks& band = inverse_band_layout_[body];
     const std::vector<Eigen::Matrix3d>& z = inverse_band_[body];
+    const int range = inverse_range_[body];
     const int offset = problem_offset_[body];
     const int gt = band.point_group[rows.point(t) - offset];
     for (int u = rows.begin(r); u < rows.end(r); ++u) {
       if (point_body_[rows.point(u)] != body) continue;  // (A⁻¹ is block diagonal over the bodies)
       const int gu = band.point_group[rows.point(u) - offset];
       // Block (gt, gu): stored as (max, min), the one above the diagonal its transpose.
-      const Eigen::Matrix3d& block = z[static_cast<std::size_t>(std::max(gt, gu)) * (band.range + 1) +
-                                       (std::min(gt, gu) - std::max(gt, gu) + band.range)];
+      const Eigen::Matrix3d& block = z[static_cast<std::size_t>(std::max(gt, gu)) * (range + 1) +
+                                       (std::min(gt, gu) - std::max(gt, gu) + range)];
       sum += gt >= gu ? rows.coeff(t).dot(block * rows.coeff(u)) : rows.coeff(u).dot(block * rows.coeff(t));
     }
   }
   return sum;
+}
+
+template <class Visit>
+void LagrangeMultiplierSolver::forEachRowSpan(const ConstraintRows& rows, int r, Visit&& visit) const {
+  // For each body row r acts on: the widest |g_t − g_u| between two of its points on that body,
+  // in the body's band order (0 for a row on one point of it).
+  for (int t = rows.begin(r); t < rows.end(r); ++t) {
+    const int body = point_body_[rows.point(t)];
+    bool seen = false;  // the body came earlier in the row: visited then
+    for (int u = rows.begin(r); u < t && !seen; ++u) seen = point_body_[rows.point(u)] == body;
+    if (seen) continue;
+    const BandBlocks& band = inverse_band_layout_[body];
+    const int offset = problem_offset_[body];
+    int lowest = band.point_group[rows.point(t) - offset], highest = lowest;
+    for (int u = t + 1; u < rows.end(r); ++u) {
+      if (point_body_[rows.point(u)] != body) continue;
+      const int g = band.point_group[rows.point(u) - offset];
+      lowest = std::min(lowest, g);
+      highest = std::max(highest, g);
+    }
+    visit(body, highest - lowest);
+  }
 }
 
 bool LagrangeMultiplierSolver::inverseBandCovers(const ConstraintProblem& problem, const ConstraintRows& rows,
@@ -890,6 +914,8 @@ bool LagrangeMultiplierSolver::inverseBandCovers(const ConstraintProblem& proble
     inverse_band_.resize(bodies);
     inverse_band_layout_.resize(bodies);
     problem_offset_.resize(bodies);
+    inverse_range_.resize(bodies);
+    span_rows_.resize(static_cast<std::size_t>(bodies) * (kWidestInverseRange + 1));
   }
   body_touched_.assign(bodies, 0);  // (whole before any return: scatterForces reads it)
   for (int r = 0; r < rows.rows(); ++r)
@@ -899,22 +925,45 @@ bool LagrangeMultiplierSolver::inverseBandCovers(const ConstraintProblem& proble
     if (!inverse.bandBlocks(b, inverse_band_layout_[b])) return false;
     problem_offset_[b] = problem.bodies[b].offset();
   }
-  // The far rows: two points of one body further apart than its band.
+  // The range of A⁻¹'s blocks taken on each body. A row a few groups wider than the band (a
+  // point inside a tube's chord between two sphere centres in two segments of a rod: three nodes,
+  // four groups with the frames between them, where the band reaches two) would take a solve of
+  // its own; Takahashi's recurrence reaches R >= r block diagonals for 27 r (R − r) more
+  // multiply-adds per group (BlockBandLdlt::inverseBand), a far row's solve costs 9 (2 r + 1) per
+  // group (bandSolveMultiplyAdds). R is the widest span up to kWidestInverseRange whose rows save
+  // more solves than the wider recurrence costs; rows reaching further (a self-contact) stay far.
+  std::fill(span_rows_.begin(), span_rows_.begin() + static_cast<std::ptrdiff_t>(bodies) * (kWidestInverseRange + 1), 0);
+  for (int r = 0; r < rows.rows(); ++r)
+    forEachRowSpan(rows, r, [&](int body, int span) {
+      if (span > inverse_band_layout_[body].range && span <= kWidestInverseRange)
+        ++span_rows_[static_cast<std::size_t>(body) * (kWidestInverseRange + 1) + span];
+    });
+  stats_.inverse_range = 0;
+  for (int b = 0; b < bodies; ++b) {
+    if (!body_touched_[b]) continue;
+    const BandBlocks& band = inverse_band_layout_[b];
+    const double solve = 9.0 * (2 * band.range + 1), widening = 27.0 * band.range;  // per group
+    int best = band.range, covered = 0;
+    double best_saving = 0.0;
+    for (int range = band.range + 1; range <= kWidestInverseRange; ++range) {
+      covered += span_rows_[static_cast<std::size_t>(b) * (kWidestInverseRange + 1) + range];
+      const double saving = covered * solve - widening * (range - band.range);
+      if (saving > best_saving) {
+        best_saving = saving;
+        best = range;
+      }
+    }
+    inverse_range_[b] = best;
+    stats_.inverse_range = std::max(stats_.inverse_range, best);
+  }
+  // The far rows: two points of one body further apart than the range taken on it.
   resizeGrowing(far_row_, rows.rows());
   resizeGrowing(far_point_mark_, point_body_.size());
   std::fill(far_point_mark_.begin(), far_point_mark_.end(), -1);
   int far_rows = 0, points = 0;  // the far rows, and the distinct points of all rows
   for (int r = 0; r < rows.rows(); ++r) {
     bool far = false;
-    for (int t = rows.begin(r); t < rows.end(r) && !far; ++t)
-      for (int u = rows.begin(r); u < t && !far; ++u) {
-        const int body = point_body_[rows.point(t)];
-        if (point_body_[rows.point(u)] != body) continue;
-        const BandBlocks& band = inverse_band_layout_[body];
-        const int gt = band.point_group[rows.point(t) - problem_offset_[body]];
-        const int gu = band.point_group[rows.point(u) - problem_offset_[body]];
-        far = std::abs(gt - gu) > band.range;
-      }
+    forEachRowSpan(rows, r, [&](int body, int span) { far = far || span > inverse_range_[body]; });
     far_row_[r] = far ? far_rows++ : -1;
     for (int t = rows.begin(r); t < rows.end(r); ++t) {
       int& mark = far_point_mark_[rows.point(t)];
@@ -933,7 +982,7 @@ void LagrangeMultiplierSolver::computeInverseBands(const ConstraintProblem& prob
                                                    const BlockInverse& inverse) {
   // (inverseBandCovers found a band on every touched body: inverseBandBlocks has one too.)
   for (std::size_t b = 0; b < problem.bodies.size(); ++b)
-    if (body_touched_[b]) inverse.inverseBandBlocks(static_cast<int>(b), inverse_band_[b]);
+    if (body_touched_[b]) inverse.inverseBandBlocks(static_cast<int>(b), inverse_range_[b], inverse_band_[b]);
   // A far row's W_rr = Σ_b l_r,b · A_b⁻¹ l_r,b over the bodies it acts on (A⁻¹ block diagonal over
   // the bodies): the same solve as its column's (prepareColumns), for this row alone.
   far_diagonal_.clear();

@@ -157,19 +157,23 @@ void BlockBandLdlt::sweepColumns(Eigen::Ref<MatX>& x, Eigen::Index column, int f
   }
 }
 
-void BlockBandLdlt::inverseBand(std::vector<Eigen::Matrix3d>& z) const {
+void BlockBandLdlt::inverseBand(std::vector<Eigen::Matrix3d>& z, int range) const {
   // Takahashi's equations (K. Takahashi, J. Fagan, M.-S. Chin, "Formation of a sparse bus
   // impedance matrix and its application to short circuit study", 8th PICA Conf. 1973; Erisman &
   // Tinney, CACM 18 (1975) 177): A = L D Lᵀ gives Lᵀ Z = D⁻¹ L⁻¹ for Z = A⁻¹, whose right side is
   // block lower triangular with D_i⁻¹ on its diagonal, so for i <= j
   //   Z_ij = δ_ij D_i⁻¹ − Σ_{k=i+1}^{i+r} L_kiᵀ Z_kj,
-  // every Z_kj within the band (|k − j| <= r): block rows from the last up, each from its farthest
-  // block to its diagonal. O(n r²) 3 × 3 products; the blocks outside the band are not formed.
-  resizeGrowing(z, blocks_.size());  // (a steady caller allocates nothing)
-  auto at = [&](int I, int J) -> Eigen::Matrix3d& { return z[static_cast<std::size_t>(I) * width_ + (J - I + r_)]; };
+  // block rows from the last up, each from its farthest block to its diagonal. For the blocks
+  // within a range R >= r (|i − j| <= R) every Z_kj read is within it too: k − j <= r <= R, and
+  // j − k < j − i <= R; so a wider band costs O(n R r) 3 × 3 products, nothing outside it formed.
+  const int wide = std::max(range, r_);
+  const int width = wide + 1;
+  resizeGrowing(z, static_cast<std::size_t>(n_) * width);  // (a steady caller allocates nothing)
+  auto at = [&](int I, int J) -> Eigen::Matrix3d& { return z[static_cast<std::size_t>(I) * width + (J - I + wide)]; };
   for (int i = n_ - 1; i >= 0; --i) {
-    const int last = std::min(n_ - 1, i + r_);
-    for (int j = last; j >= i; --j) {
+    const int last = std::min(n_ - 1, i + r_);       // the factor's blocks L_ki below row i
+    const int farthest = std::min(n_ - 1, i + wide);  // the inverse's blocks Z_ij asked for
+    for (int j = farthest; j >= i; --j) {
       Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
       if (j == i) {
         // D_i⁻¹ column by column (D_i as its own LDLᵀ: solvePivot).

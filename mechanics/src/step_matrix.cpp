@@ -478,10 +478,10 @@ std::string StepMatrix::method() const {
   return coupled_ ? "coupled bodies, " + out : out;
 }
 
-bool StepMatrix::inverseBandBlocks(int body, std::vector<Eigen::Matrix3d>& out) const {
+bool StepMatrix::inverseBandBlocks(int body, int range, std::vector<Eigen::Matrix3d>& out) const {
   BandBlocks band;
   if (!bandBlocks(body, band)) return false;  // (held as a band: the same conditions)
-  blocks_[body_block_[body]].band_factor.inverseBand(out);
+  blocks_[body_block_[body]].band_factor.inverseBand(out, range);
   return true;
 }
 

@@ -206,7 +206,7 @@ TEST(RodImplicit, TheStepMatrixsInverseBandHoldsItsInversesPointBlocks) {
   BandBlocks band;
   std::vector<Eigen::Matrix3d> z;
   ASSERT_TRUE(a.bandBlocks(0, band));
-  ASSERT_TRUE(a.inverseBandBlocks(0, z));
+  ASSERT_TRUE(a.inverseBandBlocks(0, 0, z));
   const MatX dense = a.assembledMatrix();
   const MatX inverse = dense.inverse();
   const Eigen::JacobiSVD<MatX> svd(dense);

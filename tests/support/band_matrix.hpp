@@ -70,15 +70,16 @@ class BandMatrix final : public BlockInverse {
     out.point_group = band.point_group.data();
     return true;
   }
-  /// A_b⁻¹'s blocks within the band, from the dense inverse.
-  bool inverseBandBlocks(int body, std::vector<Eigen::Matrix3d>& out) const override {
+  /// A_b⁻¹'s blocks within max(range, the band's range) block diagonals, from the dense inverse.
+  bool inverseBandBlocks(int body, int range, std::vector<Eigen::Matrix3d>& out) const override {
     if (body < 0 || body >= static_cast<int>(bands_.size())) return false;
     const Band& band = bands_[body];
+    const int wide = std::max(range, band.range);
     const MatX inverse = band.dense.inverse();
-    out.assign(band.blocks.size(), Eigen::Matrix3d::Zero());
+    out.assign(static_cast<std::size_t>(band.groups) * (wide + 1), Eigen::Matrix3d::Zero());
     for (int i = 0; i < band.groups; ++i)
-      for (int j = std::max(0, i - band.range); j <= i; ++j)
-        out[i * (band.range + 1) + (j - i + band.range)] = inverse.block<3, 3>(3 * i, 3 * j);
+      for (int j = std::max(0, i - wide); j <= i; ++j)
+        out[i * (wide + 1) + (j - i + wide)] = inverse.block<3, 3>(3 * i, 3 * j);
     return true;
   }
   /// (A_b⁻¹)_pp: the points' block of the inverse (internal DOFs carry no force).

@@ -162,6 +162,9 @@ class ContactPipeline final : public CollisionPipeline {
   std::vector<Obstacle*> obstacles_;
   std::vector<int> tube_of_;  // per model: the model of the tube it runs in, or −1
   std::vector<std::vector<TubePlace>> place_;  // per model in a tube: its spheres' places (beginStep)
+  // A tube's centre line in blocks for the nearest axis point (findLumenContacts, leftLumen; a
+  // workspace, rebuilt at every use: mutable for the const leftLumen).
+  mutable AxisBounds axis_bounds_, start_axis_bounds_;
   /// Whether chord k of model a and chord l of model b are a chord of an instrument inside the
   /// tube it runs in, or in its opening, and that tube's: held by the lumen instead, or open
   /// there (no chord contact, no overlap test).

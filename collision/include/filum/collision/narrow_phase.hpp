@@ -77,7 +77,28 @@ struct AxisPoint {
   double distance = 0.0;
   double radial = 0.0;
 };
-AxisPoint nearestAxisPoint(const Points& axis, const SphereSamplingMapping& sampling, const Vec3& x);
+/// Bounding spheres of a tube's centre line, kChords chords a block (each chord lies within the
+/// sphere about its block's vertices): nearestAxisPoint skips a block that lies farther from x
+/// than the nearest point already found, instead of measuring all n chords for every sphere.
+class AxisBounds {
+ public:
+  static constexpr int kChords = 8;
+  /// The blocks of the chords between the rows of `axis` (storage grows only).
+  void build(const Points& axis);
+  int blocks() const { return blocks_; }
+  const Vec3& center(int b) const { return center_[b]; }
+  double radius(int b) const { return radius_[b]; }
+
+ private:
+  int blocks_ = 0;
+  std::vector<Vec3> center_;
+  std::vector<double> radius_;
+};
+/// With `bounds` (built on the same axis) the blocks farther than the nearest point found are
+/// skipped, chord `hint` (a neighbour's, or −1) measured first; the result is the same as without,
+/// bit for bit: the nearest chord, the first of equally near ones.
+AxisPoint nearestAxisPoint(const Points& axis, const SphereSamplingMapping& sampling, const Vec3& x,
+                           const AxisBounds* bounds = nullptr, int hint = -1);
 
 /// Where a sphere is with respect to a tube.
 enum class TubePlace : char {
@@ -93,8 +114,9 @@ TubePlace placeInTube(const AxisPoint& axis, const SphereCollisionModel& tube);
 /// Appends to `out` the contacts holding the spheres of `inner` that are inside `tube` in its
 /// lumen (tube.lumenRadius() > inner.radius()), with friction μ; place[k] is each sphere's
 /// place (resized to inner's sphere count).
+/// `bounds`: the workspace of the tube's AxisBounds.
 void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const SphereCollisionModel& tube,
                        int model_tube, double friction, const NarrowPhaseSettings& settings, ContactSet& out,
-                       std::vector<TubePlace>& place);
+                       std::vector<TubePlace>& place, AxisBounds& bounds);
 
 }  // namespace filum::collision

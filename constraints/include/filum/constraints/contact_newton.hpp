@@ -92,6 +92,8 @@ namespace filum::constraints {
 class DelassusEntries {
  public:
   virtual const MatX& matrix() = 0;
+  /// Whether matrix() costs nothing more: W is formed already.
+  virtual bool formed() const = 0;
 
  protected:
   ~DelassusEntries() = default;

@@ -138,6 +138,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     bool reassembled = false;  // W was assembled (false: unchanged anchors and directions, or never asked for: deferred)
     bool deferred = false;   // W left unformed until the contact Newton asks for it (its products through the band)
     int far_rows = 0;        // deferred: rows whose W_rr took a solve, their points further apart than A's band
+    int inverse_range = 0;   // deferred: the widest range of A⁻¹'s blocks taken on a body (>= its band's)
     int inequalities = 0;    // contact rows (normal and friction)
     int sweeps = 0;          // projected Gauss–Seidel sweeps (with contact rows; smoothing and fallback included)
     double change = 0.0;     // the last sweep's largest W_rr |Δλ_r| (m/s²)
@@ -258,6 +259,10 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// blocks would take three per point and the columns one per row (body_touched_,
   /// inverse_band_layout_ and problem_offset_ set).
   bool inverseBandCovers(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse);
+  /// visit(body, span) for each body row r acts on: the widest distance between two of its
+  /// points on that body in the band's groups (inverse_band_layout_ and problem_offset_ set).
+  template <class Visit>
+  void forEachRowSpan(const ConstraintRows& rows, int r, Visit&& visit) const;
   /// A⁻¹'s blocks within the band of every touched body (inverse_band_), and each far row's
   /// W_rr = l_r · A⁻¹ l_r by a solve (far_diagonal_), after inverseBandCovers.
   void computeInverseBands(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse);
@@ -345,6 +350,10 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   std::vector<std::vector<Eigen::Matrix3d>> inverse_band_;  // per body: A⁻¹ within its band (kInverseBand)
   std::vector<BandBlocks> inverse_band_layout_;  // per body: its band's range and point groups
   std::vector<int> problem_offset_;  // per body: its first point (kInverseBand)
+  /// The widest range of A⁻¹'s blocks inverseBandCovers takes on a body, in groups.
+  static constexpr int kWidestInverseRange = 16;
+  std::vector<int> inverse_range_;   // per body: the range of inverse_band_ (>= the band's; kInverseBand)
+  std::vector<int> span_rows_;       // per body and span up to kWidestInverseRange: the rows that wide (inverseBandCovers)
   std::vector<int> far_row_;         // per row: its place in far_diagonal_, −1 within the bands (kInverseBand)
   std::vector<double> far_diagonal_;  // the far rows' W_rr (computeInverseBands)
   std::vector<int> far_point_mark_;   // per point: the row that last counted it (inverseBandCovers' distinct points)

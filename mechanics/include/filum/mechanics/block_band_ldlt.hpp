@@ -51,10 +51,11 @@ class BlockBandLdlt {
   /// bit for bit. Each block of the factors is read once per block row for four columns, and the
   /// four columns' dependent chains (row i waits for row i ∓ 1) overlap.
   void solveColumns(Eigen::Ref<MatX> x, int first = 0) const;
-  /// The blocks of A⁻¹ within the band (after factor()), laid out as blocks(): row I holding
-  /// (A⁻¹)_{I, I − r .. I} (the blocks above the diagonal are their transposes). O(n r²), by
-  /// Takahashi's equations; for W's entries between rows a band apart without a solve per row.
-  void inverseBand(std::vector<Eigen::Matrix3d>& z) const;
+  /// The blocks of A⁻¹ within `range` block diagonals (after factor(); at least the band's r),
+  /// row I holding (A⁻¹)_{I, I − R .. I} for R = max(range, r) (the blocks above the diagonal are
+  /// their transposes; blocks() is the layout for R = r). O(n R r), by Takahashi's equations; for
+  /// W's entries between rows a band apart without a solve per row.
+  void inverseBand(std::vector<Eigen::Matrix3d>& z, int range) const;
   /// The dense matrix L D Lᵀ of the factors (after factor(); for tests and diagnostics).
   MatX reconstruct() const;
 

@@ -87,7 +87,7 @@ class StepMatrix final : public BlockInverse, public JacobianAccumulator {
   long revision() const override { return revision_; }
   /// A band block without rank-one terms, bodies not coupled: its band as assembled.
   bool bandBlocks(int body, BandBlocks& out) const override;
-  bool inverseBandBlocks(int body, std::vector<Eigen::Matrix3d>& out) const override;
+  bool inverseBandBlocks(int body, int range, std::vector<Eigen::Matrix3d>& out) const override;
 
   // JacobianAccumulator (called by the bodies and force fields during assemble()).
   void addBlock(int i, int j, const Eigen::Matrix3d& block) override;

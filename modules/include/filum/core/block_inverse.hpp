@@ -66,10 +66,13 @@ class BlockInverse {
   /// Body b's block of A as a band (A itself, not its factors), valid until A changes; false when
   /// A is not held so: the mass operator, sparse or coupled blocks, rank-one terms (the default).
   virtual bool bandBlocks(int /*body*/, BandBlocks& /*out*/) const { return false; }
-  /// Body b's blocks of A⁻¹ within its band, in bandBlocks' order and layout (row I holding
-  /// (A⁻¹)_{I, I − range .. I}), into `out` (grown, never shrunk): W's entries between points a band
-  /// apart without a solve per row. False when the body has no band factor (then bandBlocks is false too).
-  virtual bool inverseBandBlocks(int /*body*/, std::vector<Eigen::Matrix3d>& /*out*/) const { return false; }
+  /// Body b's blocks of A⁻¹ within R = max(range, its band's range) block diagonals, in
+  /// bandBlocks' order (row I holding (A⁻¹)_{I, I − R .. I}, R + 1 blocks a row), into `out` (grown,
+  /// never shrunk): W's entries between points R groups apart without a solve per row. False when
+  /// the body has no band factor (then bandBlocks is false too).
+  virtual bool inverseBandBlocks(int /*body*/, int /*range*/, std::vector<Eigen::Matrix3d>& /*out*/) const {
+    return false;
+  }
 };
 
 }  // namespace filum
