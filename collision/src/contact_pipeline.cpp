@@ -462,8 +462,8 @@ bool ContactPipeline::leftLumen() const {
     const double clearance = tube.lumenRadius() - inner.radius();
     const double allowed = (1.0 + settings_.max_penetration) * clearance;
     const std::vector<TubePlace>& place = place_[m];
-    axis_bounds_.build(after_centers_[t]);
-    start_axis_bounds_.build(tube.centers());
+    axis_bounds_.build(after_centers_[t], tube.sphereCount());
+    start_axis_bounds_.build(tube.centers(), tube.sphereCount());
     int hint = -1;  // the last sphere's chord at the step's end: its neighbour's is near
     for (int k = 0; k < inner.sphereCount() && k < static_cast<int>(place.size()); ++k) {
       if (place[k] != TubePlace::kInside) continue;  // not held by the lumen

@@ -185,8 +185,8 @@ bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const S
   return true;
 }
 
-void AxisBounds::build(const Points& axis) {
-  const int chords = std::max<int>(0, static_cast<int>(axis.rows()) - 1);
+void AxisBounds::build(const Points& axis, int vertices) {
+  const int chords = std::max(0, std::min(vertices, static_cast<int>(axis.rows())) - 1);
   blocks_ = (chords + kChords - 1) / kChords;
   resizeGrowing(center_, blocks_);
   resizeGrowing(radius_, blocks_);
@@ -270,7 +270,7 @@ void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const
   double tube_speed = 0.0;  // the largest speed of the tube's centre line
   for (int l = 0; l < tube.sphereCount(); ++l) tube_speed = std::max(tube_speed, speed(tube, l));
   place.assign(inner.sphereCount(), TubePlace::kOutside);  // within the capacity reserved at init
-  bounds.build(tube.centers());
+  bounds.build(tube.centers(), tube.sphereCount());
   int hint = -1;  // the last sphere's chord: its neighbour's is near
   for (int k = 0; k < inner.sphereCount(); ++k) {
     const Vec3 x = center(inner, k);

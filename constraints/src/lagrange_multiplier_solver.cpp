@@ -843,7 +843,9 @@ class LagrangeMultiplierSolver::DeferredDelassus final : public DelassusEntries 
     return solver_.w_;
   }
   bool asked() const { return asked_; }
-  bool formed() const override { return asked_ || !solver_.w_unformed_; }
+  /// Asked in this solve: a W kept from the last call counts as unformed, so that the solve's
+  /// choices do not depend on what was kept (a run restored from a saved state repeats bit for bit).
+  bool formed() const override { return asked_; }
 
  private:
   LagrangeMultiplierSolver& solver_;
@@ -930,15 +932,20 @@ bool LagrangeMultiplierSolver::inverseBandCovers(const ConstraintProblem& proble
   // four groups with the frames between them, where the band reaches two) would take a solve of
   // its own; Takahashi's recurrence reaches R >= r block diagonals for 27 r (R − r) more
   // multiply-adds per group (BlockBandLdlt::inverseBand), a far row's solve costs 9 (2 r + 1) per
-  // group (bandSolveMultiplyAdds). R is the widest span up to kWidestInverseRange whose rows save
-  // more solves than the wider recurrence costs; rows reaching further (a self-contact) stay far.
+  // group (bandSolveMultiplyAdds). R is the span up to kWidestInverseRange whose rows save the most
+  // over the wider recurrence's cost; rows reaching further (a self-contact) stay far. A row that
+  // reaches further than that on another body keeps its solve on every body: not counted.
   std::fill(span_rows_.begin(), span_rows_.begin() + static_cast<std::ptrdiff_t>(bodies) * (kWidestInverseRange + 1), 0);
-  for (int r = 0; r < rows.rows(); ++r)
+  for (int r = 0; r < rows.rows(); ++r) {
+    bool coverable = true;
+    forEachRowSpan(rows, r, [&](int, int span) { coverable = coverable && span <= kWidestInverseRange; });
+    if (!coverable) continue;
     forEachRowSpan(rows, r, [&](int body, int span) {
-      if (span > inverse_band_layout_[body].range && span <= kWidestInverseRange)
+      if (span > inverse_band_layout_[body].range)
         ++span_rows_[static_cast<std::size_t>(body) * (kWidestInverseRange + 1) + span];
     });
-  stats_.inverse_range = 0;
+  }
+  int widest = 0;
   for (int b = 0; b < bodies; ++b) {
     if (!body_touched_[b]) continue;
     const BandBlocks& band = inverse_band_layout_[b];
@@ -954,7 +961,7 @@ bool LagrangeMultiplierSolver::inverseBandCovers(const ConstraintProblem& proble
       }
     }
     inverse_range_[b] = best;
-    stats_.inverse_range = std::max(stats_.inverse_range, best);
+    widest = std::max(widest, best);
   }
   // The far rows: two points of one body further apart than the range taken on it.
   resizeGrowing(far_row_, rows.rows());
@@ -975,6 +982,7 @@ bool LagrangeMultiplierSolver::inverseBandCovers(const ConstraintProblem& proble
   // three per distinct point of all rows: the band is left only when those are fewer.
   if (far_rows > 3 * points) return false;
   stats_.far_rows = far_rows;
+  stats_.inverse_range = widest;
   return true;
 }
 
@@ -1461,10 +1469,10 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   // for a dense LU step or Gauss–Seidel's smoothing: W is then formed when first asked for
   // (DeferredDelassus), and a solve whose steps all go through the band never forms it — O(c²
   // terms), most of a step of a rod lying on a table (bench_rod) before. What it needs then is
-  // W's diagonal (ρ, the compliance): from A⁻¹'s blocks within the band (Takahashi's equations,
-  // O(n r²) per body) for the rows whose points lie a band apart, as on a thread against an
-  // obstacle — no solve per row or per point, which grew as c n — and by a solve of its own for a
-  // row reaching farther (a self-contact; inverseBandCovers); W formed late takes the columns or
+  // W's diagonal (ρ, the compliance): from A⁻¹'s blocks within the band or a few groups beyond
+  // (Takahashi's equations, O(n R r) per body) for the rows whose points lie that near, as on a
+  // thread against an obstacle or in a lumen — no solve per row or per point, which grew as c n —
+  // and by a solve of its own for a row reaching farther (a self-contact; inverseBandCovers); W formed late takes the columns or
   // the point blocks.
   const bool deferred = newton && !separable && options_.newton_structured &&
                         band_product_.prepare(rows, inverse, problem, point_body_) && band_product_.cheaperThanDense();

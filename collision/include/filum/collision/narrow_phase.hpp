@@ -83,8 +83,9 @@ struct AxisPoint {
 class AxisBounds {
  public:
   static constexpr int kChords = 8;
-  /// The blocks of the chords between the rows of `axis` (storage grows only).
-  void build(const Points& axis);
+  /// The blocks of the chords between the first `vertices` rows of `axis` (a model's centres
+  /// are held in storage of its capacity; storage grows only).
+  void build(const Points& axis, int vertices);
   int blocks() const { return blocks_; }
   const Vec3& center(int b) const { return center_[b]; }
   double radius(int b) const { return radius_[b]; }

@@ -137,7 +137,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     bool refactored = false; // W changed and was factored again
     bool reassembled = false;  // W was assembled (false: unchanged anchors and directions, or never asked for: deferred)
     bool deferred = false;   // W left unformed until the contact Newton asks for it (its products through the band)
-    int far_rows = 0;        // deferred: rows whose W_rr took a solve, their points further apart than A's band
+    int far_rows = 0;        // deferred: rows whose W_rr took a solve, their points further apart than the range taken
     int inverse_range = 0;   // deferred: the widest range of A⁻¹'s blocks taken on a body (>= its band's)
     int inequalities = 0;    // contact rows (normal and friction)
     int sweeps = 0;          // projected Gauss–Seidel sweeps (with contact rows; smoothing and fallback included)
@@ -263,7 +263,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// points on that body in the band's groups (inverse_band_layout_ and problem_offset_ set).
   template <class Visit>
   void forEachRowSpan(const ConstraintRows& rows, int r, Visit&& visit) const;
-  /// A⁻¹'s blocks within the band of every touched body (inverse_band_), and each far row's
+  /// A⁻¹'s blocks within the range taken on every touched body (inverse_band_, inverse_range_), and each far row's
   /// W_rr = l_r · A⁻¹ l_r by a solve (far_diagonal_), after inverseBandCovers.
   void computeInverseBands(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse);
   /// Whether W comes from A⁻¹'s blocks between the rows' points (point_blocks_, brought up to
@@ -347,7 +347,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   bool w_unformed_ = false;  // a deferred call left W unformed: w_ does not hold its rows' W
   DelassusSource source_ = DelassusSource::kColumns;  // of this call's W
   bool columns_ready_ = false;  // current_ holds this call's columns A⁻¹ l_r
-  std::vector<std::vector<Eigen::Matrix3d>> inverse_band_;  // per body: A⁻¹ within its band (kInverseBand)
+  std::vector<std::vector<Eigen::Matrix3d>> inverse_band_;  // per body: A⁻¹ within inverse_range_ (kInverseBand)
   std::vector<BandBlocks> inverse_band_layout_;  // per body: its band's range and point groups
   std::vector<int> problem_offset_;  // per body: its first point (kInverseBand)
   /// The widest range of A⁻¹'s blocks inverseBandCovers takes on a body, in groups.
