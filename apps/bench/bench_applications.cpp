@@ -13,7 +13,9 @@
 // floor along its whole length, the worst case for the contact rows: measured 1140 ms per
 // simulated ms (median of 3) with ~430 lumen contacts (1300 rows), where the issue asks 1; 735
 // (one run) after W's column assembly, 27 (median of 3) since the band step merges the two bodies
-// along each other and Newton's products with W go through the bands (2026-11-27): docs/vessels.md.
+// along each other and Newton's products with W go through the bands (2026-11-27), 17.2 since W's
+// diagonal comes from A⁻¹'s blocks within a widened range (2026-11-29, the old build 27.7 that day):
+// docs/vessels.md.
 //   build/apps/bench/bench_applications --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // (about 50 minutes: catheter.json alone takes 4-5 minutes a run, coil.json about 4; filter them
 // out with --benchmark_filter=-'application/(catheter|coil)/' for the rest.)
