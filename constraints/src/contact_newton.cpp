@@ -177,8 +177,9 @@ bool ContactNewton::structuredStep(double damping, const ConstraintRows& rows) {
   // 2-core machine of the benchmarks, s = 150–600), the envelope LU's as short dot products
   // (1.4–2.2 G/s for envelopes 12–96 wide): measured, a factor 2 between them. With W's products
   // through the band (W deferred: LagrangeMultiplierSolver), the dense step reads W's entries, so
-  // its cost counts forming W while it is not formed: about a product through the band per column, c of them (by columns;
-  // from A⁻¹'s point blocks it is of the same order, 3 solves per point and 36 per point and row).
+  // its cost counts forming W while this solve has not: about a product through the band per
+  // column, c of them (by columns; from A⁻¹'s point blocks it is of the same order, 3 solves per
+  // point and 36 multiply-adds per point and row).
   constexpr double kEnvelopeRateRatio = 2.0;
   const double s = static_cast<double>(solved_.size());
   const double forming = product_ && !entries_->formed() ? static_cast<double>(c_) * product_->cost() : 0.0;

@@ -1472,8 +1472,8 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   // W's diagonal (ρ, the compliance): from A⁻¹'s blocks within the band or a few groups beyond
   // (Takahashi's equations, O(n R r) per body) for the rows whose points lie that near, as on a
   // thread against an obstacle or in a lumen — no solve per row or per point, which grew as c n —
-  // and by a solve of its own for a row reaching farther (a self-contact; inverseBandCovers); W formed late takes the columns or
-  // the point blocks.
+  // and by a solve of its own for a row reaching farther (a self-contact; inverseBandCovers). W
+  // formed late takes the columns or the point blocks.
   const bool deferred = newton && !separable && options_.newton_structured &&
                         band_product_.prepare(rows, inverse, problem, point_body_) && band_product_.cheaperThanDense();
   stats_.deferred = deferred;

@@ -263,8 +263,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// points on that body in the band's groups (inverse_band_layout_ and problem_offset_ set).
   template <class Visit>
   void forEachRowSpan(const ConstraintRows& rows, int r, Visit&& visit) const;
-  /// A⁻¹'s blocks within the range taken on every touched body (inverse_band_, inverse_range_), and each far row's
-  /// W_rr = l_r · A⁻¹ l_r by a solve (far_diagonal_), after inverseBandCovers.
+  /// A⁻¹'s blocks within the range taken on every touched body (inverse_band_, inverse_range_),
+  /// and each far row's W_rr = l_r · A⁻¹ l_r by a solve (far_diagonal_), after inverseBandCovers.
   void computeInverseBands(const ConstraintProblem& problem, const ConstraintRows& rows, const BlockInverse& inverse);
   /// Whether W comes from A⁻¹'s blocks between the rows' points (point_blocks_, brought up to
   /// date then) rather than a column per row: by their multiply-adds with nothing held (solve()).
@@ -353,7 +353,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// The widest range of A⁻¹'s blocks inverseBandCovers takes on a body, in groups.
   static constexpr int kWidestInverseRange = 16;
   std::vector<int> inverse_range_;   // per body: the range of inverse_band_ (>= the band's; kInverseBand)
-  std::vector<int> span_rows_;       // per body and span up to kWidestInverseRange: the rows that wide (inverseBandCovers)
+  std::vector<int> span_rows_;       // per body and span <= kWidestInverseRange: its rows that wide (inverseBandCovers)
   std::vector<int> far_row_;         // per row: its place in far_diagonal_, −1 within the bands (kInverseBand)
   std::vector<double> far_diagonal_;  // the far rows' W_rr (computeInverseBands)
   std::vector<int> far_point_mark_;   // per point: the row that last counted it (inverseBandCovers' distinct points)
