@@ -188,8 +188,7 @@ bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const S
 void AxisBounds::build(const Points& axis, int vertices) {
   const int chords = std::max(0, std::min(vertices, static_cast<int>(axis.rows())) - 1);
   blocks_ = (chords + kChords - 1) / kChords;
-  resizeGrowing(center_, blocks_);
-  resizeGrowing(radius_, blocks_);
+  resizeGrowing(spheres_, blocks_);
   for (int b = 0; b < blocks_; ++b) {
     const int first = b * kChords, last = std::min(first + kChords, chords);  // vertices first..last
     Vec3 low = axis.row(first).transpose(), high = low;
@@ -197,10 +196,11 @@ void AxisBounds::build(const Points& axis, int vertices) {
       low = low.cwiseMin(axis.row(v).transpose());
       high = high.cwiseMax(axis.row(v).transpose());
     }
-    center_[b] = 0.5 * (low + high);
-    double radius = 0.0;
-    for (int v = first; v <= last; ++v) radius = std::max(radius, (axis.row(v).transpose() - center_[b]).norm());
-    radius_[b] = radius;
+    BoundingSphere& sphere = spheres_[b];
+    sphere.center = 0.5 * (low + high);
+    sphere.radius = 0.0;
+    for (int v = first; v <= last; ++v)
+      sphere.radius = std::max(sphere.radius, (axis.row(v).transpose() - sphere.center).norm());
   }
 }
 
@@ -235,10 +235,11 @@ AxisPoint nearestAxisPoint(const Points& axis, const SphereSamplingMapping& samp
       // Every point of the block's chords is at least |x − c| − R from x. Skipped only when that
       // bound, less its round-off and that of the distances measured (a few ε of the
       // coordinates' size; 64 ε taken), still exceeds the nearest distance found.
-      const double to_center = (x - bounds->center(b)).norm();
-      const double slack = 64.0 * std::numeric_limits<double>::epsilon() *
-                           (x.norm() + bounds->center(b).norm() + bounds->radius(b) + to_center);
-      if (to_center - bounds->radius(b) - slack > nearest) continue;
+      const BoundingSphere& block = bounds->block(b);
+      const double to_center = (x - block.center).norm();
+      const double slack =
+          64.0 * std::numeric_limits<double>::epsilon() * (x.norm() + block.center.norm() + block.radius + to_center);
+      if (to_center - block.radius - slack > nearest) continue;
       const int end = std::min((b + 1) * AxisBounds::kChords, count - 1);
       for (int l = b * AxisBounds::kChords; l < end; ++l) measure(l);
     }

@@ -48,6 +48,7 @@
 #include "filum/collision/contact.hpp"
 #include "filum/collision/obstacle.hpp"
 #include "filum/collision/sphere_collision_model.hpp"
+#include "filum/collision/uniform_grid_broad_phase.hpp"
 
 namespace filum::collision {
 
@@ -87,13 +88,11 @@ class AxisBounds {
   /// are held in storage of its capacity; storage grows only).
   void build(const Points& axis, int vertices);
   int blocks() const { return blocks_; }
-  const Vec3& center(int b) const { return center_[b]; }
-  double radius(int b) const { return radius_[b]; }
+  const BoundingSphere& block(int b) const { return spheres_[b]; }
 
  private:
   int blocks_ = 0;
-  std::vector<Vec3> center_;
-  std::vector<double> radius_;
+  std::vector<BoundingSphere> spheres_;
 };
 /// With `bounds` (built on the same axis) the blocks farther than the nearest point found are
 /// skipped, chord `hint` (a neighbour's, or −1) measured first; the result is the same as without,
