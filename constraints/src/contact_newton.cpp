@@ -21,7 +21,7 @@ void ContactNewton::grow(int c) {
   capacity_ = 2 * c;
   held_ = false;  // (lu_ is reallocated)
   for (VecX* v : {&rho_, &wl_, &f_, &delta_, &trial_, &best_, &rhs_, &compliance_, &diagonal_, &w_free_, &wl_base_,
-                  &w_delta_})
+                  &w_delta_, &w_lambda_})
     v->resize(capacity_);
   lu_.resize(capacity_, capacity_);
   solved_.reserve(capacity_);
@@ -89,7 +89,9 @@ double ContactNewton::evaluate(bool jacobian, const ConstraintRows& rows, const 
     const double zn = lambda[n] - rho_[n] * wl_[n];
     const double radius = mu * std::max(0.0, zn);
     const double z1 = lambda[t1] - rho_[t1] * wl_[t1], z2 = lambda[t2] - rho_[t2] * wl_[t2];
-    const double norm = std::hypot(z1, z2);
+    // |z_t| by its square root, not std::hypot (several times slower, guarding an overflow that
+    // needs |z| > 1e154 m/s²; an underflow below 1e-154 gives 0: stick, as the exact value would).
+    const double norm = std::sqrt(z1 * z1 + z2 * z2);
     r = t2;
     if (!(radius > 0.0)) {  // no normal force: no friction
       freeRow(t1);
@@ -373,6 +375,7 @@ ContactNewton::Result ContactNewton::solve(DelassusEntries& w, const Eigen::Ref<
   // F (and with the matrix, J) at x: w_ = W x − β first.
   auto at = [&](const Eigen::Ref<const VecX>& x, bool jacobian) {
     multiplyW(rows, x, wl_.head(c));
+    w_lambda_.head(c) = wl_.head(c);
     wl_.head(c) += compliance_.head(c).cwiseProduct(x) - beta;
     return evaluate(jacobian, rows, x);
   };

@@ -802,14 +802,32 @@ struct LagrangeMultiplierSolver::BandProductDelassus {
     return solver.band_wl_[r];
   }
   void changed(int /*r*/, double delta) { stale = stale || delta != 0.0; }
+  /// W λ of the current λ, known (the same bits as product() would compute: the same product).
+  void set(const Eigen::Ref<const VecX>& w_lambda) {
+    const int c = solver.c_;
+    if (solver.band_wl_.size() < c) solver.band_wl_.resize(2 * c);  // grows only
+    solver.band_wl_.head(c) = w_lambda;
+    stale = false;
+  }
   /// W_BB of the equality rows (sorted), a column W e_j per equality row (nb band products).
-  void equalityBlock(const ConstraintRows& /*rows*/, MatX& block) {
+  void equalityBlock(const ConstraintRows& rows, MatX& block) {
     const auto& eq = solver.equality_rows_;
     const int nb = static_cast<int>(eq.size()), c = solver.c_;
     block.resize(nb, nb);
+    // From A⁻¹'s band when W's diagonal came from it and every pair of the rows' points lies
+    // within its range (a fixed point's three rows on one point): no product at all.
+    bool from_band = solver.source_ == DelassusSource::kInverseBand;
+    for (int j = 0; j < nb && from_band; ++j)
+      for (int i = j; i < nb && from_band; ++i) from_band = solver.inverseBandEntry(rows, eq[i], eq[j], block(i, j));
+    if (from_band) {
+      for (int j = 0; j < nb; ++j)
+        for (int i = 0; i < j; ++i) block(i, j) = block(j, i);
+      return;
+    }
     if (solver.band_wl_.size() < c) solver.band_wl_.resize(2 * c);  // grows only
     if (solver.unit_.size() < c) solver.unit_.resize(2 * c);
     solver.unit_.head(c).setZero();
+    solver.stats_.block_products = nb;
     for (int j = 0; j < nb; ++j) {
       solver.unit_[eq[j]] = 1.0;
       solver.band_product_.multiply(rows, solver.unit_.head(c), solver.band_wl_.head(c));
@@ -885,6 +903,31 @@ double LagrangeMultiplierSolver::inverseBandDiagonal(const ConstraintRows& rows,
     }
   }
   return sum;
+}
+
+bool LagrangeMultiplierSolver::inverseBandEntry(const ConstraintRows& rows, int r, int k, double& entry) const {
+  // W_rk = Σ_{t ∈ r} Σ_{u ∈ k} c_tᵀ (A⁻¹)(p_t, p_u) c_u over the pairs on one body (A⁻¹ is block
+  // diagonal over the bodies), each block read from the body's inverse band: false when a pair
+  // lies further apart than the range taken there.
+  entry = 0.0;
+  for (int t = rows.begin(r); t < rows.end(r); ++t) {
+    const int body = point_body_[rows.point(t)];
+    const BandBlocks& band = inverse_band_layout_[body];
+    const std::vector<Eigen::Matrix3d>& z = inverse_band_[body];
+    const int range = inverse_range_[body];
+    const int offset = problem_offset_[body];
+    const int gt = band.point_group[rows.point(t) - offset];
+    for (int u = rows.begin(k); u < rows.end(k); ++u) {
+      if (point_body_[rows.point(u)] != body) continue;
+      const int gu = band.point_group[rows.point(u) - offset];
+      if (std::abs(gt - gu) > range) return false;
+      // Block (gt, gu): stored as (max, min), the one above the diagonal its transpose.
+      const Eigen::Matrix3d& block = z[static_cast<std::size_t>(std::max(gt, gu)) * (range + 1) +
+                                       (std::min(gt, gu) - std::max(gt, gu) + range)];
+      entry += gt >= gu ? rows.coeff(t).dot(block * rows.coeff(u)) : rows.coeff(u).dot(block * rows.coeff(t));
+    }
+  }
+  return true;
 }
 
 template <class Visit>
@@ -1214,8 +1257,16 @@ void LagrangeMultiplierSolver::solveWithNewton(const ConstraintProblem& problem,
   BandProductDelassus band{*this, problem, rows};
   DeferredDelassus w(*this, problem, rows, inverse);
   if (deferred) {
-    factorEqualityBlock(rows, band, &problem, &inverse);
+    // W_BB and its factors as the last call left them when it is the same W (same_w, step 1).
+    const bool same_w = newton_key_ == equality_block_key_;
+    if (!(equality_block_held_ && same_w))
+      factorEqualityBlock(rows, band, &problem, &inverse);
+    else
+      stats_.equality_block_band = equality_by_band_;
+    equality_block_held_ = true;
+    equality_block_key_ = newton_key_;
   } else {
+    equality_block_held_ = false;
     w.matrix();  // (formed in step 2)
     factorEqualityBlock(rows, dense);
   }
@@ -1254,10 +1305,12 @@ void LagrangeMultiplierSolver::solveWithNewton(const ConstraintProblem& problem,
     w.matrix();
     projectedGaussSeidel(rows, dense, options_.contact_iterations);
   }
-  if (w.asked())
+  if (w.asked()) {
     polishEqualities(rows, dense);
-  else
+  } else {
+    band.set(newton_.lastProduct());  // W λ as Newton last measured it: no product again
     polishEqualities(rows, band);
+  }
 }
 
 template <class Delassus>
@@ -1477,7 +1530,16 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   const bool deferred = newton && !separable && options_.newton_structured &&
                         band_product_.prepare(rows, inverse, problem, point_body_) && band_product_.cheaperThanDense();
   stats_.deferred = deferred;
-  const bool by_band = deferred && inverseBandCovers(problem, rows, inverse);
+  // On the same W as a deferred call that took its diagonal from the band (the estimate after the
+  // step), that diagonal is this call's too: the same rows and A give the same bits.
+  const bool diagonal_held = deferred && same_w && band_diagonal_held_;
+  band_diagonal_held_ = false;
+  const bool by_band = diagonal_held || (deferred && inverseBandCovers(problem, rows, inverse));
+  if (diagonal_held) {
+    stats_.held = true;
+    stats_.far_rows = held_far_rows_;
+    stats_.inverse_range = held_inverse_range_;
+  }
   const bool by_points = !by_band && newton && !general_kept && choosePointBlocks(problem, rows, inverse);
   stats_.point_blocks = by_points;
   source_ = by_band ? DelassusSource::kInverseBand : by_points ? DelassusSource::kPointBlocks : DelassusSource::kColumns;
@@ -1506,8 +1568,13 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   if (factored_form) {
     for (int r = 0; r < c; ++r) diagonal_[r] = generalEntry(problem, rows, r, r);
   } else if (deferred && !unchanged) {
-    if (by_band) computeInverseBands(problem, rows, inverse);
-    for (int r = 0; r < c; ++r) diagonal_[r] = diagonalEntry(problem, rows, r);
+    if (!diagonal_held) {
+      if (by_band) computeInverseBands(problem, rows, inverse);
+      for (int r = 0; r < c; ++r) diagonal_[r] = diagonalEntry(problem, rows, r);
+    }
+    band_diagonal_held_ = by_band;
+    held_far_rows_ = stats_.far_rows;
+    held_inverse_range_ = stats_.inverse_range;
     w_unformed_ = true;
   } else if (!unchanged) {
     if (stats_.sparse) {

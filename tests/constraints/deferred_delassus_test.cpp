@@ -200,5 +200,52 @@ TEST(DeferredDelassus, AFewActiveRowsFormWWhenTheDenseStepAsksForIt) {
   }
 }
 
+TEST(DeferredDelassus, TheEstimateOnTheSameWKeepsTheFirstCallsDiagonalAndEqualityBlock) {
+  // A linearized implicit step solves its contacts twice through the same step matrix and rows:
+  // the step, then its error estimate from another acceleration. The second call takes W's
+  // diagonal and the equality rows' block W_BB (factored) as the first left them — the same bits
+  // from the same A and rows, not computed again — and solves as a solver without them would
+  // (the tolerance above). The fixed point's three rows lie on one point: W_BB comes from A⁻¹'s
+  // band in the first call too, with no product through the band.
+  std::mt19937 rng(37);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (int trial = 0; trial < 5; ++trial) {
+    test::BandMatrix a({{150, 2, true}}, rng);
+    a.setRevision(0);  // the same operator in both calls (a step matrix's revision)
+    const test::RowProblem p = contactProblem(150, 80, 0.6, rng);
+    LagrangeMultiplierSolver::Options options;
+    options.contact_tolerance = kTolerance;
+    LagrangeMultiplierSolver solver(options);
+    VecX step = VecX::Zero(p.problem.state_size);
+    solver.solve(p.problem, p.rows, a, step);
+    const LagrangeMultiplierSolver::Statistics first = solver.statistics();
+    const VecX first_diagonal = solver.delassusDiagonal();
+    EXPECT_TRUE(first.deferred && !first.held) << trial;
+    EXPECT_EQ(first.block_products, 0) << trial;
+    // The estimate: an acceleration off by a few percent of the rows' β.
+    VecX estimate(p.problem.state_size);
+    for (int i = 0; i < estimate.size(); ++i) estimate[i] = 0.05 * normal(rng);
+    const VecX estimate_in = estimate;
+    solver.solve(p.problem, p.rows, a, estimate);
+    const LagrangeMultiplierSolver::Statistics second = solver.statistics();
+    EXPECT_TRUE(second.held) << trial;
+    EXPECT_EQ(second.block_products, 0) << trial;
+    EXPECT_EQ(second.inverse_range, first.inverse_range) << trial;
+    EXPECT_TRUE((solver.delassusDiagonal().array() == first_diagonal.array()).all()) << trial;
+    EXPECT_TRUE(second.converged) << trial;
+    // A fresh solver (nothing held, no warm start) on the estimate's problem.
+    LagrangeMultiplierSolver fresh(options);
+    VecX fresh_estimate = estimate_in;
+    fresh.solve(p.problem, p.rows, a, fresh_estimate);
+    EXPECT_FALSE(fresh.statistics().held) << trial;
+    const double cond = test::compliantCondition(p, a);
+    const double scale = fresh.multipliers().lpNorm<Eigen::Infinity>();
+    const double difference = (solver.multipliers() - fresh.multipliers()).lpNorm<Eigen::Infinity>();
+    std::printf("  trial %d: estimate's multipliers %.2g apart relative (cond(W + R) %.2g)\n", trial,
+                difference / scale, cond);
+    EXPECT_LE(difference, cond * (2.0 * kTolerance + 1e2 * std::numeric_limits<double>::epsilon()) * scale) << trial;
+  }
+}
+
 }  // namespace
 }  // namespace filum::constraints

@@ -55,6 +55,10 @@ class BandMatrix final : public BlockInverse {
       bands_.push_back(std::move(band));
     }
   }
+  /// The operator's revision (BlockInverse::revision): −1, none, unless set — a solver keeps
+  /// what it computed for the next call on the same operator only when it is >= 0.
+  long revision() const override { return revision_; }
+  void setRevision(long revision) { revision_ = revision; }
   /// x := (A_b⁻¹)_pp x, by the dense inverse (the products with W through the band take it).
   void solveBlock(int body, Eigen::Ref<VecX> x) const override {
     const Band& band = bands_[body];
@@ -103,6 +107,7 @@ class BandMatrix final : public BlockInverse {
     mutable MatX point_inverse;  // (A⁻¹)_pp, formed on the first solve
   };
   std::vector<Band> bands_;
+  long revision_ = -1;
 };
 
 /// W = L A⁻¹ Lᵀ of rows on the bodies (block diagonal A⁻¹ over the bodies' points).

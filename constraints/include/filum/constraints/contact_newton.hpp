@@ -146,6 +146,10 @@ class ContactNewton {
                const Eigen::Ref<const VecX>& compliance, const ConstraintRows& rows, const Settings& settings,
                double tolerance, Eigen::Ref<VecX> lambda, const Structure* structure = nullptr);
 
+  /// W λ of the λ the last solve returned (c values): the product its last measure of the
+  /// residual took, which is always λ's own (solve's exit measures the iterate it returns).
+  Eigen::Ref<const VecX> lastProduct() const { return w_lambda_.head(c_); }
+
   /// max_r |F_r|/ρ_r (m/s²) of λ, given the diagonal of W + R and (W + R)λ − β: the residual by which any
   /// contact solve (projected Gauss–Seidel too) is measured.
   double residual(const ConstraintRows& rows, const Eigen::Ref<const VecX>& diagonal, const Eigen::Ref<const VecX>& wl,
@@ -188,6 +192,7 @@ class ContactNewton {
   MatX lu_;    // J_SS + δ I (dense step), factored in place
   VecX w_free_;  // W Δ_I: the free rows' steps seen by W's rows
   VecX wl_base_, w_delta_;  // (W + R)λ − β at the line search's start, and (W + R)Δ
+  VecX w_lambda_;  // W λ of the last exact measure (lastProduct)
   DelassusEntries* entries_ = nullptr;  // W of the current solve, formed when asked
   const MatX* w_matrix_ = nullptr;      // W once asked (null: not yet)
   std::vector<int> solved_, free_, pivot_;

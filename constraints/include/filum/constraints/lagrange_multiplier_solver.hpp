@@ -153,6 +153,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     int point_columns = 0;      // columns A⁻¹ E_p solved for points newly touched (3 per point)
     bool equality_band = false;  // equality rows only, solved through A's band (W never formed)
     bool equality_block_band = false;  // with contacts: W_BB⁻¹ (the equality rows' steps) through A's band
+    int block_products = 0;     // deferred: W_BB's columns by products through the band (0: from A⁻¹'s band, or held)
+    bool held = false;          // deferred: W's diagonal kept from the last call on the same W (the estimate)
   };
 
   LagrangeMultiplierSolver();
@@ -253,6 +255,9 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   /// W_rr = Σ_{t, t' ∈ r} c_tᵀ (A⁻¹)(p_t, p_t') c_t' from the inverse bands (inverseBandCovers),
   /// or for a far row (its points further apart on a body than the band) from its solve.
   double inverseBandDiagonal(const ConstraintRows& rows, int r) const;
+  /// W_rk from the inverse bands into `entry`; false when two of the rows' points on a body lie
+  /// further apart than the range taken on it (inverseBandCovers and computeInverseBands ran).
+  bool inverseBandEntry(const ConstraintRows& rows, int r, int k, double& entry) const;
   /// Whether W's diagonal comes from the bands: every body the rows touch has a band, and the far
   /// rows (far_row_: a body touching itself far along it, as a bowel lying in loops) are at most
   /// three times the rows' distinct points — each costs a band solve, where W from A⁻¹'s point
@@ -319,6 +324,14 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   long newton_key_ = 0;
   bool step_began_ = true;
   bool last_call_newton_ = false;
+  // What a deferred call left that the next call on the same W (same_w: the step's error estimate
+  // after the step) would compute again, bit for bit, from the same A and rows: W's diagonal from
+  // A⁻¹'s band (band_diagonal_held_, with that call's far_rows and inverse_range for the stats)
+  // and W_BB of the equality rows from band products, factored (equality_block_held_).
+  bool band_diagonal_held_ = false;
+  bool equality_block_held_ = false;
+  long equality_block_key_ = -1;  // newton_key_ of the call that factored it
+  int held_far_rows_ = 0, held_inverse_range_ = 0;
   // Structure of the last assembled W: factors (anchor, direction) per row and the mode.
   std::vector<int> last_factor_start_, last_factor_anchor_;
   std::vector<Vec3> last_factor_direction_;
