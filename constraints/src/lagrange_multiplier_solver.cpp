@@ -809,34 +809,37 @@ struct LagrangeMultiplierSolver::BandProductDelassus {
     solver.band_wl_.head(c) = w_lambda;
     stale = false;
   }
-  /// W_BB of the equality rows (sorted), a column W e_j per equality row (nb band products).
+  /// W_BB of the equality rows (sorted): from A⁻¹'s band where it reaches, else by columns.
   void equalityBlock(const ConstraintRows& rows, MatX& block) {
     const auto& eq = solver.equality_rows_;
     const int nb = static_cast<int>(eq.size()), c = solver.c_;
     block.resize(nb, nb);
-    // From A⁻¹'s band when W's diagonal came from it and every pair of the rows' points lies
-    // within its range (a fixed point's three rows on one point): no product at all.
-    bool from_band = solver.source_ == DelassusSource::kInverseBand;
-    for (int j = 0; j < nb && from_band; ++j)
-      for (int i = j; i < nb && from_band; ++i) from_band = solver.inverseBandEntry(rows, eq[i], eq[j], block(i, j));
-    if (from_band) {
-      for (int j = 0; j < nb; ++j)
-        for (int i = 0; i < j; ++i) block(i, j) = block(j, i);
-      return;
-    }
-    if (solver.band_wl_.size() < c) solver.band_wl_.resize(2 * c);  // grows only
-    if (solver.unit_.size() < c) solver.unit_.resize(2 * c);
-    solver.unit_.head(c).setZero();
-    solver.stats_.block_products = nb;
+    // W_ij (i >= j) from A⁻¹'s band where W's diagonal came from it and the two rows' points lie
+    // within its range (a fixed point's three rows on one point); a column W e_j by a product
+    // through the band for each row j with a later row further apart (the clamps at a
+    // catheter's two ends: one cluster's columns, not every row's). The upper triangle mirrors.
+    auto& column = solver.block_column_;
+    column.assign(nb, solver.source_ == DelassusSource::kInverseBand ? 0 : 1);
+    for (int j = 0; j < nb; ++j)
+      for (int i = j; i < nb && !column[j]; ++i)
+        if (!solver.inverseBandEntry(rows, eq[i], eq[j], block(i, j))) column[j] = 1;
+    int products = 0;
     for (int j = 0; j < nb; ++j) {
+      if (!column[j]) continue;
+      if (products++ == 0) {
+        if (solver.band_wl_.size() < c) solver.band_wl_.resize(2 * c);  // grows only
+        if (solver.unit_.size() < c) solver.unit_.resize(2 * c);
+        solver.unit_.head(c).setZero();
+      }
       solver.unit_[eq[j]] = 1.0;
       solver.band_product_.multiply(rows, solver.unit_.head(c), solver.band_wl_.head(c));
       solver.unit_[eq[j]] = 0.0;
-      for (int i = 0; i < nb; ++i) block(i, j) = solver.band_wl_[eq[i]];
+      for (int i = j; i < nb; ++i) block(i, j) = solver.band_wl_[eq[i]];
     }
-    for (int i = 0; i < nb; ++i)  // (symmetric up to the round-off of the two products)
-      for (int j = 0; j < i; ++j) block(i, j) = block(j, i) = 0.5 * (block(i, j) + block(j, i));
-    stale = true;
+    for (int j = 0; j < nb; ++j)
+      for (int i = 0; i < j; ++i) block(i, j) = block(j, i);
+    solver.stats_.block_products = products;
+    if (products > 0) stale = true;
   }
 };
 

@@ -200,6 +200,24 @@ TEST(DeferredDelassus, AFewActiveRowsFormWWhenTheDenseStepAsksForIt) {
   }
 }
 
+TEST(DeferredDelassus, FixedPointsAtBothEndsTakeOneEndsColumnsForTheirBlock) {
+  // A second fixed point at point 140, far along the body from the first (point 3), as the clamps
+  // at a catheter's two ends: W_BB's entries within each end come from A⁻¹'s band, those between
+  // the ends from the columns of the first end's three rows (three band products, not six), and
+  // the solution is the formed W's.
+  std::mt19937 rng(41);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (int trial = 0; trial < 3; ++trial) {
+    const test::BandMatrix a({{150, 2, true}}, rng);
+    test::RowProblem p = contactProblem(150, 80, 0.6, rng);
+    p.rows.beginAnchor();
+    p.rows.addAnchorPoint(140, 1.0);
+    for (int axis = 0; axis < 3; ++axis) p.rows.addAnchoredRow(Vec3::Unit(axis), 0.1 * normal(rng));
+    const test::RowSolve deferred = solveBothWays(trial, p, a).deferred;
+    EXPECT_EQ(deferred.stats.block_products, 3) << trial;
+  }
+}
+
 TEST(DeferredDelassus, TheEstimateOnTheSameWKeepsTheFirstCallsDiagonalAndEqualityBlock) {
   // A linearized implicit step solves its contacts twice through the same step matrix and rows:
   // the step, then its error estimate from another acceleration. The second call takes W's

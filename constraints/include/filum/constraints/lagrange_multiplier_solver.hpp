@@ -343,6 +343,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   std::vector<int> equality_rows_;
   std::vector<ConstraintRows::Kind> last_kinds_;
   MatX w_bb_;
+  std::vector<char> block_column_;  // W_BB's columns taken by band products (BandProductDelassus::equalityBlock)
   Eigen::LDLT<MatX> ldlt_bb_;
   VecX residual_bb_, delta_bb_;
   // Rows of the last call through an operator that mixes the axes (an implicit step matrix):
