@@ -90,7 +90,9 @@ double ContactNewton::evaluate(bool jacobian, const ConstraintRows& rows, const 
     const double radius = mu * std::max(0.0, zn);
     const double z1 = lambda[t1] - rho_[t1] * wl_[t1], z2 = lambda[t2] - rho_[t2] * wl_[t2];
     // |z_t| by its square root, not std::hypot (several times slower, guarding an overflow that
-    // needs |z| > 1e154 m/s²; an underflow below 1e-154 gives 0: stick, as the exact value would).
+    // needs |z| > 1e154 m/s²). Below 1e-154 m/s² z² underflows (to 0 in a step, which flushes
+    // subnormals): such a pair sticks, where the exact norm could slide it if μ z_n were smaller
+    // still — a force at round-off level either way.
     const double norm = std::sqrt(z1 * z1 + z2 * z2);
     r = t2;
     if (!(radius > 0.0)) {  // no normal force: no friction

@@ -1262,10 +1262,12 @@ void LagrangeMultiplierSolver::solveWithNewton(const ConstraintProblem& problem,
   if (deferred) {
     // W_BB and its factors as the last call left them when it is the same W (same_w, step 1).
     const bool same_w = newton_key_ == equality_block_key_;
-    if (!(equality_block_held_ && same_w))
+    if (!(equality_block_held_ && same_w)) {
       factorEqualityBlock(rows, band, &problem, &inverse);
-    else
+    } else {
       stats_.equality_block_band = equality_by_band_;
+      stats_.block_held = true;
+    }
     equality_block_held_ = true;
     equality_block_key_ = newton_key_;
   } else {
@@ -1458,9 +1460,13 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   const bool separable = inverse.sameOnEveryAxis() && !inverse.coupled();
   // W is the last call's when the operator (the same object, its revision) and the rows are,
   // within one step: the contact Newton may then go on from that call's factorization.
+  // The rows' kinds too (last_kinds_, the last Newton call's, before warmStart writes this
+  // call's): the equality block kept for the next call is that of the same equality rows.
+  bool same_kinds = static_cast<int>(last_kinds_.size()) == c;
+  for (int r = 0; same_kinds && r < c; ++r) same_kinds = last_kinds_[r] == rows.kind(r);
   const bool same_w = !separable && !step_began_ && last_call_newton_ && inverse.revision() >= 0 &&
                       &inverse == cached_inverse_ && inverse.revision() == cached_revision_ &&
-                      cached_size_ == problem.state_size && sameRowsAsLastCall(rows);
+                      cached_size_ == problem.state_size && same_kinds && sameRowsAsLastCall(rows);
   if (!same_w) ++newton_key_;
   step_began_ = false;
   last_call_newton_ = false;  // (set at the end of a call that solved by Newton)
@@ -1539,7 +1545,6 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
   band_diagonal_held_ = false;
   const bool by_band = diagonal_held || (deferred && inverseBandCovers(problem, rows, inverse));
   if (diagonal_held) {
-    stats_.held = true;
     stats_.far_rows = held_far_rows_;
     stats_.inverse_range = held_inverse_range_;
   }
@@ -1575,6 +1580,7 @@ void LagrangeMultiplierSolver::solve(const ConstraintProblem& problem, const Con
       if (by_band) computeInverseBands(problem, rows, inverse);
       for (int r = 0; r < c; ++r) diagonal_[r] = diagonalEntry(problem, rows, r);
     }
+    stats_.held = diagonal_held;
     band_diagonal_held_ = by_band;
     held_far_rows_ = stats_.far_rows;
     held_inverse_range_ = stats_.inverse_range;

@@ -70,7 +70,10 @@ bool ProfileLu::factor(bool positive_pivots) {
     }
     double pivot = diagonal_[i];
     for (int k = fi; k < i; ++k) pivot -= l_row[k - fi] * u_col[k - fi];
-    if (!(std::abs(pivot) > 0.0) || !std::isfinite(pivot) || (positive_pivots && !(pivot > 0.0))) return false;
+    // (A subnormal pivot passes the first two tests but has no finite reciprocal: refused too.)
+    if (!(std::abs(pivot) > 0.0) || !std::isfinite(pivot) || !std::isfinite(1.0 / pivot) ||
+        (positive_pivots && !(pivot > 0.0)))
+      return false;
     diagonal_[i] = pivot;
     inverse_pivot_[i] = 1.0 / pivot;
   }

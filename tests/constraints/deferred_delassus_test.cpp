@@ -31,14 +31,22 @@ constexpr double kTolerance = 1e-12;  // τ, the contact solve's relative residu
 /// A fixed point at point 3 and `contacts` contacts on points k … k + span (span 1: two
 /// consecutive points), their normal rows' β drawn so that about `pressing` of them push (β < 0
 /// separates nothing: the row wants a force).
-test::RowProblem contactProblem(int points, int contacts, double pressing, std::mt19937& rng, int span = 1) {
+/// With `point_as_contact`, point 3's three rows are a contact (normal along x, friction along y
+/// and z) instead of a fixed point: the same points and coefficients, other kinds.
+test::RowProblem contactProblem(int points, int contacts, double pressing, std::mt19937& rng, int span = 1,
+                                bool point_as_contact = false) {
   std::normal_distribution<double> normal(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   test::RowProblem out(points);
   ConstraintRows& rows = out.rows;
   rows.beginAnchor();
   rows.addAnchorPoint(3, 1.0);
-  for (int axis = 0; axis < 3; ++axis) rows.addAnchoredRow(Vec3::Unit(axis), 0.1 * normal(rng));
+  double beta[3];
+  for (double& b : beta) b = 0.1 * normal(rng);
+  if (point_as_contact)
+    rows.addContactRows(Vec3::UnitX(), beta[0], 0.3, Vec3::UnitY(), beta[1], Vec3::UnitZ(), beta[2]);
+  else
+    for (int axis = 0; axis < 3; ++axis) rows.addAnchoredRow(Vec3::Unit(axis), beta[axis]);
   for (int k = 0; k < contacts; ++k) {
     rows.beginAnchor();
     const int first = 5 + static_cast<int>(rng() % (points - 6 - span));
@@ -200,6 +208,35 @@ TEST(DeferredDelassus, AFewActiveRowsFormWWhenTheDenseStepAsksForIt) {
   }
 }
 
+TEST(DeferredDelassus, RowsOfOtherKindsOnTheSamePointsKeepNothing) {
+  // A second call on the same A whose rows lie on the same points with the same coefficients, but
+  // the fixed point's three rows are a contact now: its equality rows are not the first call's,
+  // so neither W_BB nor W's diagonal is held, and it solves as a fresh solver does.
+  for (int trial = 0; trial < 3; ++trial) {
+    std::mt19937 rng(47 + trial);
+    test::BandMatrix a({{150, 2, true}}, rng);
+    a.setRevision(0);
+    std::mt19937 rows_rng(53 + trial);
+    const test::RowProblem fixed = contactProblem(150, 80, 0.6, rows_rng);
+    rows_rng.seed(53 + trial);
+    const test::RowProblem touching = contactProblem(150, 80, 0.6, rows_rng, 1, /*point_as_contact=*/true);
+    LagrangeMultiplierSolver::Options options;
+    options.contact_tolerance = kTolerance;
+    LagrangeMultiplierSolver solver(options), fresh(options);
+    VecX step = VecX::Zero(fixed.problem.state_size), estimate = step, fresh_estimate = step;
+    solver.solve(fixed.problem, fixed.rows, a, step);
+    solver.solve(touching.problem, touching.rows, a, estimate);
+    EXPECT_FALSE(solver.statistics().held || solver.statistics().block_held) << trial;
+    EXPECT_TRUE(solver.statistics().converged) << trial;
+    fresh.solve(touching.problem, touching.rows, a, fresh_estimate);
+    const double cond = test::compliantCondition(touching, a);
+    const double scale = fresh.multipliers().lpNorm<Eigen::Infinity>();
+    EXPECT_LE((solver.multipliers() - fresh.multipliers()).lpNorm<Eigen::Infinity>(),
+              cond * (2.0 * kTolerance + 1e2 * std::numeric_limits<double>::epsilon()) * scale)
+        << trial;
+  }
+}
+
 TEST(DeferredDelassus, FixedPointsAtBothEndsTakeOneEndsColumnsForTheirBlock) {
   // A second fixed point at point 140, far along the body from the first (point 3), as the clamps
   // at a catheter's two ends: W_BB's entries within each end come from A⁻¹'s band, those between
@@ -246,16 +283,18 @@ TEST(DeferredDelassus, TheEstimateOnTheSameWKeepsTheFirstCallsDiagonalAndEqualit
     const VecX estimate_in = estimate;
     solver.solve(p.problem, p.rows, a, estimate);
     const LagrangeMultiplierSolver::Statistics second = solver.statistics();
-    EXPECT_TRUE(second.held) << trial;
+    EXPECT_TRUE(second.held && second.block_held) << trial;
     EXPECT_EQ(second.block_products, 0) << trial;
     EXPECT_EQ(second.inverse_range, first.inverse_range) << trial;
     EXPECT_TRUE((solver.delassusDiagonal().array() == first_diagonal.array()).all()) << trial;
     EXPECT_TRUE(second.converged) << trial;
-    // A fresh solver (nothing held, no warm start) on the estimate's problem.
+    // A fresh solver (nothing held, no warm start) on the estimate's problem: it computes W's
+    // diagonal itself, to the same bits as the one held.
     LagrangeMultiplierSolver fresh(options);
     VecX fresh_estimate = estimate_in;
     fresh.solve(p.problem, p.rows, a, fresh_estimate);
-    EXPECT_FALSE(fresh.statistics().held) << trial;
+    EXPECT_FALSE(fresh.statistics().held || fresh.statistics().block_held) << trial;
+    EXPECT_TRUE((solver.delassusDiagonal().array() == fresh.delassusDiagonal().array()).all()) << trial;
     const double cond = test::compliantCondition(p, a);
     const double scale = fresh.multipliers().lpNorm<Eigen::Infinity>();
     const double difference = (solver.multipliers() - fresh.multipliers()).lpNorm<Eigen::Infinity>();

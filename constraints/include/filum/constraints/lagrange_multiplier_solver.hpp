@@ -155,6 +155,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     bool equality_block_band = false;  // with contacts: W_BB⁻¹ (the equality rows' steps) through A's band
     int block_products = 0;     // deferred: W_BB's columns by products through the band (0: from A⁻¹'s band, or held)
     bool held = false;          // deferred: W's diagonal kept from the last call on the same W (the estimate)
+    bool block_held = false;    // deferred: W_BB and its factors kept from the last call on the same W
   };
 
   LagrangeMultiplierSolver();
