@@ -1260,9 +1260,10 @@ void LagrangeMultiplierSolver::solveWithNewton(const ConstraintProblem& problem,
   BandProductDelassus band{*this, problem, rows};
   DeferredDelassus w(*this, problem, rows, inverse);
   if (deferred) {
-    // W_BB and its factors as the last call left them when it is the same W (same_w, step 1).
-    const bool same_w = newton_key_ == equality_block_key_;
-    if (!(equality_block_held_ && same_w)) {
+    // W_BB and its factors as the last call left them on the same W (the same newton_key_: no
+    // call since on another W, solve()).
+    const bool same_key = newton_key_ == equality_block_key_;
+    if (!(equality_block_held_ && same_key)) {
       factorEqualityBlock(rows, band, &problem, &inverse);
     } else {
       stats_.equality_block_band = equality_by_band_;

@@ -153,7 +153,7 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
     int point_columns = 0;      // columns A⁻¹ E_p solved for points newly touched (3 per point)
     bool equality_band = false;  // equality rows only, solved through A's band (W never formed)
     bool equality_block_band = false;  // with contacts: W_BB⁻¹ (the equality rows' steps) through A's band
-    int block_products = 0;     // deferred: W_BB's columns by products through the band (0: from A⁻¹'s band, or held)
+    int block_products = 0;     // deferred: W_BB's columns by band products (0: from A⁻¹'s band, or held)
     bool held = false;          // deferred: W's diagonal kept from the last call on the same W (the estimate)
     bool block_held = false;    // deferred: W_BB and its factors kept from the last call on the same W
   };
@@ -328,7 +328,8 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   // What a deferred call left that the next call on the same W (same_w: the step's error estimate
   // after the step) would compute again, bit for bit, from the same A and rows: W's diagonal from
   // A⁻¹'s band (band_diagonal_held_, with that call's far_rows and inverse_range for the stats)
-  // and W_BB of the equality rows from band products, factored (equality_block_held_).
+  // and W_BB of the equality rows (from A⁻¹'s band or band products), factored
+  // (equality_block_held_).
   bool band_diagonal_held_ = false;
   bool equality_block_held_ = false;
   long equality_block_key_ = -1;  // newton_key_ of the call that factored it

@@ -8,9 +8,10 @@
 //
 // Crout order (the envelope form of Doolittle's algorithm), for i = 0 .. n − 1 and
 // j = first(i) .. i − 1, with k over max(first(i), first(j)) .. j − 1:
-//   L_ij = (K_ij − Σ_k L_ik U_kj) / U_jj   (times 1/U_jj, formed once per pivot),     U_ji = K_ji − Σ_k L_jk U_ki,
+//   L_ij = (K_ij − Σ_k L_ik U_kj) / U_jj,     U_ji = K_ji − Σ_k L_jk U_ki,
 //   U_ii = K_ii − Σ_{k = first(i)}^{i−1} L_ik U_ki.
-// Both sums run over contiguous memory (a row of L, a column of U).
+// Both sums run over contiguous memory (a row of L, a column of U); the division is a product with
+// 1/U_jj, formed once per pivot.
 //
 // Without pivoting the factorization needs pivots bounded away from zero relative to their rows.
 // Symmetric quasi-definite matrices have an LDLᵀ factorization in any order (Vanderbei, SIAM J.
