@@ -888,24 +888,9 @@ double LagrangeMultiplierSolver::pointBlockEntry(const ConstraintRows& rows, int
 
 double LagrangeMultiplierSolver::inverseBandDiagonal(const ConstraintRows& rows, int r) const {
   if (far_row_[r] >= 0) return far_diagonal_[far_row_[r]];
-  double sum = 0.0;
-  for (int t = rows.begin(r); t < rows.end(r); ++t) {
-    const int body = point_body_[rows.point(t)];
-    const BandBlocks& band = inverse_band_layout_[body];
-    const std::vector<Eigen::Matrix3d>& z = inverse_band_[body];
-    const int range = inverse_range_[body];
-    const int offset = problem_offset_[body];
-    const int gt = band.point_group[rows.point(t) - offset];
-    for (int u = rows.begin(r); u < rows.end(r); ++u) {
-      if (point_body_[rows.point(u)] != body) continue;  // (A⁻¹ is block diagonal over the bodies)
-      const int gu = band.point_group[rows.point(u) - offset];
-      // Block (gt, gu): stored as (max, min), the one above the diagonal its transpose.
-      const Eigen::Matrix3d& block = z[static_cast<std::size_t>(std::max(gt, gu)) * (range + 1) +
-                                       (std::min(gt, gu) - std::max(gt, gu) + range)];
-      sum += gt >= gu ? rows.coeff(t).dot(block * rows.coeff(u)) : rows.coeff(u).dot(block * rows.coeff(t));
-    }
-  }
-  return sum;
+  double entry = 0.0;
+  inverseBandEntry(rows, r, r, entry);  // (a row not far lies within the range on every body)
+  return entry;
 }
 
 bool LagrangeMultiplierSolver::inverseBandEntry(const ConstraintRows& rows, int r, int k, double& entry) const {
@@ -1262,17 +1247,15 @@ void LagrangeMultiplierSolver::solveWithNewton(const ConstraintProblem& problem,
   if (deferred) {
     // W_BB and its factors as the last call left them on the same W (the same newton_key_: no
     // call since on another W, solve()).
-    const bool same_key = newton_key_ == equality_block_key_;
-    if (!(equality_block_held_ && same_key)) {
+    if (newton_key_ != equality_block_key_) {
       factorEqualityBlock(rows, band, &problem, &inverse);
     } else {
       stats_.equality_block_band = equality_by_band_;
       stats_.block_held = true;
     }
-    equality_block_held_ = true;
     equality_block_key_ = newton_key_;
   } else {
-    equality_block_held_ = false;
+    equality_block_key_ = -1;  // (newton_key_ >= 0: kept for no call)
     w.matrix();  // (formed in step 2)
     factorEqualityBlock(rows, dense);
   }

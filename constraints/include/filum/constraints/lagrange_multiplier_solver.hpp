@@ -329,10 +329,9 @@ class LagrangeMultiplierSolver final : public ConstraintSolver {
   // after the step) would compute again, bit for bit, from the same A and rows: W's diagonal from
   // A⁻¹'s band (band_diagonal_held_, with that call's far_rows and inverse_range for the stats)
   // and W_BB of the equality rows (from A⁻¹'s band or band products), factored
-  // (equality_block_held_).
+  // (equality_block_key_: the newton_key_ of the deferred call that left it, −1 for none).
   bool band_diagonal_held_ = false;
-  bool equality_block_held_ = false;
-  long equality_block_key_ = -1;  // newton_key_ of the call that factored it
+  long equality_block_key_ = -1;
   int held_far_rows_ = 0, held_inverse_range_ = 0;
   // Structure of the last assembled W: factors (anchor, direction) per row and the mode.
   std::vector<int> last_factor_start_, last_factor_anchor_;
