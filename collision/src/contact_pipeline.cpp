@@ -65,7 +65,7 @@ void ContactPipeline::init(const Scene& scene) {
   findTubes();
   // Margin: contacts are kept up to half the smallest radius of gap (beyond the sweep).
   double smallest = std::numeric_limits<double>::infinity();
-  for (const SphereCollisionModel* m : models_) smallest = std::min(smallest, m->radius());
+  for (const SphereCollisionModel* m : models_) smallest = std::min(smallest, m->smallestRadius());
   margin_ = settings_.margin >= 0.0 ? settings_.margin : (std::isfinite(smallest) ? 0.5 * smallest : 0.0);
   broad_phase_ = UniformGridBroadPhase(settings_.cell_size);
   contacts_.clear();
@@ -172,7 +172,7 @@ void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double 
       if (!model.mapping().joinsNext(k)) continue;  // a cut: no chord across it
       const Vec3 a0 = x.row(k).transpose(), a1 = x.row(k + 1).transpose();
       const Vec3 b0 = a0 + sweep * v.row(k).transpose(), b1 = a1 + sweep * v.row(k + 1).transpose();
-      chords_.push_back(sweptChordBound(a0, a1, b0, b1, model.radius() + 0.5 * margin_));
+      chords_.push_back(sweptChordBound(a0, a1, b0, b1, model.chordRadius(k) + 0.5 * margin_));
       chord_owner_.emplace_back(m, k);
     }
   }
@@ -385,7 +385,7 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
       if (!model.mapping().joinsNext(k)) continue;  // a cut: no chord across it
       const Vec3 a0 = start.row(k).transpose(), a1 = start.row(k + 1).transpose();
       const Vec3 b0 = end.row(k).transpose(), b1 = end.row(k + 1).transpose();
-      end_chords_.push_back(sweptChordBound(a0, a1, b0, b1, depth_test ? keep * model.radius() : 0.0));  // centre lines
+      end_chords_.push_back(sweptChordBound(a0, a1, b0, b1, depth_test ? keep * model.chordRadius(k) : 0.0));  // centre lines
     }
   }
   if (depth_test && leftLumen()) return Miss::kOverlapOrSlide;
@@ -410,14 +410,15 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
                      after_centers_[mb].row(l).transpose(), after_centers_[mb].row(l + 1).transpose()};
     // Centre lines meet: closer than a thousandth of the radius at a coplanarity root (strands in
     // contact stay two radii apart; only a pass-through brings the lines together).
-    if (firstSegmentContact(sa, sb, 1e-3 * std::min(a.radius(), b.radius()))) return Miss::kPassThrough;
+    if (firstSegmentContact(sa, sb, 1e-3 * std::min(a.smallestRadius(), b.smallestRadius()))) return Miss::kPassThrough;
     // Overlap: the step brought the centre lines closer than (1 − p) R and closer than at its
     // start. The step's contacts hold their pairs to within Baumgarte's correction of R = r_a +
     // r_b; a pair this deep was not among them (it came into contact within the step, e.g. two
     // threads closing like scissors along their length) or slid out of its rows' normals.
     if (!depth_test || miss != Miss::kNone) continue;
-    const double end = closestPointsOnSegments(sa.end0, sa.end1, sb.end0, sb.end1).distance;
-    if (end < keep * (a.radius() + b.radius()) &&
+    const SegmentClosestPoints end_points = closestPointsOnSegments(sa.end0, sa.end1, sb.end0, sb.end1);
+    const double end = end_points.distance;
+    if (end < keep * (a.chordRadius(k, end_points.s) + b.chordRadius(l, end_points.t)) &&
         end < closestPointsOnSegments(sa.start0, sa.start1, sb.start0, sb.start1).distance)
       miss = Miss::kOverlapOrSlide;
   }
@@ -459,8 +460,7 @@ bool ContactPipeline::leftLumen() const {
     if (t < 0) continue;
     const SphereCollisionModel& inner = *models_[m];
     const SphereCollisionModel& tube = *models_[t];
-    const double clearance = tube.lumenRadius() - inner.radius();
-    const double allowed = (1.0 + settings_.max_penetration) * clearance;
+    const double lumen = tube.lumenRadius(), overshoot = 1.0 + settings_.max_penetration;
     const std::vector<TubePlace>& place = place_[m];
     axis_bounds_.build(after_centers_[t], tube.sphereCount());
     start_axis_bounds_.build(tube.centers(), tube.sphereCount());
@@ -470,7 +470,7 @@ bool ContactPipeline::leftLumen() const {
       const AxisPoint end = nearestAxisPoint(after_centers_[t], tube.mapping(), after_centers_[m].row(k).transpose(),
                                              &axis_bounds_, hint);
       if (end.chord >= 0) hint = end.chord;
-      if (end.chord < 0 || end.distance <= allowed) continue;
+      if (end.chord < 0 || end.distance <= overshoot * (lumen - inner.radius(k))) continue;  // (R_in − r_k) the clearance
       const AxisPoint start = nearestAxisPoint(tube.centers(), tube.mapping(), inner.centers().row(k).transpose(),
                                                &start_axis_bounds_, end.chord);
       if (end.distance > start.distance) return true;

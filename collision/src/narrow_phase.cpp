@@ -114,7 +114,6 @@ void keepSpanEnds(ContactSet& out, std::size_t first) {
 
 void findObstacleContacts(const SphereCollisionModel& model, int model_index, const Obstacle& obstacle,
                           int obstacle_index, const NarrowPhaseSettings& settings, ContactSet& out) {
-  const double r = model.radius();
   const double mu = obstacle.friction().value_or(settings.friction);
   const double surface_speed = obstacle.speed();
   const std::size_t first = out.size();
@@ -122,6 +121,7 @@ void findObstacleContacts(const SphereCollisionModel& model, int model_index, co
   for (int k = 0; k < model.sphereCount(); ++k) {
     // Reach of the sphere during the step: d − r <= margin + (|v_k| + u) h.
     const double reach = settings.margin + (speed(model, k) + surface_speed) * settings.time_step;
+    const double r = model.radius(k);
     if (obstacle.passesThrough(model.curve(), model.mapping().abscissas()[k])) continue;
     if (!obstacle.sample(center(model, k), r + reach, sample)) continue;
     if (sample.distance - r > reach) continue;
@@ -148,8 +148,9 @@ bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const S
   const Vec3 p0 = center(a, k), p1 = center(a, k + 1), q0 = center(b, l), q1 = center(b, l + 1);
   const SegmentClosestPoints cp = closestPointsOnSegments(p0, p1, q0, q1);
 
-  // Continuous detection: the gap can shrink by at most the largest relative speed times h.
-  const double radius = a.radius() + b.radius();
+  // Continuous detection: the gap can shrink by at most the largest relative speed times h. The
+  // radii at the closest points (a capsule's, or a frustum's where the section steps).
+  const double radius = a.chordRadius(k, cp.s) + b.chordRadius(l, cp.t);
   const double sweep = (std::max(speed(a, k), speed(a, k + 1)) + std::max(speed(b, l), speed(b, l + 1))) *
                        settings.time_step;
   if (cp.distance - radius > settings.margin + sweep) return false;
@@ -256,7 +257,8 @@ AxisPoint nearestAxisPoint(const Points& axis, const SphereSamplingMapping& samp
 
 TubePlace placeInTube(const AxisPoint& axis, const SphereCollisionModel& tube) {
   if (axis.chord >= 0)
-    return axis.distance < 0.5 * (tube.lumenRadius() + tube.radius()) ? TubePlace::kInside : TubePlace::kOutside;
+    return axis.distance < 0.5 * (tube.lumenRadius() + tube.chordRadius(axis.chord, axis.u)) ? TubePlace::kInside
+                                                                                             : TubePlace::kOutside;
   // In the opening: the centre within the lumen's radius of the end chord's line (at most its
   // own radius into the rim, which the lumen's rows then push back in); farther out, the rim and
   // the outer surface are touched as usual.
@@ -266,7 +268,6 @@ TubePlace placeInTube(const AxisPoint& axis, const SphereCollisionModel& tube) {
 void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const SphereCollisionModel& tube,
                        int model_tube, double friction, const NarrowPhaseSettings& settings, ContactSet& out,
                        std::vector<TubePlace>& place, AxisBounds& bounds) {
-  const double clearance = tube.lumenRadius() - inner.radius();  // R_in − r
   const std::size_t first = out.size();
   double tube_speed = 0.0;  // the largest speed of the tube's centre line
   for (int l = 0; l < tube.sphereCount(); ++l) tube_speed = std::max(tube_speed, speed(tube, l));
@@ -280,7 +281,8 @@ void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const
     place[k] = placeInTube(axis, tube);
     if (place[k] != TubePlace::kInside) continue;  // beyond the tube's ends, or beside it
     const double reach = settings.margin + (speed(inner, k) + tube_speed) * settings.time_step;
-    if (clearance - axis.distance > reach) continue;  // g = (R_in − r) − d
+    const double clearance = tube.lumenRadius() - inner.radius(k);  // R_in − r_k
+    if (clearance - axis.distance > reach) continue;  // g = (R_in − r_k) − d
     const int l = axis.chord;
     const Vec3 y0 = center(tube, l), y1 = center(tube, l + 1);
     const Vec3 y = y0 + axis.u * (y1 - y0);

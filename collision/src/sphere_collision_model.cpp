@@ -34,10 +34,24 @@ void SphereCollisionModel::init(const Scene& scene) {
   body_index_ = static_cast<int>(std::find(bodies.begin(), bodies.end(), body) - bodies.begin());
   point_offset_ = curve_->offset();
   radius_ = settings_.radius > 0.0 ? settings_.radius : curve_->radius();
-  const double spacing = settings_.spacing > 0.0 ? settings_.spacing : radius_;
-  if (spacing > 2.0 * radius_)
+  smallest_radius_ = radius_;
+  // A radius given here holds all along; else the body's section, where it changes along it.
+  varies_ = settings_.radius == 0.0 && curve_->radiusVaries();
+  if (varies_) {
+    // The section is the same between two breakpoints (a rod's nodes): read at each and halfway.
+    const std::vector<double>& breaks = curve_->basis().breakpoints();
+    smallest_radius_ = radius_ = curve_->radiusAt(0.0);
+    for (std::size_t i = 0; i < breaks.size(); ++i)
+      for (const double s : {breaks[i], i + 1 < breaks.size() ? 0.5 * (breaks[i] + breaks[i + 1]) : breaks[i]}) {
+        radius_ = std::max(radius_, curve_->radiusAt(s));
+        smallest_radius_ = std::min(smallest_radius_, curve_->radiusAt(s));
+      }
+  }
+  const double spacing = settings_.spacing > 0.0 ? settings_.spacing : smallest_radius_;
+  if (spacing > 2.0 * smallest_radius_)
     throw SceneError(origin() + "/spacing",
-                     "a spacing <= 2 radius (" + std::to_string(2.0 * radius_) + " m) so that neighbouring spheres touch",
+                     std::string("a spacing <= 2 radius (") + std::to_string(2.0 * smallest_radius_) + " m" +
+                         (varies_ ? ", the body's thinnest section" : "") + ") so that neighbouring spheres touch",
                      std::to_string(spacing) + " m");
   // Checked before the mapping allocates its K ≈ L / h + 1 spheres (a rod's ⌈ℓ_p / h⌉ on each of
   // its pieces: at most one sphere a piece more, within the mapping's own 4× margin).
@@ -49,8 +63,10 @@ void SphereCollisionModel::init(const Scene& scene) {
                          " spheres along the thread (sphere_sampling_mapping.hpp: every step visits each sphere)",
                      describeJson(std::floor(spheres)) + " spheres of spacing " + describeJson(spacing) + " m on " +
                          describeJson(rest_length) + " m");
-  if (settings_.lumen_radius > 0.0 && !(settings_.lumen_radius < radius_))
-    throw SceneError(origin() + "/lumen_radius", "a lumen radius below the tube's outer radius " + describeJson(radius_) + " m",
+  if (settings_.lumen_radius > 0.0 && !(settings_.lumen_radius < smallest_radius_))
+    throw SceneError(origin() + "/lumen_radius",
+                     "a lumen radius below the tube's outer radius " + describeJson(smallest_radius_) + " m" +
+                         (varies_ ? " (its thinnest section)" : ""),
                      describeJson(settings_.lumen_radius) + " m");
   if (settings_.lumen_friction && settings_.lumen_radius == 0.0)
     throw SceneError(origin() + "/lumen_friction", "a \"lumen_radius\" beside it (only a tube has a lumen)", "none");
@@ -61,6 +77,14 @@ void SphereCollisionModel::init(const Scene& scene) {
   mapping_->reserve(capacity);
   centers_.resize(capacity, 3);
   velocities_.resize(capacity, 3);
+  if (varies_) sphere_radii_.resize(capacity);
+  updateRadii();
+}
+
+void SphereCollisionModel::updateRadii() {
+  if (!varies_) return;
+  const std::vector<double>& s = mapping_->abscissas();
+  for (std::size_t k = 0; k < s.size(); ++k) sphere_radii_[k] = curve_->radiusAt(s[k]);
 }
 
 void SphereCollisionModel::update(const SceneState& s) {
@@ -72,7 +96,9 @@ void SphereCollisionModel::update(const SceneState& s) {
     mapping_->reserve(2 * count);
     centers_.resize(2 * count, 3);
     velocities_.resize(2 * count, 3);
+    if (varies_) sphere_radii_.resize(2 * count);
   }
+  updateRadii();
   mapping_->apply(q, centers_.topRows(count));
   mapping_->applyJ(q, v, velocities_.topRows(count));
 }

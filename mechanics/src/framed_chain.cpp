@@ -76,6 +76,7 @@ FramedChain::FramedChain(Points nodes, double radius, std::vector<Section> secti
     node_abscissas_.push_back((arc += l) / length);
   }
   node_abscissas_.back() = 1.0;
+  for (const Section& section : sections_) radius_varies_ = radius_varies_ || section.radius != radius_;
   Vec3 previous = Vec3::UnitZ();
   Eigen::Quaterniond frame = Eigen::Quaterniond::Identity();
   for (int i = 0; i + 1 < n; ++i) {
@@ -219,6 +220,18 @@ int FramedChain::segmentAt(double s) const {
   BasisRow row;
   basis_->evaluate(s, row);  // degree 1: the support is the segment's two nodes
   return std::clamp(row.first, 0, segmentCount() - 1);
+}
+
+double FramedChain::radiusAt(double s) const {
+  if (!radius_varies_) return radius_;
+  // node_abscissas_[i] <= s < node_abscissas_[i + 1] on segment i; at an interior node i both
+  // segment i − 1 and segment i meet.
+  const int segments = segmentCount();
+  const auto above = std::upper_bound(node_abscissas_.begin(), node_abscissas_.end(), s);
+  const int segment = std::clamp(static_cast<int>(above - node_abscissas_.begin()) - 1, 0, segments - 1);
+  double r = sections_[segment].radius;
+  if (segment > 0 && s == node_abscissas_[segment]) r = std::max(r, sections_[segment - 1].radius);
+  return r;
 }
 
 void FramedChain::addTorque(const SceneState& st, double s, const Vec3& torque, VecX& B) const {

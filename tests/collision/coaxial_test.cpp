@@ -152,6 +152,40 @@ TEST(Coaxial, WireRestsOnTheLumenFloorAndTheLumenCarriesItsWeight) {
   EXPECT_LT(std::abs(meanAxialVelocity(wire, s)), 1e-9);
 }
 
+TEST(Coaxial, AWireWithAThinTipRestsAtEachSectionsClearanceFromTheAxis) {
+  // The wire's distal half a thin tip ("spans": radius 0.3 mm against 0.445 mm) and soft (E = 2e7
+  // Pa, so that it comes down within the tube): each sphere's clearance is R_in − r of its own
+  // section, so the shaft lies 0.155 mm and the tip 0.3 mm below the catheter's axis — where one
+  // radius for the body held the tip at the shaft's 0.155 mm. The tip comes down from the
+  // shaft's level over the lift-off length of a heavy strip over a step of δ = 0.145 mm,
+  // (72 E I δ / w)^{1/4} ≈ 2.3 cm (E I = 6.2e-7 N m², w = 0.0244 N/m, the shaft's; the tip's
+  // lighter, stiffer-for-its-weight section is shorter still): from s = 0.85 (2.8 cm past the
+  // step) it lies on the floor.
+  constexpr double kTip = 3e-4;
+  json document = coaxialScene(0.0);
+  json& wire = document["nodes"][1]["components"];
+  wire[0]["spans"] = json::array({{{"from", 0.5}, {"to", 1.0}, {"radius", kTip}}});
+  wire[1]["youngs_modulus"] = 2e7;
+  auto scene = load(document);
+  for (int k = 0; k < 1000; ++k) ASSERT_TRUE(scene->step().ok) << "step " << k;
+  const CurveBody& tube = *scene->bodies()[0]->curve();
+  const CurveBody& curve = *scene->bodies()[1]->curve();
+  const SceneState& s = scene->state();
+  // As WireRestsOnTheLumenFloor…: the kept contacts held to the solve's tolerance, the points
+  // between them no further out; 1e-4 of the clearance asserted.
+  for (int k = 0; k <= 400; ++k) {
+    const double u = k / 400.0, clearance = kLumenRadius - curve.radiusAt(u);
+    const double d = distanceToAxis(tube, s, curve.position(s.q, u));
+    EXPECT_LE(d, clearance * (1.0 + 1e-4)) << "s = " << u;
+    if (u < 0.5) {
+      EXPECT_NEAR(d, kLumenRadius - kWireRadius, 1e-4 * (kLumenRadius - kWireRadius)) << "s = " << u;
+    }
+    if (u >= 0.85) {
+      EXPECT_NEAR(d, kLumenRadius - kTip, 1e-4 * (kLumenRadius - kTip)) << "s = " << u;
+    }
+  }
+}
+
 /// The wire's mean axial displacement 0.5 s after the pull began (m), and its axial speed then.
 struct Slide {
   double displacement = 0.0, speed = 0.0;

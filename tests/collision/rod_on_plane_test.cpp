@@ -59,6 +59,53 @@ TEST(RodOnPlane, KeepsOneContactPerVertexAndNoSphereSinks) {
   EXPECT_NEAR(highest, r, 1e-6 * r);
 }
 
+TEST(RodOnPlane, AThickShaftAndAThinTipEachRestOnTheirOwnRadius) {
+  // A rod whose second half is a thin tip ("spans": radius 0.4 mm against the shaft's 1 mm) on a
+  // table: each sphere takes its section's radius (at the node between the two, the larger), so
+  // the shaft lies one shaft radius up and the tip, where it has come down, one tip radius —
+  // where a single radius for the body held the tip 0.6 mm above the table. The tip comes down
+  // from the shaft's height over the length a heavy elastic strip lifts off a step of δ = 0.6 mm,
+  // (72 E I δ / w)^{1/4} ≈ 4.6 cm (E I = 6e-7 N m², w = ρ A g = 5.7e-3 N/m): from s = 0.8 on
+  // (6 cm past the step) it lies flat.
+  const double shaft = 1e-3, tip = 4e-4;
+  const json document = {
+      {"dt", 1e-3},
+      {"gravity", {0, 0, -9.81}},
+      {"integrator", {{"type", "ImplicitEuler"}}},
+      {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}}},
+      {"collision", {{"type", "ContactPipeline"}, {"response", "unilateral"}, {"friction", 0.3}}},
+      {"nodes",
+       {{{"name", "rod"},
+         {"components",
+          {{{"type", "FramedChain"}, {"nodes", {{"from", {0, 0, 1.5e-3}}, {"to", {0.2, 0, 1.5e-3}}, {"count", 21}}}, {"radius", shaft},
+            {"density", 1150}, {"spans", {{{"from", 0.5}, {"to", 1.0}, {"radius", tip}}}}},
+           {{"type", "ChainElasticity"}, {"youngs_modulus", 3e7}},
+           {{"type", "ViscousDamping"}, {"coefficient", 5.0}},
+           {{"type", "SphereCollisionModel"}}}}},
+        {{"name", "table"}, {"components", {{{"type", "PlaneObstacle"}, {"point", {0, 0, 0}}, {"normal", {0, 0, 1}}}}}}}}};
+  auto scene = loadScene(document, "rod with a thin tip on a plane", app::makeFactory());
+  scene->init();
+  for (int k = 0; k < 1000; ++k) ASSERT_TRUE(scene->step().ok) << "step " << k;
+  const auto& pipeline = dynamic_cast<const ContactPipeline&>(*scene->collisionPipeline());
+  const auto& model = *pipeline.models().front();
+  EXPECT_EQ(model.radius(), shaft);
+  EXPECT_EQ(model.smallestRadius(), tip);
+  const CurveBody& rod = *scene->bodies().front()->curve();
+  // The solve holds the kept contacts to its tolerance (1e-6 of the radius, as above), and a
+  // straight segment's gap is linear between its vertices: no point of the centre line below its
+  // own section's radius, and where the rod lies flat, exactly that high.
+  for (int k = 0; k <= 2000; ++k) {
+    const double s = k / 2000.0, z = rod.position(scene->state().q, s).z(), r = rod.radiusAt(s);
+    EXPECT_GE(z, r * (1.0 - 1e-6)) << "s = " << s;
+    if (s < 0.5) {
+      EXPECT_NEAR(z, shaft, 1e-6 * shaft) << "s = " << s;
+    }
+    if (s >= 0.8) {
+      EXPECT_NEAR(z, tip, 1e-6 * tip) << "s = " << s;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace filum::collision
 

@@ -7,6 +7,7 @@
 #include "filum/core/curve_body.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "filum/core/scene_error.hpp"
@@ -121,6 +122,39 @@ TEST(GeneralizedCylinder, VerticesLieAtTheRequestedRadiusFromTheAxis) {
   }
   EXPECT_LE(worst, 1e-9);
   expectClosedOrientedManifold(mesh);
+}
+
+TEST(GeneralizedCylinder, ARodsSpansGiveItsDefaultSkinTheirRadii) {
+  // A FramedChain whose last quarter is a thin tip ("spans"): without a radius of its own, the
+  // skin takes each segment's radius at the segment's middle and joins them by the profile's
+  // monotone cubic — a taper over the one segment that holds the step, no overshoot.
+  const double shaft = 1e-3, tip = 4e-4, kEpsilon = std::numeric_limits<double>::epsilon();
+  const json document = {
+      {"name", "visual test"},
+      {"dt", 1e-4},
+      {"gravity", {0.0, 0.0, 0.0}},
+      {"nodes",
+       json::array({{{"name", "rod"},
+                     {"components",
+                      json::array({{{"type", "FramedChain"}, {"nodes", {{"from", {0, 0, 0}}, {"to", {0.2, 0, 0}}, {"count", 21}}},
+                                    {"radius", shaft}, {"density", 1150}, {"spans", {{{"from", 0.75}, {"to", 1.0}, {"radius", tip}}}}},
+                                   {{"type", "GeneralizedCylinder"}}})}}})}};
+  const Loaded l = load(document);
+  const RadiusProfile& profile = skinOf(l).profile();
+  // Segments of 1 cm (u steps of 0.05): the shaft's last middle at u = 0.725, the tip's first at 0.775.
+  for (int k = 0; k <= 1000; ++k) {
+    const double u = k / 1000.0, r = profile.radius(u);
+    if (u <= 0.725) {
+      EXPECT_DOUBLE_EQ(r, shaft) << "u = " << u;
+    }
+    if (u >= 0.775) {
+      EXPECT_DOUBLE_EQ(r, tip) << "u = " << u;
+    }
+    // (Between equal knots the cubic's weights sum to 1 within a few ulps.)
+    EXPECT_LE(r, shaft * (1.0 + 4.0 * kEpsilon)) << "u = " << u;
+    EXPECT_GE(r, tip * (1.0 - 4.0 * kEpsilon)) << "u = " << u;
+  }
+  EXPECT_DOUBLE_EQ(profile.maxRadius(), shaft);
 }
 
 TEST(GeneralizedCylinder, RingsSitAtEqualArcLengthOnTheRestCurve) {

@@ -10,6 +10,30 @@
 
 namespace filum::visual {
 
+namespace {
+
+/// The body's own section as a profile: its radius, or where the section changes along it (a rod's
+/// spans), the radius of each piece between two breakpoints at the piece's middle, joined by the
+/// profile's monotone cubic (a step between two pieces is drawn as a taper over one piece).
+RadiusProfile bodyProfile(const CurveBody& body) {
+  if (!body.radiusVaries()) return RadiusProfile(body.radius());
+  const std::vector<double> breaks = body.basis().breakpoints();
+  std::vector<double> u{0.0}, r;
+  for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+    const double middle = 0.5 * (breaks[i] + breaks[i + 1]);
+    if (middle > u.back()) u.push_back(middle);
+  }
+  u.push_back(1.0);
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    // The ends take their piece's radius (at a breakpoint, radiusAt gives the larger side).
+    const double at = i == 0 ? u[1] : i + 1 == u.size() ? u[i - 1] : u[i];
+    r.push_back(body.radiusAt(at));
+  }
+  return RadiusProfile(std::move(u), std::move(r));
+}
+
+}  // namespace
+
 std::unique_ptr<GeneralizedCylinderModel> GeneralizedCylinderModel::fromParams(const Params& p) {
   Options o;
   // Limits of a skin mesh (rings × sides vertices, rebuilt every frame): as many rings as curve
@@ -53,7 +77,7 @@ void GeneralizedCylinderModel::init(const Scene&) {
                                    " vertices (rings × sides; give fewer \"samples\" or \"sides\")",
                      std::to_string(all_rings) + " rings × " + std::to_string(options_.sides) + " sides on " +
                          body().describe());
-  if (!options_.profile) options_.profile = RadiusProfile(spline->radius());
+  if (!options_.profile) options_.profile = bodyProfile(*spline);
 
   // Rings at equal arc length on the rest curve: u_k = ℓ_k / L of the rest length.
   const geometry::ArcLengthParameterization rest(basis, spline->initialPositions());

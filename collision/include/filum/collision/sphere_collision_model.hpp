@@ -12,6 +12,14 @@
 // cannot bend tighter than its own radius) points closer than πr along the curve may be within
 // 2r of each other without touching; the default exclusion 4r leaves a margin.
 //
+// A body whose cross-section changes along it (a rod's spans: a thick shaft, a thin tip;
+// CurveBody::radiusVaries) gives each sphere the radius at its abscissa (CurveBody::radiusAt,
+// the larger one at a node where two spans meet), and the capsule between two centres tapers
+// linearly from one radius to the other (chordRadius): a cone frustum, whose contacts are taken
+// at the centre lines' closest points as for a capsule — exact where the radii are equal, off by
+// at most |r_k − r_{k+1}| |sin α| (α the frustum's half-angle) where they step, on the one chord
+// that holds the step.
+//
 // Coaxial instruments (a guidewire in a catheter, a coil in a microcatheter): a tube declares the
 // radius of its lumen ("lumen_radius", R_in), and an instrument running in it names the tube's
 // node ("inside"). The pipeline then holds the instrument's spheres inside the lumen wherever
@@ -19,8 +27,10 @@
 // between the two, which would push them apart.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <memory>
 
@@ -66,7 +76,18 @@ class SphereCollisionModel final : public CollisionModel {
   /// Index of the body in Scene::bodies() and of its first point in the state.
   int bodyIndex() const { return body_index_; }
   int pointOffset() const { return point_offset_; }
+  /// The largest sphere's radius (m): the body's radius, unless its section changes along it.
   double radius() const { return radius_; }
+  /// The smallest sphere's radius (m), at the body's initial sampling.
+  double smallestRadius() const { return smallest_radius_; }
+  /// Sphere k's radius (m), as of the last update.
+  double radius(int k) const { return varies_ ? sphere_radii_[k] : radius_; }
+  /// The radius (m) of chord k's capsule at t ∈ [0, 1] from centre k to centre k + 1.
+  double chordRadius(int k, double t) const {
+    return varies_ ? (1.0 - t) * sphere_radii_[k] + t * sphere_radii_[k + 1] : radius_;
+  }
+  /// The larger of chord k's two radii.
+  double chordRadius(int k) const { return varies_ ? std::max(sphere_radii_[k], sphere_radii_[k + 1]) : radius_; }
   double exclusion() const { return exclusion_; }
   bool selfCollision() const { return settings_.self_collision; }
   /// R_in (m) of the lumen of a tube; 0 for a solid body.
@@ -82,11 +103,17 @@ class SphereCollisionModel final : public CollisionModel {
   const Points& velocities() const { return velocities_; }
 
  private:
+  /// sphere_radii_ from the body's section at the spheres' abscissas (while varies_).
+  void updateRadii();
+
   Settings settings_;
   const CurveBody* curve_ = nullptr;
   int body_index_ = 0;
   int point_offset_ = 0;
   double radius_ = 0.0;
+  double smallest_radius_ = 0.0;
+  bool varies_ = false;               // the spheres' radii follow the body's section (radiusAt)
+  std::vector<double> sphere_radii_;  // per sphere while varies_ (capacity as centers_)
   double exclusion_ = 0.0;
   std::unique_ptr<SphereSamplingMapping> mapping_;
   Points centers_, velocities_;

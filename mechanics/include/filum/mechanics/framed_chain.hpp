@@ -48,7 +48,8 @@ class FramedChain final : public CurveBody {
   /// next's), so that the chain starts untwisted whatever its shape.
   FramedChain(Points nodes, double radius, double mass);
   /// A rod whose cross-section changes along it: each segment's radius (m) and density (kg/m³)
-  /// (a stiff shaft and a soft, thin tip); `radius` is the body's radius for collision and skins.
+  /// (a stiff shaft and a soft, thin tip); `radius` is the body's nominal radius, and collision
+  /// and skins take each segment's own (radiusAt).
   struct Section {
     double radius;
     double density;
@@ -95,6 +96,9 @@ class FramedChain final : public CurveBody {
   // Curve.
   const CurveBasis& basis() const override { return *basis_; }
   double radius() const override { return radius_; }
+  bool radiusVaries() const override { return radius_varies_; }
+  /// The radius of the segment holding s; at a node between two segments, the larger of theirs.
+  double radiusAt(double s) const override;
   double mass() const override { return mass_; }
   bool takesTorques() const override { return true; }
   /// On the frame of the segment holding s (body frame: Q_ω += Rᵀ τ).
@@ -126,6 +130,7 @@ class FramedChain final : public CurveBody {
   std::unique_ptr<CurveBasis> basis_;
   std::vector<double> rest_lengths_, masses_, node_abscissas_;
   std::vector<Section> sections_;  // per segment
+  bool radius_varies_ = false;     // some segment's radius is not radius_
   std::vector<Vec3> inertia_;                  // per segment
   std::vector<Eigen::Quaterniond> initial_frames_;  // per segment
   Points initial_angular_velocities_;  // (n − 1) × 3 (body frame), empty: at rest

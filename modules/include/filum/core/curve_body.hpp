@@ -28,6 +28,12 @@ class CurveBody : public MechanicalState {
   virtual const CurveBasis& basis() const = 0;
   /// Cross-section radius (m), for collision and skinning.
   virtual double radius() const = 0;
+  /// Whether the cross-section changes along the body (radiusAt differs from radius somewhere).
+  virtual bool radiusVaries() const { return false; }
+  /// The cross-section radius (m) at abscissa s ∈ [0, 1]: where the section steps from one radius
+  /// to another (a node between two spans of a rod), the larger, so that what collides or is drawn
+  /// there covers both sides.
+  virtual double radiusAt(double /*s*/) const { return radius(); }
   /// Total mass (kg).
   virtual double mass() const = 0;
 
