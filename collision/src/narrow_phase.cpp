@@ -148,12 +148,12 @@ bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const S
   const Vec3 p0 = center(a, k), p1 = center(a, k + 1), q0 = center(b, l), q1 = center(b, l + 1);
   const SegmentClosestPoints cp = closestPointsOnSegments(p0, p1, q0, q1);
 
-  // Continuous detection: the gap can shrink by at most the largest relative speed times h. The
-  // radii at the closest points (a capsule's, or a frustum's where the section steps).
-  const double radius = a.chordRadius(k, cp.s) + b.chordRadius(l, cp.t);
+  // Continuous detection: the gap can shrink by at most the largest relative speed times h; with
+  // each chord's larger radius, since the closest points may move along a tapered chord within
+  // the step.
   const double sweep = (std::max(speed(a, k), speed(a, k + 1)) + std::max(speed(b, l), speed(b, l + 1))) *
                        settings.time_step;
-  if (cp.distance - radius > settings.margin + sweep) return false;
+  if (cp.distance - (a.chordRadius(k) + b.chordRadius(l)) > settings.margin + sweep) return false;
 
   // One contact per touching point (vertices shared by two chords).
   if (!representsClosestPoint(a, k, cp.s, q0, q1)) return false;
@@ -168,7 +168,7 @@ bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const S
   c.model_b = model_b;
   c.b = b.mapping().chordPoint(b.curve(), l, cp.t);
   c.time = settings.time;
-  c.radius = radius;
+  c.radius = a.chordRadius(k, cp.s) + b.chordRadius(l, cp.t);  // the radii at the closest points
   c.friction = settings.friction;
   // n = (p − q)/|p − q|; centre lines already touching: the common perpendicular, oriented from
   // B's chord midpoint towards A's.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "filum/core/scene_error.hpp"
@@ -224,13 +225,17 @@ int FramedChain::segmentAt(double s) const {
 
 double FramedChain::radiusAt(double s) const {
   if (!radius_varies_) return radius_;
-  // node_abscissas_[i] <= s < node_abscissas_[i + 1] on segment i; at an interior node i both
-  // segment i − 1 and segment i meet.
+  // node_abscissas_[i] <= s < node_abscissas_[i + 1] on segment i. At an interior node both
+  // segments meet: "at" within a few ulps (abscissas <= 1), since an abscissa placed at a node by
+  // another sum (a contact sphere's, from its arc-length table) may differ from it in the last bit.
+  constexpr double kAtNode = 8.0 * std::numeric_limits<double>::epsilon();
   const int segments = segmentCount();
   const auto above = std::upper_bound(node_abscissas_.begin(), node_abscissas_.end(), s);
   const int segment = std::clamp(static_cast<int>(above - node_abscissas_.begin()) - 1, 0, segments - 1);
   double r = sections_[segment].radius;
-  if (segment > 0 && s == node_abscissas_[segment]) r = std::max(r, sections_[segment - 1].radius);
+  if (segment > 0 && std::abs(s - node_abscissas_[segment]) <= kAtNode) r = std::max(r, sections_[segment - 1].radius);
+  if (segment + 1 < segments && std::abs(s - node_abscissas_[segment + 1]) <= kAtNode)
+    r = std::max(r, sections_[segment + 1].radius);
   return r;
 }
 

@@ -153,14 +153,15 @@ TEST(Coaxial, WireRestsOnTheLumenFloorAndTheLumenCarriesItsWeight) {
 }
 
 TEST(Coaxial, AWireWithAThinTipRestsAtEachSectionsClearanceFromTheAxis) {
-  // The wire's distal half a thin tip ("spans": radius 0.3 mm against 0.445 mm) and soft (E = 2e7
-  // Pa, so that it comes down within the tube): each sphere's clearance is R_in − r of its own
-  // section, so the shaft lies 0.155 mm and the tip 0.3 mm below the catheter's axis — where one
-  // radius for the body held the tip at the shaft's 0.155 mm. The tip comes down from the
-  // shaft's level over the lift-off length of a heavy strip over a step of δ = 0.145 mm,
-  // (72 E I δ / w)^{1/4} ≈ 2.3 cm (E I = 6.2e-7 N m², w = 0.0244 N/m, the shaft's; the tip's
-  // lighter, stiffer-for-its-weight section is shorter still): from s = 0.85 (2.8 cm past the
-  // step) it lies on the floor.
+  // The wire's distal half a thin tip ("spans": radius 0.3 mm against 0.445 mm), the whole wire
+  // soft (E = 2e7 Pa, so that the tip comes down within the tube): each sphere's clearance is
+  // R_in − r of its own section, so the shaft lies 0.155 mm and the tip 0.3 mm below the
+  // catheter's axis — where one radius for the body held the tip at the shaft's 0.155 mm. The tip
+  // comes down from the shaft's level over the lift-off length of a heavy strip clamped at a
+  // step of δ = 0.145 mm, (72 E I δ / w)^{1/4}: 2.3 cm with the shaft's E I = 6.2e-7 N m² and
+  // w = 0.0244 N/m, less with the tip's (E I / w ∝ r²): from s = 0.85 (2.8 cm past the step) it
+  // lies on the floor. The tip's moment at the step is below the w ℓ² that would lift the
+  // shaft's last node, so the shaft lies on its floor up to the step.
   constexpr double kTip = 3e-4;
   json document = coaxialScene(0.0);
   json& wire = document["nodes"][1]["components"];

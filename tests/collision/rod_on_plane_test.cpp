@@ -66,7 +66,8 @@ TEST(RodOnPlane, AThickShaftAndAThinTipEachRestOnTheirOwnRadius) {
   // where a single radius for the body held the tip 0.6 mm above the table. The tip comes down
   // from the shaft's height over the length a heavy elastic strip lifts off a step of δ = 0.6 mm,
   // (72 E I δ / w)^{1/4} ≈ 4.6 cm (E I = 6e-7 N m², w = ρ A g = 5.7e-3 N/m): from s = 0.8 on
-  // (6 cm past the step) it lies flat.
+  // (6 cm past the step) it lies flat. The tip's moment at the step is below the w ℓ² that would
+  // lift the shaft's last node, so the shaft lies flat up to the step.
   const double shaft = 1e-3, tip = 4e-4;
   const json document = {
       {"dt", 1e-3},

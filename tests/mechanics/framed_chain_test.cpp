@@ -196,5 +196,25 @@ TEST(FramedChain, RefusesPointChanges) {
   EXPECT_THROW(scene->cut(chain, 0.5), SceneError);
 }
 
+TEST(FramedChain, ASectionsRadiusIsItsSegmentsAndTheLargerAtANodeBetweenTwo) {
+  // Uneven segments (0.3, 0.2, 0.5 m): nodes at s = 0.3 and 0.5. Segment radii 1, 3 and 2 mm.
+  Points nodes(4, 3);
+  nodes << 0, 0, 0, 0.3, 0, 0, 0.5, 0, 0, 1.0, 0, 0;
+  const FramedChain chain(nodes, 1e-3, {{1e-3, 1000.0}, {3e-3, 1000.0}, {2e-3, 1000.0}});
+  EXPECT_TRUE(chain.radiusVaries());
+  EXPECT_EQ(chain.radiusAt(0.0), 1e-3);
+  EXPECT_EQ(chain.radiusAt(0.2), 1e-3);
+  EXPECT_EQ(chain.radiusAt(0.4), 3e-3);
+  EXPECT_EQ(chain.radiusAt(0.7), 2e-3);
+  EXPECT_EQ(chain.radiusAt(1.0), 2e-3);
+  // At a node, and a few ulps either side of it (an abscissa summed another way, as a contact
+  // sphere's from its arc-length table): the larger of the two segments'.
+  for (const double node : {0.3, 0.5})
+    for (const double s : {node, std::nextafter(node, 0.0), std::nextafter(node, 1.0)}) EXPECT_EQ(chain.radiusAt(s), 3e-3) << s;
+  const FramedChain uniform(nodes, 1e-3, {{1e-3, 1000.0}, {1e-3, 1000.0}, {1e-3, 1000.0}});
+  EXPECT_FALSE(uniform.radiusVaries());
+  EXPECT_EQ(uniform.radiusAt(0.3), 1e-3);
+}
+
 }  // namespace
 }  // namespace filum

@@ -126,8 +126,9 @@ TEST(GeneralizedCylinder, VerticesLieAtTheRequestedRadiusFromTheAxis) {
 
 TEST(GeneralizedCylinder, ARodsSpansGiveItsDefaultSkinTheirRadii) {
   // A FramedChain whose last quarter is a thin tip ("spans"): without a radius of its own, the
-  // skin takes each segment's radius at the segment's middle and joins them by the profile's
-  // monotone cubic — a taper over the one segment that holds the step, no overshoot.
+  // skin takes the body's radius at every node (the larger side's at the step) and every
+  // segment's middle, joined by the profile's monotone cubic — the shaft's radius up to the node
+  // of the step, a taper over the first half of the tip's first segment, no overshoot.
   const double shaft = 1e-3, tip = 4e-4, kEpsilon = std::numeric_limits<double>::epsilon();
   const json document = {
       {"name", "visual test"},
@@ -141,10 +142,10 @@ TEST(GeneralizedCylinder, ARodsSpansGiveItsDefaultSkinTheirRadii) {
                                    {{"type", "GeneralizedCylinder"}}})}}})}};
   const Loaded l = load(document);
   const RadiusProfile& profile = skinOf(l).profile();
-  // Segments of 1 cm (u steps of 0.05): the shaft's last middle at u = 0.725, the tip's first at 0.775.
+  // Segments of 1 cm (u steps of 0.05): the step's node at u = 0.75, the tip's first middle at 0.775.
   for (int k = 0; k <= 1000; ++k) {
     const double u = k / 1000.0, r = profile.radius(u);
-    if (u <= 0.725) {
+    if (u <= 0.75) {
       EXPECT_DOUBLE_EQ(r, shaft) << "u = " << u;
     }
     if (u >= 0.775) {

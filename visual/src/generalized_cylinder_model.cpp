@@ -13,21 +13,23 @@ namespace filum::visual {
 namespace {
 
 /// The body's own section as a profile: its radius, or where the section changes along it (a rod's
-/// spans), the radius of each piece between two breakpoints at the piece's middle, joined by the
-/// profile's monotone cubic (a step between two pieces is drawn as a taper over one piece).
+/// spans), knots at every breakpoint and every piece's middle with the body's radius there
+/// (CurveBody::radiusAt: the larger side's at a breakpoint between two sections), joined by the
+/// profile's monotone cubic. A step between two pieces is drawn over the half of the thinner piece
+/// next to it, so that the skin covers the thicker section up to the node, as its spheres do.
 RadiusProfile bodyProfile(const CurveBody& body) {
   if (!body.radiusVaries()) return RadiusProfile(body.radius());
   const std::vector<double> breaks = body.basis().breakpoints();
-  std::vector<double> u{0.0}, r;
-  for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
-    const double middle = 0.5 * (breaks[i] + breaks[i + 1]);
-    if (middle > u.back()) u.push_back(middle);
-  }
-  u.push_back(1.0);
-  for (std::size_t i = 0; i < u.size(); ++i) {
-    // The ends take their piece's radius (at a breakpoint, radiusAt gives the larger side).
-    const double at = i == 0 ? u[1] : i + 1 == u.size() ? u[i - 1] : u[i];
-    r.push_back(body.radiusAt(at));
+  std::vector<double> u, r;
+  auto knot = [&](double at) {
+    if (u.empty() || at > u.back()) {
+      u.push_back(at);
+      r.push_back(body.radiusAt(at));
+    }
+  };
+  for (std::size_t i = 0; i < breaks.size(); ++i) {
+    knot(breaks[i]);
+    if (i + 1 < breaks.size()) knot(0.5 * (breaks[i] + breaks[i + 1]));
   }
   return RadiusProfile(std::move(u), std::move(r));
 }

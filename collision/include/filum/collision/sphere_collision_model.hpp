@@ -14,11 +14,13 @@
 //
 // A body whose cross-section changes along it (a rod's spans: a thick shaft, a thin tip;
 // CurveBody::radiusVaries) gives each sphere the radius at its abscissa (CurveBody::radiusAt,
-// the larger one at a node where two spans meet), and the capsule between two centres tapers
-// linearly from one radius to the other (chordRadius): a cone frustum, whose contacts are taken
-// at the centre lines' closest points as for a capsule — exact where the radii are equal, off by
-// at most |r_k − r_{k+1}| |sin α| (α the frustum's half-angle) where they step, on the one chord
-// that holds the step.
+// the larger one at a node where two spans meet), and the radius along the chord between two
+// centres is interpolated linearly (chordRadius). Thread–thread contacts are taken at the centre
+// lines' closest points with the radii there, as for a capsule: exact where the radii are equal,
+// an approximation on the one chord that holds a step. There the surface is not a true cone
+// frustum (with |r_k − r_{k+1}| >= the chord's length the node's sphere holds its neighbour), and
+// what an obstacle meets (the spheres) and what another thread meets (the interpolated chord) may
+// differ by up to the step |r_k − r_{k+1}|.
 //
 // Coaxial instruments (a guidewire in a catheter, a coil in a microcatheter): a tube declares the
 // radius of its lumen ("lumen_radius", R_in), and an instrument running in it names the tube's
@@ -78,7 +80,7 @@ class SphereCollisionModel final : public CollisionModel {
   int pointOffset() const { return point_offset_; }
   /// The largest sphere's radius (m): the body's radius, unless its section changes along it.
   double radius() const { return radius_; }
-  /// The smallest sphere's radius (m), at the body's initial sampling.
+  /// The thinnest section's radius (m): the body's radius read between and at its breakpoints.
   double smallestRadius() const { return smallest_radius_; }
   /// Sphere k's radius (m), as of the last update.
   double radius(int k) const { return varies_ ? sphere_radii_[k] : radius_; }

@@ -97,7 +97,8 @@ class FramedChain final : public CurveBody {
   const CurveBasis& basis() const override { return *basis_; }
   double radius() const override { return radius_; }
   bool radiusVaries() const override { return radius_varies_; }
-  /// The radius of the segment holding s; at a node between two segments, the larger of theirs.
+  /// The radius of the segment holding s; at a node between two segments (within a few ulps),
+  /// the larger of theirs.
   double radiusAt(double s) const override;
   double mass() const override { return mass_; }
   bool takesTorques() const override { return true; }
