@@ -190,7 +190,7 @@ void ContactPipeline::beginStep(const Scene& scene, const SceneState& s, double 
         if (!model.selfCollision()) continue;
         // Every point of chords k and l is closer than (|k − l| + 1) h along the curve (chords
         // of two strands of a cut thread are not near along it, however close their indices).
-        if (model.mapping().chordDistanceBound(k, l) < model.exclusion()) continue;
+        if (model.mapping().chordDistanceBound(k, l) < model.exclusion(k, l)) continue;
       }
       findChordContact(*models_[ma], ma, k, *models_[mb], mb, l, narrow, contacts_);
     }
@@ -402,7 +402,7 @@ CollisionPipeline::Miss ContactPipeline::missedContact(const SceneState& after) 
     // share a sphere (their centre lines always meet there), and nearer ones than the exclusion.
     if (ma == mb && (!a.selfCollision() ||
                      (a.mapping().strandOf(k) == a.mapping().strandOf(l) && std::abs(k - l) <= 1) ||
-                     a.mapping().chordDistanceBound(k, l) < a.exclusion()))
+                     a.mapping().chordDistanceBound(k, l) < a.exclusion(k, l)))
       continue;
     MovingSegment sa{a.centers().row(k).transpose(), a.centers().row(k + 1).transpose(),
                      after_centers_[ma].row(k).transpose(), after_centers_[ma].row(k + 1).transpose()};

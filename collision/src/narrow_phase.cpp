@@ -160,7 +160,7 @@ bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const S
   if (!representsClosestPoint(b, l, cp.t, p0, p1)) return false;
 
   // Self-collision: skip points closer than the exclusion distance along the curve.
-  if (self && a.mapping().arcDistance(k, cp.s, l, cp.t) < a.exclusion()) return false;
+  if (self && a.mapping().arcDistance(k, cp.s, l, cp.t) < a.exclusion(k, l)) return false;
 
   Contact c;
   c.model_a = model_a;

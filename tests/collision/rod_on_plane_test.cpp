@@ -91,6 +91,12 @@ TEST(RodOnPlane, AThickShaftAndAThinTipEachRestOnTheirOwnRadius) {
   const auto& model = *pipeline.models().front();
   EXPECT_EQ(model.radius(), shaft);
   EXPECT_EQ(model.smallestRadius(), tip);
+  // Self-collision's default exclusion, 4 r of the thicker chord of a pair: the tip's own near
+  // its end, the shaft's at its start and between the two.
+  const int last = model.sphereCount() - 2;
+  EXPECT_EQ(model.exclusion(last, last - 3), 4.0 * tip);
+  EXPECT_EQ(model.exclusion(0, 3), 4.0 * shaft);
+  EXPECT_EQ(model.exclusion(0, last), 4.0 * shaft);
   const CurveBody& rod = *scene->bodies().front()->curve();
   // The solve holds the kept contacts to its tolerance (1e-6 of the radius, as above), and a
   // straight segment's gap is linear between its vertices: no point of the centre line below its

@@ -10,7 +10,9 @@
 // Self-collision skips pairs closer than `exclusion` along the curve: two points of a curve bent
 // with radius of curvature ρ at arc distance Δ are 2ρ sin(Δ/2ρ) apart, so with ρ >= r (a thread
 // cannot bend tighter than its own radius) points closer than πr along the curve may be within
-// 2r of each other without touching; the default exclusion 4r leaves a margin.
+// 2r of each other without touching; the default exclusion 4r leaves a margin. Where the section
+// changes along the body, r is the thicker of the two chords' (a thin tip's own self-contacts
+// are sought as near as its radius allows).
 //
 // A body whose cross-section changes along it (a rod's spans: a thick shaft, a thin tip;
 // CurveBody::radiusVaries) gives each sphere the radius at its abscissa (CurveBody::radiusAt,
@@ -90,7 +92,11 @@ class SphereCollisionModel final : public CollisionModel {
   }
   /// The larger of chord k's two radii.
   double chordRadius(int k) const { return varies_ ? std::max(sphere_radii_[k], sphere_radii_[k + 1]) : radius_; }
-  double exclusion() const { return exclusion_; }
+  /// The arc length (m) along the curve within which two points of chords k and l do not
+  /// collide: the "exclusion" given, else 4 r of the thicker of the two chords (header).
+  double exclusion(int k, int l) const {
+    return varies_ && settings_.exclusion < 0.0 ? 4.0 * std::max(chordRadius(k), chordRadius(l)) : exclusion_;
+  }
   bool selfCollision() const { return settings_.self_collision; }
   /// R_in (m) of the lumen of a tube; 0 for a solid body.
   double lumenRadius() const { return settings_.lumen_radius; }
