@@ -17,6 +17,8 @@ namespace {
 /// (CurveBody::radiusAt: the larger side's at a breakpoint between two sections), joined by the
 /// profile's monotone cubic. A step between two pieces is drawn over the half of the thinner piece
 /// next to it, so that the skin covers the thicker section up to the node, as its spheres do.
+/// (The profile's u is the fraction of the rest arc length; it is the abscissa of a body whose
+/// knots sit at its rest arc lengths, as a FramedChain's — the one body whose section varies.)
 RadiusProfile bodyProfile(const CurveBody& body) {
   if (!body.radiusVaries()) return RadiusProfile(body.radius());
   const std::vector<double> breaks = body.basis().breakpoints();

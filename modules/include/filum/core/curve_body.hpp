@@ -26,7 +26,8 @@ class CurveBody : public MechanicalState {
  public:
   /// The basis b_i(s) of the curve (its row at s: basis().evaluate(s, row)).
   virtual const CurveBasis& basis() const = 0;
-  /// Cross-section radius (m), for collision and skinning.
+  /// Cross-section radius (m), for collision and skinning: the body's own, or its nominal one
+  /// where the section changes along it (radiusVaries: then radiusAt).
   virtual double radius() const = 0;
   /// Whether the cross-section changes along the body (radiusAt differs from radius somewhere).
   virtual bool radiusVaries() const { return false; }
