@@ -39,13 +39,17 @@ void SphereCollisionModel::init(const Scene& scene) {
   varies_ = settings_.radius == 0.0 && curve_->radiusVaries();
   if (varies_) {
     // The section is the same between two breakpoints (a rod's nodes): read at each and halfway.
-    const std::vector<double>& breaks = curve_->basis().breakpoints();
+    const std::vector<double> breaks = curve_->basis().breakpoints();
     smallest_radius_ = radius_ = curve_->radiusAt(0.0);
-    for (std::size_t i = 0; i < breaks.size(); ++i)
-      for (const double s : {breaks[i], i + 1 < breaks.size() ? 0.5 * (breaks[i] + breaks[i + 1]) : breaks[i]}) {
-        radius_ = std::max(radius_, curve_->radiusAt(s));
-        smallest_radius_ = std::min(smallest_radius_, curve_->radiusAt(s));
-      }
+    auto read = [&](double s) {
+      const double r = curve_->radiusAt(s);
+      radius_ = std::max(radius_, r);
+      smallest_radius_ = std::min(smallest_radius_, r);
+    };
+    for (std::size_t i = 0; i < breaks.size(); ++i) {
+      read(breaks[i]);
+      if (i + 1 < breaks.size()) read(0.5 * (breaks[i] + breaks[i + 1]));
+    }
   }
   const double spacing = settings_.spacing > 0.0 ? settings_.spacing : smallest_radius_;
   if (spacing > 2.0 * smallest_radius_)

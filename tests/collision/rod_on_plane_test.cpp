@@ -20,22 +20,28 @@ namespace {
 
 using nlohmann::json;
 
+/// A polyurethane rod (E = 30 MPa, 1150 kg/m³; the FramedChain `chain` gives its nodes and
+/// sections) 1.5 mm above a table, falling onto it: ImplicitEuler at 1 ms, unilateral contacts
+/// with friction 0.3, the rod's spheres as `collision_model` sets them.
+json rodAboveTable(const json& chain, const json& collision_model) {
+  return {{"dt", 1e-3},
+          {"gravity", {0, 0, -9.81}},
+          {"integrator", {{"type", "ImplicitEuler"}}},
+          {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}}},
+          {"collision", {{"type", "ContactPipeline"}, {"response", "unilateral"}, {"friction", 0.3}}},
+          {"nodes",
+           {{{"name", "rod"},
+             {"components",
+              {chain, {{"type", "ChainElasticity"}, {"youngs_modulus", 3e7}}, {{"type", "ViscousDamping"}, {"coefficient", 5.0}},
+               collision_model}}},
+            {{"name", "table"}, {"components", {{{"type", "PlaneObstacle"}, {"point", {0, 0, 0}}, {"normal", {0, 0, 1}}}}}}}}};
+}
+
 TEST(RodOnPlane, KeepsOneContactPerVertexAndNoSphereSinks) {
   const double r = 1e-3;
-  const json document = {
-      {"dt", 1e-3},
-      {"gravity", {0, 0, -9.81}},
-      {"integrator", {{"type", "ImplicitEuler"}}},
-      {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}}},
-      {"collision", {{"type", "ContactPipeline"}, {"response", "unilateral"}, {"friction", 0.3}}},
-      {"nodes",
-       {{{"name", "rod"},
-         {"components",
-          {{{"type", "FramedChain"}, {"nodes", {{"from", {0, 0, 1.5e-3}}, {"to", {0.2, 0, 1.5e-3}}, {"count", 11}}}, {"radius", r}, {"density", 1150}},
-           {{"type", "ChainElasticity"}, {"youngs_modulus", 3e7}},
-           {{"type", "ViscousDamping"}, {"coefficient", 5.0}},
-           {{"type", "SphereCollisionModel"}, {"spacing", 1.5e-3}}}}},
-        {{"name", "table"}, {"components", {{{"type", "PlaneObstacle"}, {"point", {0, 0, 0}}, {"normal", {0, 0, 1}}}}}}}}};
+  const json document = rodAboveTable(
+      {{"type", "FramedChain"}, {"nodes", {{"from", {0, 0, 1.5e-3}}, {"to", {0.2, 0, 1.5e-3}}, {"count", 11}}}, {"radius", r}, {"density", 1150}},
+      {{"type", "SphereCollisionModel"}, {"spacing", 1.5e-3}});
   auto scene = loadScene(document, "rod on a plane", app::makeFactory());
   scene->init();
   for (int k = 0; k < 500; ++k) ASSERT_TRUE(scene->step().ok);
@@ -69,21 +75,12 @@ TEST(RodOnPlane, AThickShaftAndAThinTipEachRestOnTheirOwnRadius) {
   // (6 cm past the step) it lies flat. The tip's moment at the step is below the w ℓ² that would
   // lift the shaft's last node, so the shaft lies flat up to the step.
   const double shaft = 1e-3, tip = 4e-4;
-  const json document = {
-      {"dt", 1e-3},
-      {"gravity", {0, 0, -9.81}},
-      {"integrator", {{"type", "ImplicitEuler"}}},
-      {"constraint_solver", {{"type", "LagrangeMultiplierSolver"}}},
-      {"collision", {{"type", "ContactPipeline"}, {"response", "unilateral"}, {"friction", 0.3}}},
-      {"nodes",
-       {{{"name", "rod"},
-         {"components",
-          {{{"type", "FramedChain"}, {"nodes", {{"from", {0, 0, 1.5e-3}}, {"to", {0.2, 0, 1.5e-3}}, {"count", 21}}}, {"radius", shaft},
-            {"density", 1150}, {"spans", {{{"from", 0.5}, {"to", 1.0}, {"radius", tip}}}}},
-           {{"type", "ChainElasticity"}, {"youngs_modulus", 3e7}},
-           {{"type", "ViscousDamping"}, {"coefficient", 5.0}},
-           {{"type", "SphereCollisionModel"}}}}},
-        {{"name", "table"}, {"components", {{{"type", "PlaneObstacle"}, {"point", {0, 0, 0}}, {"normal", {0, 0, 1}}}}}}}}};
+  const json document = rodAboveTable({{"type", "FramedChain"},
+                                       {"nodes", {{"from", {0, 0, 1.5e-3}}, {"to", {0.2, 0, 1.5e-3}}, {"count", 21}}},
+                                       {"radius", shaft},
+                                       {"density", 1150},
+                                       {"spans", {{{"from", 0.5}, {"to", 1.0}, {"radius", tip}}}}},
+                                      {{"type", "SphereCollisionModel"}});
   auto scene = loadScene(document, "rod with a thin tip on a plane", app::makeFactory());
   scene->init();
   for (int k = 0; k < 1000; ++k) ASSERT_TRUE(scene->step().ok) << "step " << k;
