@@ -58,17 +58,23 @@ bool CoilPacking::contains(const Vec3& x) const {
   return sample.value > 0.0 && std::find(branches_.begin(), branches_.end(), sample.branch) != branches_.end();
 }
 
-double CoilPacking::lengthInside(const CurveBody& body, const VecX& q, int pieces) const {
-  double length = 0.0;
+CoilPacking::Inside CoilPacking::inside(const CurveBody& body, const VecX& q, int pieces) const {
+  Inside in;
+  const bool varies = body.radiusVaries();
+  const double r = body.radius();
   Vec3 previous = body.position(q, 0.0);
   for (int i = 1; i <= pieces; ++i) {
     const Vec3 next = body.position(q, static_cast<double>(i) / pieces);
-    if (contains(0.5 * (previous + next))) length += (next - previous).norm();
+    if (contains(0.5 * (previous + next))) {
+      // π r² dℓ with the radius at the piece's middle abscissa (header).
+      const double length = (next - previous).norm();
+      const double middle = varies ? body.radiusAt((i - 0.5) / pieces) : r;
+      in.length += length;
+      in.volume += M_PI * middle * middle * length;
+    }
     previous = next;
   }
-  return length;
+  return in;
 }
-
-double CoilPacking::density(double radius, double length) const { return M_PI * radius * radius * length / volume_; }
 
 }  // namespace filum::haptics

@@ -144,8 +144,9 @@ void NavigationMetrics::measurePacking(const Scene& scene) {
   if (!packing_) return;
   packing_density_ = 0.0;
   for (Coil& c : coils_) {
-    c.length_inside = packing_->lengthInside(*c.body, scene.state().q);
-    packing_density_ += packing_->density(c.body->radius(), c.length_inside);
+    const CoilPacking::Inside inside = packing_->inside(*c.body, scene.state().q);
+    c.length_inside = inside.length;
+    packing_density_ += packing_->density(inside.volume);
   }
   max_packing_density_ = std::max(max_packing_density_, packing_density_);
 }

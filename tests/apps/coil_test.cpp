@@ -113,6 +113,29 @@ TEST(CoilScene, LengthInsideTheAneurysmIsTheChordThroughTheDome) {
   EXPECT_NEAR(inside, 8e-3, 2.0 * 0.02 / 512);
 }
 
+TEST(CoilScene, VolumeInsideTheAneurysmTakesEachSpansRadius) {
+  // The straight rod across the dome with its second half thinner ("spans"): the volume inside is
+  // π r₁² 4 mm + π r₂² 4 mm, the dome's chord split at the rod's middle (x = 0, s = 0.5).
+  nlohmann::json document = straightRodAcrossTheDome();
+  const double shaft = 0.127e-3, tip = 0.05e-3;
+  auto& coil = document["nodes"][1]["components"];
+  coil[0]["spans"] = {{{"from", 0.5}, {"to", 1.0}, {"radius", tip}}};
+  coil[3].erase("spacing");  // the default, the thinnest section's radius: the tip's spheres touch
+  auto scene = loadScene(document, kCoilScene, app::makeFactory());
+  auto metrics = haptics::NavigationMetrics::fromScene(document, kCoilScene, *scene);
+  scene->init();
+  const CurveBody& rod = *scene->bodies()[0]->curve();
+  ASSERT_TRUE(rod.radiusVaries());
+  const haptics::CoilPacking::Inside inside = metrics->packing()->inside(rod, scene->state().q);
+  // Errors: at most one 20/512 mm piece at each crossing of the dome's wall, each of the shaft's
+  // section at most; the step at s = 0.5 falls on a piece's end (256 of 512), where no piece
+  // straddles it.
+  const double piece = 0.02 / 512;
+  EXPECT_NEAR(inside.volume, M_PI * (shaft * shaft + tip * tip) * 4e-3, 2.0 * M_PI * shaft * shaft * piece);
+  EXPECT_NEAR(inside.length, 8e-3, 2.0 * piece);
+  EXPECT_DOUBLE_EQ(metrics->packing()->density(inside.volume), inside.volume / metrics->packing()->volume());
+}
+
 TEST(CoilScene, UnknownAneurysmBranchIsRefusedWithItsPlace) {
   nlohmann::json document = readJsonFile(kCoilScene);
   document["navigation"]["aneurysm"]["branches"] = {"neck", "dome"};

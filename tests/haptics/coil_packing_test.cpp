@@ -81,7 +81,7 @@ TEST(CoilPacking, BranchesShareTheLumenWithoutCountingItTwice) {
 TEST(CoilPacking, DensityIsCoilVolumeOverSacVolume) {
   const CoilPacking packing(loneSac(), {1});
   const double r = 0.127e-3, L = 0.1;
-  EXPECT_DOUBLE_EQ(packing.density(r, L), M_PI * r * r * L / packing.volume());
+  EXPECT_DOUBLE_EQ(packing.density(M_PI * r * r * L), M_PI * r * r * L / packing.volume());
 }
 
 TEST(CoilPacking, ContainsOnlyTheAneurysmsBranchesInsideTheLumen) {

@@ -1,9 +1,10 @@
 // CoilPacking: how full an aneurysm is of coil — the packing density an interventional
 // neuroradiologist reports after coiling (the sac's recanalization risk falls as it rises; about
 // 20–25 % by volume is the usual aim, Sluzewski et al., Radiology 2004):
-//   PD = Σ_c π r_c² L_c / V,
-// r_c the radius of coil c, L_c the length of its centre line inside the aneurysm, V the
-// aneurysm's volume. The aneurysm is a set of branches of the vessel tree (the sac, its neck):
+//   PD = Σ_c ∫_{inside} π r_c(s)² dℓ / V,
+// r_c(s) the radius of coil c at abscissa s (one radius for most coils, by spans for a coil with
+// a stretch-resistant or thinner section: CurveBody::radiusAt), the integral over its centre line
+// inside the aneurysm (π r_c² L_c for one radius, L_c the length inside), V the aneurysm's volume. The aneurysm is a set of branches of the vessel tree (the sac, its neck):
 // the lumen's points, φ > 0, whose largest branch field is one of them (geometry/vessel_tree.hpp,
 // Sample::branch), so it ends where the parent artery's field takes over, along the parent's wall.
 //
@@ -19,7 +20,9 @@
 // samples counts (with its chord length) when its midpoint is in the aneurysm. Errors: below one
 // piece per crossing of the boundary; a chord over a node of a polyline (a rod) cuts the node's
 // corner and loses at most l θ²/8 (θ the turn at the node, l the piece); a chord of a smooth
-// curve loses its sagitta's share, l³κ²/24.
+// curve loses its sagitta's share, l³κ²/24. The volume takes each piece's radius at its middle
+// abscissa: exact on a piece within one span; a piece across a step of the section errs by at
+// most π |r₁² − r₂²| l / 2.
 #pragma once
 
 #include <string>
@@ -48,11 +51,20 @@ class CoilPacking {
   double volume() const { return volume_; }
   double spacing() const { return spacing_; }
   const std::vector<int>& branches() const { return branches_; }
-  /// L: the length of the body's centre line inside the aneurysm at the scene's positions q (m),
-  /// from `pieces` chords.
-  double lengthInside(const CurveBody& body, const VecX& q, int pieces = 512) const;
-  /// PD for coils of radius r with a total length L inside.
-  double density(double radius, double length) const;
+  /// What of a body lies in the aneurysm: its centre line's length L (m) and its volume
+  /// ∫ π r(s)² dℓ (m³) there.
+  struct Inside {
+    double length = 0.0;
+    double volume = 0.0;
+  };
+  /// The body's share of the aneurysm at the scene's positions q, from `pieces` chords.
+  Inside inside(const CurveBody& body, const VecX& q, int pieces = 512) const;
+  /// L alone (inside(...).length).
+  double lengthInside(const CurveBody& body, const VecX& q, int pieces = 512) const {
+    return inside(body, q, pieces).length;
+  }
+  /// PD for coils whose volume inside is `coil_volume` (m³): coil_volume / V.
+  double density(double coil_volume) const { return coil_volume / volume_; }
 
  private:
   geometry::VesselTree tree_;  // a copy: independent of the tree it was made from

@@ -12,7 +12,7 @@
 //   tip path length  Σ |x_tip(t_k+1) − x_tip(t_k)| (m);
 //   fluoroscopy time how long the X-ray pedal was pressed (s; fluoroscopy_pedal.hpp), when the
 //                    scene has a "fluoroscopy" block: the dose a trainer scores;
-//   packing density  Σ π r² L / V of the coils in the aneurysm (coil_packing.hpp), when the scene
+//   packing density  Σ ∫ π r² dℓ / V of the coils in the aneurysm (coil_packing.hpp), when the scene
 //                    names one: its value at every step and its largest.
 // Scene:
 //   "navigation": {"instruments": ["guidewire"] (or "instrument": "guidewire": node paths of
