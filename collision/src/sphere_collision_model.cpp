@@ -38,18 +38,9 @@ void SphereCollisionModel::init(const Scene& scene) {
   // A radius given here holds all along; else the body's section, where it changes along it.
   varies_ = settings_.radius == 0.0 && curve_->radiusVaries();
   if (varies_) {
-    // The section is the same between two breakpoints (a rod's nodes): read at each and halfway.
-    const std::vector<double> breaks = curve_->basis().breakpoints();
-    smallest_radius_ = radius_ = curve_->radiusAt(0.0);
-    auto read = [&](double s) {
-      const double r = curve_->radiusAt(s);
-      radius_ = std::max(radius_, r);
-      smallest_radius_ = std::min(smallest_radius_, r);
-    };
-    for (std::size_t i = 0; i < breaks.size(); ++i) {
-      read(breaks[i]);
-      if (i + 1 < breaks.size()) read(0.5 * (breaks[i] + breaks[i + 1]));
-    }
+    const CurveBody::RadiusRange range = curve_->radiusRange();
+    radius_ = range.largest;
+    smallest_radius_ = range.smallest;
   }
   const double spacing = settings_.spacing > 0.0 ? settings_.spacing : smallest_radius_;
   if (spacing > 2.0 * smallest_radius_)

@@ -21,9 +21,20 @@ ConvolutionSurface::ConvolutionSurface(double radius, double sharpness, double r
   iso_value_ = cauchySegmentMidplaneField(radius_, reference_segment_length, sharpness_);
 }
 
-void ConvolutionSurface::addSegment(const Vec3& a, const Vec3& b) {
+void ConvolutionSurface::addSegment(const Vec3& a, const Vec3& b, double weight) {
   if (!a.allFinite() || !b.allFinite()) throw std::invalid_argument("ConvolutionSurface::addSegment: non-finite end");
-  segments_.push_back({a, b});
+  if (!(weight > 0.0) || !std::isfinite(weight))
+    throw std::invalid_argument("ConvolutionSurface::addSegment: weight must be positive and finite, got " +
+                                std::to_string(weight));
+  segments_.push_back({a, b, weight});
+}
+
+double ConvolutionSurface::weightForRadius(double r) const {
+  if (!(r > 0.0) || !std::isfinite(r))
+    throw std::invalid_argument("ConvolutionSurface::weightForRadius: radius must be positive and finite, got " +
+                                std::to_string(r));
+  // w = T / F_∞(r), F_∞ the field of an infinite straight segment at distance r (header).
+  return iso_value_ / cauchyLineField(r, sharpness_);
 }
 
 void ConvolutionSurface::addPolyline(ConstPointsRef points) {
@@ -34,26 +45,36 @@ void ConvolutionSurface::addPolyline(ConstPointsRef points) {
     addSegment(points.row(i).transpose(), points.row(i + 1).transpose());
 }
 
-void ConvolutionSurface::addCurve(const CurveBasis& basis, ConstPointsRef q, int segments, const Strand& strand) {
+void ConvolutionSurface::addCurve(const CurveBasis& basis, ConstPointsRef q, int segments, const Strand& strand,
+                                  const std::function<double(double)>& radius_at) {
   if (segments < 1)
     throw std::invalid_argument("ConvolutionSurface::addCurve: segments must be >= 1, got " + std::to_string(segments));
   const ArcLengthParameterization arc(basis, q, 1e-10);
-  addPolyline(arc.equallySpacedPoints(segments + 1, strand));
+  const Points points = arc.equallySpacedPoints(segments + 1, strand);
+  if (!radius_at) {
+    addPolyline(points);
+    return;
+  }
+  const std::vector<double> s = arc.equallySpacedAbscissas(segments + 1, strand);
+  for (int i = 0; i < segments; ++i)
+    addSegment(points.row(i).transpose(), points.row(i + 1).transpose(),
+               weightForRadius(radius_at(0.5 * (s[i] + s[i + 1]))));
 }
 
 SegmentField ConvolutionSurface::fieldAndGradient(const Vec3& x) const {
   SegmentField total;
   for (const Segment& segment : segments_) {
     const SegmentField f = cauchySegmentField(segment.a, segment.b, x, sharpness_);
-    total.value += f.value;
-    total.gradient += f.gradient;
+    total.value += segment.weight * f.value;
+    total.gradient += segment.weight * f.gradient;
   }
   return total;
 }
 
 double ConvolutionSurface::field(const Vec3& x) const {
   double total = 0.0;
-  for (const Segment& segment : segments_) total += cauchySegmentIntegral(segment.a, segment.b, x, sharpness_);
+  for (const Segment& segment : segments_)
+    total += segment.weight * cauchySegmentIntegral(segment.a, segment.b, x, sharpness_);
   return total;
 }
 

@@ -14,6 +14,30 @@ Vec3 combine(const BasisRow& row, const Weights& w, ConstPointsMap q) {
 }
 }  // namespace
 
+std::vector<double> CurveBody::sectionAbscissas() const {
+  if (!radiusVaries()) return {0.0};
+  const std::vector<double> breaks = basis().breakpoints();
+  std::vector<double> at;
+  at.reserve(2 * breaks.size());
+  for (std::size_t i = 0; i < breaks.size(); ++i) {
+    at.push_back(breaks[i]);
+    if (i + 1 < breaks.size()) at.push_back(0.5 * (breaks[i] + breaks[i + 1]));
+  }
+  return at;
+}
+
+CurveBody::RadiusRange CurveBody::radiusRange() const {
+  RadiusRange range{radius(), radius()};
+  if (!radiusVaries()) return range;
+  range.smallest = range.largest = radiusAt(0.0);
+  for (const double s : sectionAbscissas()) {
+    const double r = radiusAt(s);
+    range.smallest = std::min(range.smallest, r);
+    range.largest = std::max(range.largest, r);
+  }
+  return range;
+}
+
 namespace {
 
 /// Times of one list of scheduled changes: >= 0 and increasing (entry `item` of `what`).

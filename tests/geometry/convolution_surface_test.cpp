@@ -4,7 +4,9 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
+#include <stdexcept>
 
 #include "filum/geometry/convolution_surface.hpp"
 #include "filum/geometry/gauss_legendre.hpp"
@@ -169,6 +171,49 @@ TEST(ConvolutionSurface, RejectsBadParameters) {
   // A zero-length segment contributes nothing.
   s.addSegment(Vec3::Zero(), Vec3::Zero());
   EXPECT_EQ(s.field(Vec3(0.1, 0, 0)), 0.0);
+}
+
+/// The radius at which the surface crosses the perpendicular to the x axis through (x, 0, 0):
+/// f = T − F rises with the distance d from a straight tube's axis; bisection on [lo, hi].
+double surfaceRadius(const ConvolutionSurface& surface, double x, double lo, double hi) {
+  for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (surface.implicitValue(Vec3(x, mid, 0.0)) < 0.0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+TEST(ConvolutionSurface, AWeightedTubeTakesTheRadiusOfItsWeight) {
+  // Reference: the field of an infinite straight line, F∞(d) = π / (2 s (1 + s²d²)^{3/2}), the
+  // closed form of ∫ dt / (1 + s²(d² + t²))² written here.
+  const double R = 1e-3, r = 0.4e-3, s = 1.0 / R;
+  auto line = [s](double d) { return std::numbers::pi / (2.0 * s * std::pow(1.0 + s * s * d * d, 1.5)); };
+  // |dF∞/dd| = 3π s d / (2 (1 + s²d²)^{5/2}).
+  auto slope = [s](double d) { return 3.0 * std::numbers::pi * s * d / (2.0 * std::pow(1.0 + s * s * d * d, 2.5)); };
+  ConvolutionSurface surface(R);
+  const double w_shaft = surface.weightForRadius(R), w_tip = surface.weightForRadius(r);
+  // w F∞(r) = T to a few roundings (a quotient and a product of closed forms).
+  EXPECT_NEAR(w_tip * line(r), surface.isoValue(), 8 * std::numeric_limits<double>::epsilon() * surface.isoValue());
+  EXPECT_NEAR(w_shaft, 1.0, 8 * std::numeric_limits<double>::epsilon());
+  EXPECT_THROW(surface.weightForRadius(0.0), std::invalid_argument);
+  EXPECT_THROW(surface.addSegment(Vec3::Zero(), Vec3::UnitX(), -1.0), std::invalid_argument);
+
+  // A shaft on x ∈ [−H, 0] and a thin tip on [0, H], H = 40/s, each as 40 segments (the field is
+  // additive). At the middle of either half the field is the infinite tube's of that half's weight
+  // w_i, but for the kernel beyond H/2 on either side: its own far end misses w_i ∫_{H/2}^∞ k, the
+  // other half puts w_j ∫_{H/2}^{3H/2} k for w_i ∫_{H/2}^∞ k, so |ΔF| <= (2 w_i + w_j) ∫_{H/2}^∞ k
+  // with ∫_D^∞ dt / (1 + s²(d² + t²))² <= ∫_D^∞ dt / (s t)⁴ = 1 / (3 s⁴ D³). The radius then errs by
+  // |ΔF| / (w_i |dF∞/dd|), twice that allowing for the slope's change over the interval.
+  const double H = 40.0 / s, tail = 1.0 / (3.0 * std::pow(s, 4) * std::pow(0.5 * H, 3));
+  for (int k = 0; k < 40; ++k) {
+    surface.addSegment(Vec3(-H + H * k / 40, 0, 0), Vec3(-H + H * (k + 1) / 40, 0, 0), w_shaft);
+    surface.addSegment(Vec3(H * k / 40, 0, 0), Vec3(H * (k + 1) / 40, 0, 0), w_tip);
+  }
+  const double shaft_error = 2.0 * (2.0 * w_shaft + w_tip) * tail / (w_shaft * slope(R));
+  const double tip_error = 2.0 * (2.0 * w_tip + w_shaft) * tail / (w_tip * slope(r));
+  EXPECT_NEAR(surfaceRadius(surface, -0.5 * H, 0.1 * R, 3.0 * R), R, shaft_error);
+  EXPECT_NEAR(surfaceRadius(surface, 0.5 * H, 0.1 * R, 3.0 * R), r, tip_error);
+  EXPECT_LT(tip_error, 1e-3 * r);  // the bound tells the two sections apart by far
 }
 
 }  // namespace

@@ -130,16 +130,7 @@ TEST(GeneralizedCylinder, ARodsSpansGiveItsDefaultSkinTheirRadii) {
   // segment's middle, joined by the profile's monotone cubic — the shaft's radius up to the node
   // of the step, a taper over the first half of the tip's first segment, no overshoot.
   const double shaft = 1e-3, tip = 4e-4, kEpsilon = std::numeric_limits<double>::epsilon();
-  const json document = {
-      {"name", "visual test"},
-      {"dt", 1e-4},
-      {"gravity", {0.0, 0.0, 0.0}},
-      {"nodes",
-       json::array({{{"name", "rod"},
-                     {"components",
-                      json::array({{{"type", "FramedChain"}, {"nodes", {{"from", {0, 0, 0}}, {"to", {0.2, 0, 0}}, {"count", 21}}},
-                                    {"radius", shaft}, {"density", 1150}, {"spans", {{{"from", 0.75}, {"to", 1.0}, {"radius", tip}}}}},
-                                   {{"type", "GeneralizedCylinder"}}})}}})}};
+  const json document = test::rodWithThinTip(0.2, 21, shaft, 0.75, tip, json::array({{{"type", "GeneralizedCylinder"}}}));
   const Loaded l = load(document);
   const RadiusProfile& profile = skinOf(l).profile();
   // Segments of 1 cm (u steps of 0.05): the step's node at u = 0.75, the tip's first middle at 0.775.

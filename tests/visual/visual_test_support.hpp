@@ -37,6 +37,24 @@ inline nlohmann::json splineScene(const nlohmann::json& points, const nlohmann::
   return scene;
 }
 
+/// A scene with one straight rod (FramedChain, silicone's 1150 kg/m³) along x from 0 to `length`
+/// with `nodes` nodes and radius `shaft`, thinner (`tip`) from abscissa `tip_from` to its end
+/// ("spans"), plus `more` components in its node; no gravity.
+inline nlohmann::json rodWithThinTip(double length, int nodes, double shaft, double tip_from, double tip,
+                                     const nlohmann::json& more) {
+  nlohmann::json components = nlohmann::json::array();
+  components.push_back({{"type", "FramedChain"},
+                        {"nodes", {{"from", {0, 0, 0}}, {"to", {length, 0, 0}}, {"count", nodes}}},
+                        {"radius", shaft},
+                        {"density", 1150},
+                        {"spans", {{{"from", tip_from}, {"to", 1.0}, {"radius", tip}}}}});
+  for (const auto& c : more) components.push_back(c);
+  return {{"name", "visual test"},
+          {"dt", 1e-4},
+          {"gravity", {0.0, 0.0, 0.0}},
+          {"nodes", nlohmann::json::array({{{"name", "rod"}, {"components", components}}})}};
+}
+
 /// Control points of a planar wave in the xy-plane: x from 0 to 0.1 m, y = a sin(2π x / 0.05).
 inline nlohmann::json planarWave(int n = 20, double amplitude = 0.01) {
   nlohmann::json points = nlohmann::json::array();

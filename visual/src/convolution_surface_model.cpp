@@ -31,11 +31,17 @@ void ConvolutionSurfaceModel::init(const Scene&) {
   if (!spline)
     throw SceneError(origin(), "a ConvolutionSurfaceModel wraps a curve body (e.g. a DynamicSpline), but its body " + body().describe() +
                                    " is not one");
-  radius_ = options_.radius.value_or(spline->radius());
+  // A radius given here holds all along; else the body's section, where it changes along it: the
+  // kernel is the thickest section's, each chord weighted to its own radius (convolution_surface.hpp),
+  // and the mesh's default sizes are the thinnest section's.
+  varies_ = !options_.radius && spline->radiusVaries();
+  const CurveBody::RadiusRange range = spline->radiusRange();
+  radius_ = options_.radius.value_or(range.largest);
+  const double finest = varies_ ? range.smallest : radius_;
   segments_ = options_.segments.value_or(4 * (static_cast<int>(spline->basis().breakpoints().size()) - 1));
   criteria_.angle_degrees = options_.angle_degrees;
-  criteria_.facet_size = options_.facet_size.value_or(0.5 * radius_);
-  criteria_.approximation = options_.approximation.value_or(0.05 * radius_);
+  criteria_.facet_size = options_.facet_size.value_or(0.5 * finest);
+  criteria_.approximation = options_.approximation.value_or(0.05 * finest);
   // One mesh per strand, empty until the first update (which meshes: updates_ starts at 0).
   meshes_.assign(strands(spline->basis()).size(), TriangleMesh{});
   updates_ = 0;
@@ -53,7 +59,10 @@ void ConvolutionSurfaceModel::update(const SceneState& s) {
     const Strand& strand = pieces[k];
     const int segments = std::max(1, static_cast<int>(std::lround(segments_ * (strand.end - strand.begin))));
     geometry::ConvolutionSurface surface(radius_, options_.sharpness);
-    surface.addCurve(spline.basis(), q, segments, strand);
+    if (varies_)
+      surface.addCurve(spline.basis(), q, segments, strand, [&spline](double at) { return spline.radiusAt(at); });
+    else
+      surface.addCurve(spline.basis(), q, segments, strand);
     // Start inside, at the middle of the strand; the bounding ball holds the whole skeleton plus
     // a margin of four radii (blends reach a little further than one radius).
     const double middle = 0.5 * (strand.begin + strand.end);

@@ -21,18 +21,10 @@ namespace {
 /// knots sit at its rest arc lengths, as a FramedChain's — the one body whose section varies.)
 RadiusProfile bodyProfile(const CurveBody& body) {
   if (!body.radiusVaries()) return RadiusProfile(body.radius());
-  const std::vector<double> breaks = body.basis().breakpoints();
-  std::vector<double> u, r;
-  auto knot = [&](double at) {
-    if (u.empty() || at > u.back()) {
-      u.push_back(at);
-      r.push_back(body.radiusAt(at));
-    }
-  };
-  for (std::size_t i = 0; i < breaks.size(); ++i) {
-    knot(breaks[i]);
-    if (i + 1 < breaks.size()) knot(0.5 * (breaks[i] + breaks[i + 1]));
-  }
+  std::vector<double> u = body.sectionAbscissas(), r;
+  u.erase(std::unique(u.begin(), u.end()), u.end());  // coincident breakpoints (a knot of multiplicity)
+  r.reserve(u.size());
+  for (const double at : u) r.push_back(body.radiusAt(at));
   return RadiusProfile(std::move(u), std::move(r));
 }
 

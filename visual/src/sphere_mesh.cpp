@@ -51,16 +51,33 @@ void appendSphere(const TriangleMesh& unit, const Vec3& center, double radius, T
   out.triangles.bottomRows(unit.triangles.rows()) = unit.triangles.array() + static_cast<int>(v0);
 }
 
-void sphereSet(const TriangleMesh& unit, const Points& centers, double radius, TriangleMesh& out) {
+namespace {
+
+/// sphereSet's loop, with sphere i's radius radius_of(i).
+template <typename RadiusOf>
+void buildSphereSet(const TriangleMesh& unit, const Points& centers, RadiusOf radius_of, TriangleMesh& out) {
   const Eigen::Index k = centers.rows(), nv = unit.vertices.rows(), nf = unit.triangles.rows();
   out.vertices.resize(k * nv, 3);
   out.normals.resize(k * nv, 3);
   out.triangles.resize(k * nf, 3);
   for (Eigen::Index i = 0; i < k; ++i) {
-    out.vertices.middleRows(i * nv, nv) = (radius * unit.vertices).rowwise() + centers.row(i);
+    out.vertices.middleRows(i * nv, nv) = (radius_of(i) * unit.vertices).rowwise() + centers.row(i);
     out.normals.middleRows(i * nv, nv) = unit.normals;
     out.triangles.middleRows(i * nf, nf) = unit.triangles.array() + static_cast<int>(i * nv);
   }
+}
+
+}  // namespace
+
+void sphereSet(const TriangleMesh& unit, const Points& centers, double radius, TriangleMesh& out) {
+  buildSphereSet(unit, centers, [radius](Eigen::Index) { return radius; }, out);
+}
+
+void sphereSet(const TriangleMesh& unit, const Points& centers, const VecX& radii, TriangleMesh& out) {
+  if (radii.size() != centers.rows())
+    throw std::invalid_argument("sphereSet: " + std::to_string(radii.size()) + " radii for " +
+                                std::to_string(centers.rows()) + " centres");
+  buildSphereSet(unit, centers, [&radii](Eigen::Index i) { return radii[i]; }, out);
 }
 
 }  // namespace filum::visual

@@ -82,16 +82,24 @@ void SphereModel::init(const Scene& scene) {
     throw SceneError(origin() + "/radius", "a positive radius (m) for a sphere that is not on a spline", "nothing");
 
   int count = 1;
-  if (options_.placement == Placement::kOnCurve) {
-    mapping_ = std::make_unique<SplineAxisMapping>(spline->basis(), options_.abscissas);
-    count = mapping_->outputCount();
-  } else if (options_.placement == Placement::kEvenlyOnCurve) {
-    std::vector<double> s{0.5};
-    if (options_.count > 1)
-      s = geometry::ArcLengthParameterization(spline->basis(), spline->initialPositions())
-              .equallySpacedAbscissas(options_.count);
+  radii_.resize(0);
+  if (options_.placement == Placement::kOnCurve || options_.placement == Placement::kEvenlyOnCurve) {
+    std::vector<double> s = options_.abscissas;
+    if (options_.placement == Placement::kEvenlyOnCurve) {
+      s = {0.5};
+      if (options_.count > 1)
+        s = geometry::ArcLengthParameterization(spline->basis(), spline->initialPositions())
+                .equallySpacedAbscissas(options_.count);
+    }
     mapping_ = std::make_unique<SplineAxisMapping>(spline->basis(), s);
     count = mapping_->outputCount();
+    // A radius given here holds for every sphere; else each takes the body's section at its
+    // abscissa where that changes along the body (a rod's spans).
+    if (!options_.radius && spline->radiusVaries()) {
+      radii_.resize(count);
+      for (int k = 0; k < count; ++k) radii_[k] = spline->radiusAt(s[k]);
+      radius_ = radii_.maxCoeff();
+    }
   } else if (options_.placement == Placement::kConstraintTarget && options_.target) {
     constraint_ = options_.target;
   } else if (options_.placement == Placement::kConstraintTarget) {
@@ -131,7 +139,10 @@ void SphereModel::update(const SceneState& s) {
       centers_.row(0) = options_.path.position(s.time).transpose();
       break;
   }
-  sphereSet(unit_, centers_, radius_, mesh_);
+  if (radii_.size() > 0)
+    sphereSet(unit_, centers_, radii_, mesh_);
+  else
+    sphereSet(unit_, centers_, radius_, mesh_);
 }
 
 }  // namespace filum::visual

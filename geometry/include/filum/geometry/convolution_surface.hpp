@@ -11,8 +11,14 @@
 // Iso-value: chosen so that the surface around one isolated straight segment passes at the
 // desired radius R at its middle, T = F_L(R) = 2 I2(L/2) (cauchySegmentMidplaneField); with
 // L = ∞ (the default) T = π/(2 s (1 + s²R²)^{3/2}), the radius of a long straight tube.
+//
+// A tube whose section changes along it (a rod's spans) weights each segment, F(x) = Σ w_i ∫ k:
+// a long straight tube of weight w passes where w F_∞(r) = T, so the weight that gives it the
+// radius r is w(r) = T / F_∞(r) = T · 2 s (1 + s²r²)^{3/2} / π (weightForRadius), with the
+// surface's one kernel; where the weight steps, the field blends the two tubes over about 1/s.
 #pragma once
 
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -31,12 +37,17 @@ class ConvolutionSurface {
   explicit ConvolutionSurface(double radius, double sharpness = 0.0,
                               double reference_segment_length = std::numeric_limits<double>::infinity());
 
-  void addSegment(const Vec3& a, const Vec3& b);
+  /// A segment of weight w > 0 (1: a tube of the surface's radius; weightForRadius).
+  void addSegment(const Vec3& a, const Vec3& b, double weight = 1.0);
   /// Consecutive points joined by segments (m >= 2 points, m − 1 segments).
   void addPolyline(ConstPointsRef points);
   /// The curve (basis, q) as a polyline of `segments` >= 1 chords at equal arc-length spacing;
-  /// one strand of a cut curve (CurveBasis::strands), the whole curve by default.
-  void addCurve(const CurveBasis& basis, ConstPointsRef q, int segments, const Strand& strand = {});
+  /// one strand of a cut curve (CurveBasis::strands), the whole curve by default. With
+  /// `radius_at` (m at an abscissa), each chord's weight gives the radius at its middle abscissa.
+  void addCurve(const CurveBasis& basis, ConstPointsRef q, int segments, const Strand& strand = {},
+                const std::function<double(double)>& radius_at = {});
+  /// w(r) = T / F_∞(r): the weight with which a long straight tube has radius r > 0 (header).
+  double weightForRadius(double r) const;
   void clear() { segments_.clear(); }
 
   /// F(x) (units of length).
@@ -56,6 +67,7 @@ class ConvolutionSurface {
  private:
   struct Segment {
     Vec3 a, b;
+    double weight = 1.0;
   };
   double radius_;
   double sharpness_;

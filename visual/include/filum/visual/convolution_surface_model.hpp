@@ -5,9 +5,12 @@
 // (convolution_surface_mesher.hpp). Meshing costs far more than skinning, so the mesh may be
 // refreshed only every k-th update ("every").
 //
-// Scene parameters: "radius" (m, default the spline's), "sharpness" (1/m, default 1/radius),
-// "segments" (skeleton chords, default 4 per polynomial piece), "facet_size" (m, default
-// radius / 2), "approximation" (m, default radius / 20), "angle" (degrees, default 30),
+// Scene parameters: "radius" (m, default the body's; where its section changes along it, as a
+// rod's spans, each chord takes the body's radius at its middle abscissa by its weight in the
+// field, and the defaults below take the thinnest section's radius), "sharpness" (1/m, default
+// 1/radius), "segments" (skeleton chords, default 4 per polynomial piece; a chord across a step
+// of the section takes one side's radius, so the step is placed to within a chord), "facet_size"
+// (m, default radius / 2), "approximation" (m, default radius / 20), "angle" (degrees, default 30),
 // "every" (default 1), "color", "opacity". Needs CGAL (CMake option FILUM_WITH_CGAL).
 #pragma once
 
@@ -48,6 +51,7 @@ class ConvolutionSurfaceModel final : public VisualModel {
  private:
   Options options_;
   double radius_ = 0.0;
+  bool varies_ = false;  // each chord weighted to the body's radius at it
   int segments_ = 0;
   SurfaceMeshingCriteria criteria_;
   long updates_ = 0;

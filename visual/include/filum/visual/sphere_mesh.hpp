@@ -15,5 +15,8 @@ void appendSphere(const TriangleMesh& unit, const Vec3& center, double radius, T
 /// Replaces `out` by one sphere of `radius` at each row of `centers` (k × 3), sized once: k
 /// appends would reallocate the growing mesh k times (quadratic in k).
 void sphereSet(const TriangleMesh& unit, const Points& centers, double radius, TriangleMesh& out);
+/// The same with sphere i of radius radii[i] (one radius per row of `centers`; else
+/// std::invalid_argument).
+void sphereSet(const TriangleMesh& unit, const Points& centers, const VecX& radii, TriangleMesh& out);
 
 }  // namespace filum::visual

@@ -10,7 +10,8 @@
 //                             once the constraint is released;
 //   "path": [{"time", "position"}, ...]  a scripted path (geometry/scripted_path.hpp, with
 //                             "interpolation"), e.g. the same path as a ProbeSphere obstacle.
-// "radius" (m; default the spline's radius), "resolution" (latitude rings, default 12),
+// "radius" (m; default the spline's radius: on a body whose section changes along it, as a rod's
+// spans, each sphere on the curve takes the body's radius at its abscissa), "resolution" (latitude rings, default 12),
 // "color", "opacity". Points on the spline go through a SplineAxisMapping (positions down).
 #pragma once
 
@@ -53,10 +54,14 @@ class SphereModel final : public VisualModel {
   void update(const SceneState& s) override;
   const TriangleMesh& mesh(int = 0) const override { return mesh_; }
 
-  /// Centres and radius of the last update.
+  /// Centres of the last update.
   const Points& centers() const { return centers_; }
+  /// Each sphere's radius (m): one per centre where they differ (spheres on a body whose section
+  /// changes along it), else empty and all of radius().
+  const VecX& radii() const { return radii_; }
   /// The constraint whose target it marks (kConstraintTarget, after init), else null.
   const Constraint* markedConstraint() const { return constraint_; }
+  /// The spheres' radius (m), or the largest of radii().
   double radius() const { return radius_; }
 
  protected:
@@ -65,6 +70,7 @@ class SphereModel final : public VisualModel {
  private:
   Options options_;
   double radius_ = 0.0;
+  VecX radii_;  // per sphere, where the body's section varies (else empty)
   TriangleMesh unit_;
   std::unique_ptr<SplineAxisMapping> mapping_;
   const Constraint* constraint_ = nullptr;
