@@ -100,10 +100,12 @@ std::optional<JawCatch> catchBetweenJaws(const Scene& scene, const InstrumentSha
   for (const MechanicalState* body : scene.bodies()) {
     const CurveBody* curve = body->curve();
     if (!curve) continue;
-    const double r = curve->radius();
     // Caught: between the jaws before this step, closed onto now; the distance to the midline.
+    // The thread's radius r is its section's at s (a rod's spans: a thin tip slips out of jaws
+    // closed onto the shaft's section).
     auto caught = [&](double s) {
       const Vec3 x = curve->position(q, s);
+      const double r = curve->radiusAt(s);
       const double d = betweenJaws(shape, pose, before, x, r);
       if (d < 0.0 || !jawsClosedOn(shape, now, jawCoordinates(pose, x).along, r)) return -1.0;
       return d;

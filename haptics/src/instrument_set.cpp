@@ -417,7 +417,7 @@ void InstrumentSet::setHeldSpans(const Scene& scene) {
     // the held point ± (jaw length + R + r) along the thread, in abscissa through |P'(s*)|.
     const InstrumentShape& shape = inst.settings().shape;
     const double speed = point.mapTangent(scene.state().q).norm();
-    const double reach = shape.jaw_length + shape.jaw_radius + point.body()->radius();
+    const double reach = shape.jaw_length + shape.jaw_radius + point.body()->radiusAt(s);
     const double half = speed > 0.0 ? reach / speed : strand.end - strand.begin;
     inst.setHeldSpan(std::max(strand.begin, s - half), std::min(strand.end, s + half));
   }

@@ -51,11 +51,15 @@ void ToolForceField::init(const Scene& scene) {
     throw SceneError(origin(), "the interaction tool acts on curve bodies (e.g. DynamicSpline), not on " + body().describe());
   dt_ = scene.settings().dt;
   explicit_step_ = !scene.integrator().needsJacobians();
-  thread_radius_ = curve->radius();
   const int n = curve->pointCount();
   const int m = samples_ > 0 ? samples_ : std::max(8, 4 * n);
   push_points_.resize(m);
-  for (int k = 0; k < m; ++k) push_points_[k].attach(*curve, static_cast<double>(k) / (m - 1));
+  sample_radii_.resize(m);
+  for (int k = 0; k < m; ++k) {
+    const double s = static_cast<double>(k) / (m - 1);
+    push_points_[k].attach(*curve, s);
+    sample_radii_[k] = curve->radiusAt(s);  // the thread's section there (a rod's spans)
+  }
   unit_load_.resize(n, 3);
   response_.resize(n, 3);
   mass_abscissa_ = std::numeric_limits<double>::quiet_NaN();  // nothing cached (NaN equals nothing)
@@ -108,9 +112,11 @@ Eigen::Matrix3d ToolForceField::Overlap::jacobian() const {
 
 template <typename Visit>
 void ToolForceField::forEachOverlap(const SceneState& s, Visit visit) const {
-  const double k = pushStiffness(), R = tool_->radius + thread_radius_;
+  const double k = pushStiffness();
   const Vec3 X = toolPosition(*tool_, s.time);
-  for (const BodyPoint& point : push_points_) {
+  for (std::size_t i = 0; i < push_points_.size(); ++i) {
+    const BodyPoint& point = push_points_[i];
+    const double R = tool_->radius + sample_radii_[i];
     const Vec3 d = point.map(s.q) - X;
     const double distance = d.norm();
     if (distance >= R || distance == 0.0) continue;

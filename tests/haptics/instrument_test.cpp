@@ -82,6 +82,43 @@ json pullingGrasper(double holding_force, double pull) {
                                              {{"time", 1.1}, {"position", {0.05 + pull, -0.01, 0}}}})}}});
 }
 
+TEST(Grasp, JawsCatchEachPartOfARodAtThatPartsRadius) {
+  // A straight rod along x whose second half is a thin tip ("spans": 0.4 mm against the shaft's
+  // 1 mm). Jaws across it (shaft along +y, opening along z), the rod 10 mm from the hinge, close
+  // from wide open to a gap of 2 × 0.7 mm there (jawsClosedOn: along · sin φ − r_jaw = 0.7 mm):
+  // onto the shaft's 1 mm, not onto the tip's 0.4 mm, which one radius for the rod would catch;
+  // closed to 2 × 0.3 mm they catch the tip.
+  Factory factory;
+  mechanics::register_components(factory);
+  const json rod = {{"type", "FramedChain"}, {"nodes", {{"from", {0, 0, 0}}, {"to", {0.2, 0, 0}}, {"count", 21}}},
+                    {"radius", 1e-3}, {"density", 1150},
+                    {"spans", {{{"from", 0.5}, {"to", 1.0}, {"radius", 4e-4}}}}};
+  const json document{{"name", "jaws on a rod"}, {"dt", 1e-3}, {"gravity", {0, 0, 0}},
+                      {"nodes", json::array({{{"name", "rod"}, {"components", json::array({rod})}}})}};
+  auto scene = loadScene(document, "jaws on a rod", factory);
+  scene->init();
+  const InstrumentShape shape;  // jaw radius 1 mm, length 18 mm, 0.9 rad fully open
+  const double along = 0.01;
+  auto openingFor = [&](double half_gap) {  // o with along · sin(o · max/2) − r_jaw = half_gap
+    return 2.0 * std::asin((half_gap + shape.jaw_radius) / along) / shape.max_angle;
+  };
+  auto caughtAt = [&](double x, double half_gap) {
+    InstrumentPose pose;
+    pose.hinge = Vec3(x, -along, 0);
+    pose.frame = instrumentFrame(Vec3::UnitY(), 0.0);
+    return catchBetweenJaws(*scene, shape, pose, 1.0, openingFor(half_gap));
+  };
+  const auto shaft = caughtAt(0.05, 0.7e-3);
+  ASSERT_TRUE(shaft.has_value());
+  // The nearest point to the jaws' midline is the rod's point under the hinge, s = 0.25, to the
+  // golden-section search's 0.618⁴⁰ ≈ 4.2e-9 of its bracket of two samples (at most 2/63 in s).
+  EXPECT_NEAR(shaft->abscissa, 0.25, 1e-9);
+  EXPECT_FALSE(caughtAt(0.15, 0.7e-3).has_value());
+  const auto tip = caughtAt(0.15, 0.3e-3);
+  ASSERT_TRUE(tip.has_value());
+  EXPECT_NEAR(tip->abscissa, 0.75, 1e-9);
+}
+
 TEST(Grasp, HoldsBelowItsHoldingForce) {
   // A 0.5 mm pull stretches the coupling (k = 500 N/m) in series with the held 5 cm of thread
   // (EA/0.05 = 6.6e3 N/m): 0.23 N, far below a 5 N hold. The held abscissa never moves.

@@ -89,6 +89,39 @@ TEST(InteractionTool, PushAndGrabForcesPassTheGenericForceFieldTest) {
   std::cout << "worst relative errors: push " << push.transpose() << ", grab " << grab.transpose() << '\n';
 }
 
+TEST(InteractionTool, ItPushesEachPartOfARodAtThatPartsRadius) {
+  // A straight rod along x whose second half is a thin tip ("spans": 0.4 mm against the shaft's
+  // 1 mm), and a 1 mm tool 1.7 mm from its axis: that is inside R + r on the shaft (2 mm) and
+  // outside it on the tip (1.4 mm), so the tool pushes the shaft and leaves the tip, which one
+  // radius for the rod would push too; 1.2 mm from the tip's axis it pushes the tip.
+  Factory factory;
+  mechanics::register_components(factory);
+  auto probe = std::make_shared<ToolState>();
+  factory.add("MouseProbe", "test", [probe](const Params&) { return std::make_unique<ToolForceField>(probe); });
+  const json rod = {{"type", "FramedChain"}, {"nodes", {{"from", {0, 0, 0}}, {"to", {0.2, 0, 0}}, {"count", 21}}},
+                    {"radius", 1e-3}, {"density", 1150},
+                    {"spans", {{{"from", 0.5}, {"to", 1.0}, {"radius", 4e-4}}}}};
+  const json document{{"name", "tool on a rod"}, {"dt", 1e-3}, {"gravity", {0, 0, 0}},
+                      {"integrator", {{"type", "ImplicitEuler"}}},
+                      {"nodes", json::array({{{"name", "rod"},
+                                              {"components", json::array({rod, {{"type", "MouseProbe"}}})}}})}};
+  auto scene = loadScene(document, "tool on a rod", factory);
+  const ToolForceField* field = nullptr;
+  for (const ForceField* f : scene->forceFields())
+    if (const auto* tool = dynamic_cast<const ToolForceField*>(f)) field = tool;
+  ASSERT_NE(field, nullptr);
+  scene->init();
+  probe->radius = 1e-3;
+  probe->touching = true;
+  auto energyAt = [&](const Vec3& x) {
+    probe->position = x;
+    return field->potentialEnergy(scene->state());
+  };
+  EXPECT_GT(energyAt(Vec3(0.05, 1.7e-3, 0)), 0.0);   // the shaft
+  EXPECT_EQ(energyAt(Vec3(0.15, 1.7e-3, 0)), 0.0);   // the tip, out of reach
+  EXPECT_GT(energyAt(Vec3(0.15, 1.2e-3, 0)), 0.0);   // the tip, within 1 mm + 0.4 mm
+}
+
 TEST(InteractionTool, StiffnessIsCappedForTheExplicitStep) {
   ProbeScene p = makeScene();
   // (ω dt)² m_eff / dt²: 0.3² for the push and 0.5² for the grab.

@@ -2,7 +2,7 @@
 // grasper's jaws that hold one where they close — the paper's "virtual probe, via the Phantom ...
 // the white cylinder linking the user to the curve" (Lenoir et al., §5, Fig. 1a).
 //   push:  every sample x_k = P(s_k) of a curve body inside the sphere (centre X, radius
-//          R = tool radius + thread radius) is pushed out by a penalty
+//          R = tool radius + r(s_k), the thread's radius there) is pushed out by a penalty
 //            F_k = k_p (R − d) n,  d = |x_k − X|,  n = (x_k − X)/d,  Q += Σ_k b(s_k) F_k;
 //   grasp: the virtual coupling between the stylus X, Ẋ and the held point P(s*), Ṗ(s*)
 //          (coupling.hpp):  F = k (X − P) + c (Ẋ − Ṗ),  Q_i += b_i(s*) F.
@@ -118,9 +118,10 @@ class ToolForceField final : public ForceField {
   void forEachOverlap(const SceneState& s, Visit visit) const;
   std::shared_ptr<const ToolState> tool_;
   int samples_;
-  double dt_ = 1e-4, thread_radius_ = 0.0, sample_mass_ = 0.0;
+  double dt_ = 1e-4, sample_mass_ = 0.0;
   bool explicit_step_ = true;
   std::vector<BodyPoint> push_points_;  // the push samples (fixed abscissas s_k)
+  std::vector<double> sample_radii_;    // the thread's radius r(s_k) at each
   mutable Points unit_load_, response_;          // workspace of effectiveMass: b and M⁻¹ b
   mutable double mass_abscissa_ = 0.0, mass_at_abscissa_ = 0.0;  // its last answer
 };
