@@ -89,10 +89,12 @@ void ContactPipeline::findTubes() {
                        describeJson(model.inside()));
     }
     const SphereCollisionModel& tube = *models_[tube_of_[m]];
-    if (!(tube.lumenRadius() > model.radius()))
+    // The instrument's every section fits the lumen's narrowest (a thick shaft pushed into a
+    // narrower lumen would be a contact no position satisfies).
+    if (!(tube.narrowestLumen() > model.radius()))
       throw SceneError(where, "a tube whose SphereCollisionModel has a \"lumen_radius\" above this instrument's radius " +
-                                  describeJson(model.radius()) + " m",
-                       describeJson(model.inside()) + (tube.lumenRadius() > 0.0 ? " with lumen_radius " + describeJson(tube.lumenRadius()) + " m"
+                                  describeJson(model.radius()) + " m" + " all along (\"lumen_spans\" included)",
+                       describeJson(model.inside()) + (tube.lumenRadius() > 0.0 ? " with a lumen of radius " + describeJson(tube.narrowestLumen()) + " m at its narrowest"
                                                                                  : std::string(" without a lumen_radius")));
   }
   // One level: an instrument inside a tube that is itself inside another (a wire in a
@@ -460,7 +462,7 @@ bool ContactPipeline::leftLumen() const {
     if (t < 0) continue;
     const SphereCollisionModel& inner = *models_[m];
     const SphereCollisionModel& tube = *models_[t];
-    const double lumen = tube.lumenRadius(), overshoot = 1.0 + settings_.max_penetration;
+    const double overshoot = 1.0 + settings_.max_penetration;
     const std::vector<TubePlace>& place = place_[m];
     axis_bounds_.build(after_centers_[t], tube.sphereCount());
     start_axis_bounds_.build(tube.centers(), tube.sphereCount());
@@ -470,7 +472,8 @@ bool ContactPipeline::leftLumen() const {
       const AxisPoint end = nearestAxisPoint(after_centers_[t], tube.mapping(), after_centers_[m].row(k).transpose(),
                                              &axis_bounds_, hint);
       if (end.chord >= 0) hint = end.chord;
-      if (end.chord < 0 || end.distance <= overshoot * (lumen - inner.radius(k))) continue;  // (R_in − r_k) the clearance
+      if (end.chord < 0 || end.distance <= overshoot * (tube.lumenRadius(end.chord, end.u) - inner.radius(k)))
+        continue;  // (R_in − r_k) the clearance
       const AxisPoint start = nearestAxisPoint(tube.centers(), tube.mapping(), inner.centers().row(k).transpose(),
                                                &start_axis_bounds_, end.chord);
       if (end.distance > start.distance) return true;

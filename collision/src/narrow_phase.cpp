@@ -250,6 +250,7 @@ AxisPoint nearestAxisPoint(const Points& axis, const SphereSamplingMapping& samp
     const Vec3 offset = x - y0, e = y1 - y0;
     const double length2 = e.squaredNorm();
     best.radial = length2 > 0.0 ? (offset - (offset.dot(e) / length2) * e).norm() : offset.norm();
+    best.end_sphere = best.chord + (best.u > 0.5 ? 1 : 0);  // u is 0 or 1 there (clamped t)
     best.chord = -1;
   }
   return best;
@@ -257,12 +258,13 @@ AxisPoint nearestAxisPoint(const Points& axis, const SphereSamplingMapping& samp
 
 TubePlace placeInTube(const AxisPoint& axis, const SphereCollisionModel& tube) {
   if (axis.chord >= 0)
-    return axis.distance < 0.5 * (tube.lumenRadius() + tube.chordRadius(axis.chord, axis.u)) ? TubePlace::kInside
-                                                                                             : TubePlace::kOutside;
+    return axis.distance < 0.5 * (tube.lumenRadius(axis.chord, axis.u) + tube.chordRadius(axis.chord, axis.u))
+               ? TubePlace::kInside
+               : TubePlace::kOutside;
   // In the opening: the centre within the lumen's radius of the end chord's line (at most its
   // own radius into the rim, which the lumen's rows then push back in); farther out, the rim and
   // the outer surface are touched as usual.
-  return axis.radial < tube.lumenRadius() ? TubePlace::kOpening : TubePlace::kOutside;
+  return axis.radial < tube.lumenRadius(axis.end_sphere) ? TubePlace::kOpening : TubePlace::kOutside;
 }
 
 void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const SphereCollisionModel& tube,
@@ -281,7 +283,7 @@ void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const
     place[k] = placeInTube(axis, tube);
     if (place[k] != TubePlace::kInside) continue;  // beyond the tube's ends, or beside it
     const double reach = settings.margin + (speed(inner, k) + tube_speed) * settings.time_step;
-    const double clearance = tube.lumenRadius() - inner.radius(k);  // R_in − r_k
+    const double clearance = tube.lumenRadius(axis.chord, axis.u) - inner.radius(k);  // R_in − r_k
     if (clearance - axis.distance > reach) continue;  // g = (R_in − r_k) − d
     const int l = axis.chord;
     const Vec3 y0 = center(tube, l), y1 = center(tube, l + 1);

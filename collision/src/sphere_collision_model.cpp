@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include "filum/core/node.hpp"
 #include "filum/core/params.hpp"
@@ -19,6 +21,28 @@ std::unique_ptr<SphereCollisionModel> SphereCollisionModel::fromParams(const Par
   s.self_collision = p.boolean("self_collision", true);
   s.exclusion = p.nonNegative({"exclusion", "m"}, -1.0);
   s.lumen_radius = p.positive({"lumen_radius", "m"}, 0.0);
+  if (p.has("lumen_spans")) {
+    if (s.lumen_radius == 0.0)
+      p.fail("lumen_spans", "a \"lumen_radius\" beside it (the lumen outside the spans; only a tube has a lumen)", "none");
+    for (const Params& span : p.objects("lumen_spans")) {
+      Settings::LumenSpan l;
+      l.from = span.abscissa("from");
+      l.to = span.abscissa("to");
+      if (!(l.to > l.from)) span.fail("to", "an abscissa above 'from' (" + describeJson(l.from) + ")", describeJson(l.to));
+      l.radius = span.positive({"lumen_radius", "m"});
+      span.finish();
+      for (std::size_t i = 0; i < s.lumen_spans.size(); ++i)
+        if (l.from < s.lumen_spans[i].to && s.lumen_spans[i].from < l.to) {
+          // (Appended piece by piece: GCC 12's -Wrestrict misfires on "literal" + std::string&&.)
+          std::string found = "[";
+          found.append(describeJson(l.from)).append(", ").append(describeJson(l.to)).append("] over span ");
+          found.append(std::to_string(i)).append(" [").append(describeJson(s.lumen_spans[i].from));
+          found.append(", ").append(describeJson(s.lumen_spans[i].to)).append("]");
+          span.fail("from", "lumen spans that do not overlap", found);
+        }
+      s.lumen_spans.push_back(l);
+    }
+  }
   if (p.has({"lumen_friction", "1"})) s.lumen_friction = p.nonNegative({"lumen_friction", "1"}, 0.0);
   s.inside = p.string("inside", "");
   return std::make_unique<SphereCollisionModel>(s);
@@ -58,11 +82,13 @@ void SphereCollisionModel::init(const Scene& scene) {
                          " spheres along the thread (sphere_sampling_mapping.hpp: every step visits each sphere)",
                      describeJson(std::floor(spheres)) + " spheres of spacing " + describeJson(spacing) + " m on " +
                          describeJson(rest_length) + " m");
-  if (settings_.lumen_radius > 0.0 && !(settings_.lumen_radius < smallest_radius_))
-    throw SceneError(origin() + "/lumen_radius",
-                     "a lumen radius below the tube's outer radius " + describeJson(smallest_radius_) + " m" +
-                         (varies_ ? " (its thinnest section)" : ""),
-                     describeJson(settings_.lumen_radius) + " m");
+  lumen_varies_ = !settings_.lumen_spans.empty();
+  widest_lumen_ = narrowest_lumen_ = settings_.lumen_radius;
+  for (const Settings::LumenSpan& l : settings_.lumen_spans) {
+    widest_lumen_ = std::max(widest_lumen_, l.radius);
+    narrowest_lumen_ = std::min(narrowest_lumen_, l.radius);
+  }
+  checkLumen();
   if (settings_.lumen_friction && settings_.lumen_radius == 0.0)
     throw SceneError(origin() + "/lumen_friction", "a \"lumen_radius\" beside it (only a tube has a lumen)", "none");
   exclusion_ = settings_.exclusion >= 0.0 ? settings_.exclusion : 4.0 * radius_;
@@ -73,13 +99,55 @@ void SphereCollisionModel::init(const Scene& scene) {
   centers_.resize(capacity, 3);
   velocities_.resize(capacity, 3);
   if (varies_) sphere_radii_.resize(capacity);
+  if (lumen_varies_) sphere_lumens_.resize(capacity);
   updateRadii();
 }
 
+double SphereCollisionModel::lumenRadiusAt(double s) const {
+  // Within a span's open interval its radius alone; at a span's end, or outside every span, the
+  // lumen_radius too; the smallest of those that hold (the spans do not overlap).
+  bool inside_a_span = false;
+  double r = std::numeric_limits<double>::infinity();
+  for (const Settings::LumenSpan& l : settings_.lumen_spans) {
+    if (s < l.from || s > l.to) continue;
+    r = std::min(r, l.radius);
+    inside_a_span = inside_a_span || (s > l.from && s < l.to);
+  }
+  return inside_a_span ? r : std::min(r, settings_.lumen_radius);
+}
+
+void SphereCollisionModel::checkLumen() const {
+  if (settings_.lumen_radius == 0.0) return;
+  // R_in(s) and r(s) are constant between the points where either may step (the body's
+  // breakpoints, the spans' ends): compared at each and halfway between neighbours, so all along.
+  std::vector<double> at = varies_ ? curve_->sectionAbscissas() : std::vector<double>{0.0, 1.0};
+  for (const Settings::LumenSpan& l : settings_.lumen_spans) {
+    at.push_back(l.from);
+    at.push_back(l.to);
+  }
+  std::sort(at.begin(), at.end());
+  const std::size_t ends = at.size();
+  for (std::size_t i = 0; i + 1 < ends; ++i) at.push_back(0.5 * (at[i] + at[i + 1]));
+  for (const double s : at) {
+    const double outer = varies_ ? curve_->radiusAt(s) : radius_, lumen = lumenRadiusAt(s);
+    if (lumen < outer) continue;
+    std::string where = "/lumen_radius";
+    for (std::size_t i = 0; i < settings_.lumen_spans.size(); ++i)
+      if (settings_.lumen_spans[i].radius == lumen && s >= settings_.lumen_spans[i].from && s <= settings_.lumen_spans[i].to)
+        where = std::string("/lumen_spans/").append(std::to_string(i)).append("/lumen_radius");
+    throw SceneError(origin() + where,
+                     "a lumen radius below the tube's outer radius " + describeJson(outer) + " m" +
+                         (varies_ || lumen_varies_ ? " at abscissa " + describeJson(s) : ""),
+                     describeJson(lumen) + " m");
+  }
+}
+
 void SphereCollisionModel::updateRadii() {
-  if (!varies_) return;
   const std::vector<double>& s = mapping_->abscissas();
-  for (std::size_t k = 0; k < s.size(); ++k) sphere_radii_[k] = curve_->radiusAt(s[k]);
+  if (varies_)
+    for (std::size_t k = 0; k < s.size(); ++k) sphere_radii_[k] = curve_->radiusAt(s[k]);
+  if (lumen_varies_)
+    for (std::size_t k = 0; k < s.size(); ++k) sphere_lumens_[k] = lumenRadiusAt(s[k]);
 }
 
 void SphereCollisionModel::update(const SceneState& s) {
@@ -92,6 +160,7 @@ void SphereCollisionModel::update(const SceneState& s) {
     centers_.resize(2 * count, 3);
     velocities_.resize(2 * count, 3);
     if (varies_) sphere_radii_.resize(2 * count);
+    if (lumen_varies_) sphere_lumens_.resize(2 * count);
   }
   updateRadii();
   mapping_->apply(q, centers_.topRows(count));

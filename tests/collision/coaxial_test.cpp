@@ -187,6 +187,69 @@ TEST(Coaxial, AWireWithAThinTipRestsAtEachSectionsClearanceFromTheAxis) {
   }
 }
 
+TEST(Coaxial, AWireRestsAtTheClearanceOfEachSectionOfANarrowingLumen) {
+  // The catheter's lumen narrows from 0.6 mm to 0.5 mm from s = 0.3 on ("lumen_spans"; x = 6 cm),
+  // under the middle of the wire (x from 2 to 10 cm); the wire soft (E = 2e7 Pa) as above. Each
+  // sphere's clearance is the lumen's there less the wire's radius: the wire lies 0.155 mm below
+  // the axis in the wide lumen and 0.055 mm in the narrow one — where one lumen radius held it at
+  // 0.155 mm all along. Over the step of δ = 0.1 mm it comes down over the lift-off length of a
+  // heavy strip, (72 E I δ / w)^{1/4} = 2.1 cm (E I = 6.2e-7 N m², w = 0.0244 N/m): it lies on the
+  // wide floor for x <= 3.5 cm, and on the narrow one from 1.5 cm past the step. The lumen's
+  // radius changes over the one chord of the tube's axis (1 mm) that holds the step.
+  constexpr double kNarrow = 5e-4, kStep = 0.06, kChord = 1e-3;
+  json document = coaxialScene(0.0);
+  document["nodes"][0]["components"][5]["lumen_spans"] = json::array({{{"from", 0.3}, {"to", 1.0}, {"lumen_radius", kNarrow}}});
+  document["nodes"][1]["components"][1]["youngs_modulus"] = 2e7;
+  auto scene = load(document);
+  for (int k = 0; k < 1000; ++k) ASSERT_TRUE(scene->step().ok) << "step " << k;
+  const CurveBody& tube = *scene->bodies()[0]->curve();
+  const CurveBody& wire = *scene->bodies()[1]->curve();
+  const SceneState& s = scene->state();
+  const double wide = kLumenRadius - kWireRadius, narrow = kNarrow - kWireRadius;
+  int on_wide = 0, on_narrow = 0;
+  for (int k = 0; k <= 400; ++k) {
+    const double u = k / 400.0;
+    const Vec3 x = wire.position(s.q, u);
+    const double d = distanceToAxis(tube, s, x);
+    // As WireRestsOnTheLumenFloor…: the kept contacts held to the solve's tolerance, the points
+    // between them no further out; 1e-4 of the clearance asserted.
+    const double bound = x.x() < kStep + kChord ? wide : narrow;
+    EXPECT_LE(d, bound * (1.0 + 1e-4)) << "s = " << u << ", x = " << x.x();
+    if (x.x() <= 0.035) {
+      EXPECT_NEAR(d, wide, 1e-4 * wide) << "s = " << u;
+      ++on_wide;
+    }
+    if (x.x() >= kStep + 0.015) {
+      EXPECT_NEAR(d, narrow, 1e-4 * narrow) << "s = " << u;
+      ++on_narrow;
+    }
+  }
+  EXPECT_GT(on_wide, 50);
+  EXPECT_GT(on_narrow, 50);
+}
+
+TEST(Coaxial, RefusesLumenSpansThatDoNotFit) {
+  const auto refusedAt = [](const json& document, const std::string& path) {
+    const std::string what = refusal(document);
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+  };
+  json document = coaxialScene(0.0);
+  json& tube = document["nodes"][0]["components"][5];
+  tube["lumen_spans"] = json::array({{{"from", 0.3}, {"to", 1.0}, {"lumen_radius", 1.2e-3}}});
+  refusedAt(document, "lumen_spans/0/lumen_radius");  // wider than the tube
+  tube["lumen_spans"] = json::array({{{"from", 0.3}, {"to", 0.8}, {"lumen_radius", 5e-4}},
+                                     {{"from", 0.7}, {"to", 1.0}, {"lumen_radius", 5.5e-4}}});
+  refusedAt(document, "lumen_spans/1/from");  // overlapping spans
+  tube["lumen_spans"] = json::array({{{"from", 0.8}, {"to", 0.3}, {"lumen_radius", 5e-4}}});
+  refusedAt(document, "lumen_spans/0/to");
+  tube["lumen_spans"] = json::array({{{"from", 0.3}, {"to", 1.0}, {"lumen_radius", 0.9 * kWireRadius}}});
+  refusedAt(document, "inside");  // the wire does not fit the narrowest section
+  tube.erase("lumen_radius");
+  tube.erase("lumen_friction");
+  tube["lumen_spans"] = json::array({{{"from", 0.3}, {"to", 1.0}, {"lumen_radius", 5e-4}}});
+  refusedAt(document, "lumen_spans");  // no lumen outside the spans
+}
+
 /// The wire's mean axial displacement 0.5 s after the pull began (m), and its axial speed then.
 struct Slide {
   double displacement = 0.0, speed = 0.0;

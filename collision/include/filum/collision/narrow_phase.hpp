@@ -71,12 +71,14 @@ bool findChordContact(const SphereCollisionModel& a, int model_a, int k, const S
 /// The nearest point of a tube's centre line (the chords between the centres `axis` of its
 /// sampling) to x: chord l, parameter u in [0, 1], distance d; chord −1 when that point lies
 /// beyond one of the tube's open ends (t < 0 on a strand's first chord, t > 1 on its last), and
-/// then `radial`, the distance of x from that end chord's line extended.
+/// then `radial`, the distance of x from that end chord's line extended, and `end_sphere`, the
+/// tube's sphere at that end.
 struct AxisPoint {
   int chord = -1;
   double u = 0.0;
   double distance = 0.0;
   double radial = 0.0;
+  int end_sphere = -1;
 };
 /// Bounding spheres of a tube's centre line, kChords chords a block (each chord lies within the
 /// sphere about its block's vertices): nearestAxisPoint skips a block that lies farther from x

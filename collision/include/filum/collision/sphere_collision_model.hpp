@@ -58,6 +58,11 @@ class SphereCollisionModel final : public CollisionModel {
     bool self_collision = true;
     double exclusion = -1.0;    // m along the curve; < 0: 4 r
     double lumen_radius = 0.0;  // R_in (m) of a tube's lumen; 0: a solid body
+    /// A lumen of another radius over [from, to] of the tube's abscissa (a narrower distal lumen).
+    struct LumenSpan {
+      double from = 0.0, to = 1.0, radius = 0.0;
+    };
+    std::vector<LumenSpan> lumen_spans;  // not overlapping; outside them lumen_radius
     std::optional<double> lumen_friction;  // μ inside the lumen; none: the pipeline's
     std::string inside;         // node path of the tube this instrument runs in; empty: none
   };
@@ -65,8 +70,9 @@ class SphereCollisionModel final : public CollisionModel {
 
   /// "radius": r (m, default: the DynamicSpline's radius), "spacing": h (m, default r),
   /// "self_collision": bool (default true), "exclusion": m along the curve (default 4 r);
-  /// a tube: "lumen_radius": R_in (m, below the radius r), "lumen_friction": μ (default the
-  /// pipeline's "friction"); an instrument in a tube: "inside": the tube's node path.
+  /// a tube: "lumen_radius": R_in (m, below the radius r), "lumen_spans": [{"from", "to",
+  /// "lumen_radius"}] (abscissa ranges of another lumen radius, not overlapping), "lumen_friction":
+  /// μ (default the pipeline's "friction"); an instrument in a tube: "inside": the tube's node path.
   static std::unique_ptr<SphereCollisionModel> fromParams(const Params& p);
 
   std::string typeName() const override { return "SphereCollisionModel"; }
@@ -98,8 +104,20 @@ class SphereCollisionModel final : public CollisionModel {
     return varies_ && settings_.exclusion < 0.0 ? 4.0 * std::max(chordRadius(k), chordRadius(l)) : exclusion_;
   }
   bool selfCollision() const { return settings_.self_collision; }
-  /// R_in (m) of the lumen of a tube; 0 for a solid body.
-  double lumenRadius() const { return settings_.lumen_radius; }
+  /// R_in (m) of the lumen of a tube, its widest section where it changes along the tube
+  /// ("lumen_spans"); 0 for a solid body.
+  double lumenRadius() const { return widest_lumen_; }
+  /// The narrowest section of the lumen (m); 0 for a solid body.
+  double narrowestLumen() const { return narrowest_lumen_; }
+  /// R_in(s) at abscissa s: the span's holding s, else "lumen_radius"; at the end of a span, the
+  /// smaller of the two sides (the narrower wall holds there).
+  double lumenRadiusAt(double s) const;
+  /// R_in at sphere k, as of the last update.
+  double lumenRadius(int k) const { return lumen_varies_ ? sphere_lumens_[k] : settings_.lumen_radius; }
+  /// R_in along chord k at t ∈ [0, 1] from centre k to centre k + 1 (linear between the spheres').
+  double lumenRadius(int k, double t) const {
+    return lumen_varies_ ? (1.0 - t) * sphere_lumens_[k] + t * sphere_lumens_[k + 1] : settings_.lumen_radius;
+  }
   const std::optional<double>& lumenFriction() const { return settings_.lumen_friction; }
   /// The node path of the tube this instrument runs in, or empty.
   const std::string& inside() const { return settings_.inside; }
@@ -111,8 +129,11 @@ class SphereCollisionModel final : public CollisionModel {
   const Points& velocities() const { return velocities_; }
 
  private:
-  /// sphere_radii_ from the body's section at the spheres' abscissas (while varies_).
+  /// sphere_radii_ and sphere_lumens_ from the body's section and the lumen's at the spheres'
+  /// abscissas (while they vary).
   void updateRadii();
+  /// SceneError unless R_in(s) < r(s) all along the tube.
+  void checkLumen() const;
 
   Settings settings_;
   const CurveBody* curve_ = nullptr;
@@ -122,6 +143,9 @@ class SphereCollisionModel final : public CollisionModel {
   double smallest_radius_ = 0.0;
   bool varies_ = false;               // the spheres' radii follow the body's section (radiusAt)
   std::vector<double> sphere_radii_;  // per sphere while varies_ (capacity as centers_)
+  bool lumen_varies_ = false;         // "lumen_spans" given
+  double widest_lumen_ = 0.0, narrowest_lumen_ = 0.0;
+  std::vector<double> sphere_lumens_;  // R_in per sphere while lumen_varies_ (capacity as centers_)
   double exclusion_ = 0.0;
   std::unique_ptr<SphereSamplingMapping> mapping_;
   Points centers_, velocities_;
