@@ -264,7 +264,9 @@ TubePlace placeInTube(const AxisPoint& axis, const SphereCollisionModel& tube) {
   // In the opening: the centre within the lumen's radius of the end chord's line (at most its
   // own radius into the rim, which the lumen's rows then push back in); farther out, the rim and
   // the outer surface are touched as usual.
-  return axis.radial < tube.lumenRadius(axis.end_sphere) ? TubePlace::kOpening : TubePlace::kOutside;
+  // (No end sphere when no chord was measured: a tube of one sphere, or non-finite positions.)
+  const double lumen = axis.end_sphere >= 0 ? tube.lumenRadius(axis.end_sphere) : tube.lumenRadius();
+  return axis.radial < lumen ? TubePlace::kOpening : TubePlace::kOutside;
 }
 
 void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const SphereCollisionModel& tube,

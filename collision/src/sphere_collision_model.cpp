@@ -84,9 +84,13 @@ void SphereCollisionModel::init(const Scene& scene) {
                          describeJson(rest_length) + " m");
   lumen_varies_ = !settings_.lumen_spans.empty();
   widest_lumen_ = narrowest_lumen_ = settings_.lumen_radius;
-  for (const Settings::LumenSpan& l : settings_.lumen_spans) {
-    widest_lumen_ = std::max(widest_lumen_, l.radius);
-    narrowest_lumen_ = std::min(narrowest_lumen_, l.radius);
+  if (lumen_varies_) {  // the lumen's range all along (lumen_radius only where no span covers)
+    widest_lumen_ = 0.0;
+    narrowest_lumen_ = std::numeric_limits<double>::infinity();
+    for (const double s : sectionSamples()) {
+      widest_lumen_ = std::max(widest_lumen_, lumenRadiusAt(s));
+      narrowest_lumen_ = std::min(narrowest_lumen_, lumenRadiusAt(s));
+    }
   }
   checkLumen();
   if (settings_.lumen_friction && settings_.lumen_radius == 0.0)
@@ -104,22 +108,26 @@ void SphereCollisionModel::init(const Scene& scene) {
 }
 
 double SphereCollisionModel::lumenRadiusAt(double s) const {
-  // Within a span's open interval its radius alone; at a span's end, or outside every span, the
-  // lumen_radius too; the smallest of those that hold (the spans do not overlap).
-  bool inside_a_span = false;
+  // The smallest radius of the sections on either side of s within [0, 1]: a span's where it
+  // covers that side, else lumen_radius (the spans do not overlap). Span ends are compared exactly:
+  // a sphere placed at a span's end by another sum may fall on either side, which moves the
+  // lumen's ramp by a chord of the tube's axis (documented as the step's resolution).
   double r = std::numeric_limits<double>::infinity();
+  bool left_covered = false, right_covered = false;
   for (const Settings::LumenSpan& l : settings_.lumen_spans) {
-    if (s < l.from || s > l.to) continue;
-    r = std::min(r, l.radius);
-    inside_a_span = inside_a_span || (s > l.from && s < l.to);
+    const bool left = l.from < s && s <= l.to, right = l.from <= s && s < l.to;
+    if (left || right) r = std::min(r, l.radius);
+    left_covered = left_covered || left;
+    right_covered = right_covered || right;
   }
-  return inside_a_span ? r : std::min(r, settings_.lumen_radius);
+  if ((s > 0.0 && !left_covered) || (s < 1.0 && !right_covered)) r = std::min(r, settings_.lumen_radius);
+  return r;
 }
 
-void SphereCollisionModel::checkLumen() const {
-  if (settings_.lumen_radius == 0.0) return;
+std::vector<double> SphereCollisionModel::sectionSamples() const {
   // R_in(s) and r(s) are constant between the points where either may step (the body's
-  // breakpoints, the spans' ends): compared at each and halfway between neighbours, so all along.
+  // breakpoints, the spans' ends): those points and the middles between neighbours see every
+  // value either takes.
   std::vector<double> at = varies_ ? curve_->sectionAbscissas() : std::vector<double>{0.0, 1.0};
   for (const Settings::LumenSpan& l : settings_.lumen_spans) {
     at.push_back(l.from);
@@ -128,7 +136,12 @@ void SphereCollisionModel::checkLumen() const {
   std::sort(at.begin(), at.end());
   const std::size_t ends = at.size();
   for (std::size_t i = 0; i + 1 < ends; ++i) at.push_back(0.5 * (at[i] + at[i + 1]));
-  for (const double s : at) {
+  return at;
+}
+
+void SphereCollisionModel::checkLumen() const {
+  if (settings_.lumen_radius == 0.0) return;
+  for (const double s : sectionSamples()) {  // all along (sectionSamples)
     const double outer = varies_ ? curve_->radiusAt(s) : radius_, lumen = lumenRadiusAt(s);
     if (lumen < outer) continue;
     std::string where = "/lumen_radius";

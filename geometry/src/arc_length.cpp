@@ -185,12 +185,15 @@ std::vector<double> ArcLengthParameterization::equallySpacedAbscissas(int count,
 }
 
 Points ArcLengthParameterization::equallySpacedPoints(int count, const Strand& strand) const {
-  const std::vector<double> s = equallySpacedAbscissas(count, strand);
-  Points out(count, 3);
+  return pointsAt(equallySpacedAbscissas(count, strand), strand);
+}
+
+Points ArcLengthParameterization::pointsAt(const std::vector<double>& abscissas, const Strand& strand) const {
+  Points out(static_cast<Eigen::Index>(abscissas.size()), 3);
   BasisRow row;
-  for (int k = 0; k < count; ++k) {
-    evaluateOnStrand(*basis_, strand, s[k], row);
-    out.row(k) = curvePoint(row, q_).transpose();
+  for (std::size_t k = 0; k < abscissas.size(); ++k) {
+    evaluateOnStrand(*basis_, strand, abscissas[k], row);
+    out.row(static_cast<Eigen::Index>(k)) = curvePoint(row, q_).transpose();
   }
   return out;
 }

@@ -50,12 +50,12 @@ void ConvolutionSurface::addCurve(const CurveBasis& basis, ConstPointsRef q, int
   if (segments < 1)
     throw std::invalid_argument("ConvolutionSurface::addCurve: segments must be >= 1, got " + std::to_string(segments));
   const ArcLengthParameterization arc(basis, q, 1e-10);
-  const Points points = arc.equallySpacedPoints(segments + 1, strand);
+  const std::vector<double> s = arc.equallySpacedAbscissas(segments + 1, strand);
+  const Points points = arc.pointsAt(s, strand);
   if (!radius_at) {
     addPolyline(points);
     return;
   }
-  const std::vector<double> s = arc.equallySpacedAbscissas(segments + 1, strand);
   for (int i = 0; i < segments; ++i)
     addSegment(points.row(i).transpose(), points.row(i + 1).transpose(),
                weightForRadius(radius_at(0.5 * (s[i] + s[i + 1]))));

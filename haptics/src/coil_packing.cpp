@@ -66,14 +66,16 @@ CoilPacking::Inside CoilPacking::inside(const CurveBody& body, const VecX& q, in
   for (int i = 1; i <= pieces; ++i) {
     const Vec3 next = body.position(q, static_cast<double>(i) / pieces);
     if (contains(0.5 * (previous + next))) {
-      // π r² dℓ with the radius at the piece's middle abscissa (header).
       const double length = (next - previous).norm();
-      const double middle = varies ? body.radiusAt((i - 0.5) / pieces) : r;
       in.length += length;
-      in.volume += M_PI * middle * middle * length;
+      if (varies) {  // π r² dℓ with the radius at the piece's middle abscissa (header)
+        const double middle = body.radiusAt((i - 0.5) / pieces);
+        in.volume += M_PI * middle * middle * length;
+      }
     }
     previous = next;
   }
+  if (!varies) in.volume = M_PI * r * r * in.length;  // one radius: π r² L
   return in;
 }
 

@@ -417,7 +417,13 @@ void InstrumentSet::setHeldSpans(const Scene& scene) {
     // the held point ± (jaw length + R + r) along the thread, in abscissa through |P'(s*)|.
     const InstrumentShape& shape = inst.settings().shape;
     const double speed = point.mapTangent(scene.state().q).norm();
-    const double reach = shape.jaw_length + shape.jaw_radius + point.body()->radiusAt(s);
+    // r: the thread's section where it leaves the jaws (a rod's spans), about a jaw's length and
+    // radius either side of the held point, or at it where that is larger.
+    const CurveBody& body = *point.body();
+    const double exit = speed > 0.0 ? (shape.jaw_length + shape.jaw_radius) / speed : 0.0;
+    const double r = std::max({body.radiusAt(s), body.radiusAt(std::max(strand.begin, s - exit)),
+                               body.radiusAt(std::min(strand.end, s + exit))});
+    const double reach = shape.jaw_length + shape.jaw_radius + r;
     const double half = speed > 0.0 ? reach / speed : strand.end - strand.begin;
     inst.setHeldSpan(std::max(strand.begin, s - half), std::min(strand.end, s + half));
   }

@@ -192,10 +192,13 @@ TEST(Coaxial, AWireRestsAtTheClearanceOfEachSectionOfANarrowingLumen) {
   // under the middle of the wire (x from 2 to 10 cm); the wire soft (E = 2e7 Pa) as above. Each
   // sphere's clearance is the lumen's there less the wire's radius: the wire lies 0.155 mm below
   // the axis in the wide lumen and 0.055 mm in the narrow one — where one lumen radius held it at
-  // 0.155 mm all along. Over the step of δ = 0.1 mm it comes down over the lift-off length of a
-  // heavy strip, (72 E I δ / w)^{1/4} = 2.1 cm (E I = 6.2e-7 N m², w = 0.0244 N/m): it lies on the
-  // wide floor for x <= 3.5 cm, and on the narrow one from 1.5 cm past the step. The lumen's
-  // radius changes over the one chord of the tube's axis (1 mm) that holds the step.
+  // 0.155 mm all along. The lumen's radius changes over the one chord of the tube's axis (1 mm)
+  // that holds the step, whose narrow end is the corner the wire passes over. A heavy strip over
+  // a corner δ above its floor, touching down on both floors (y = y' = y'' = 0 there, slope and
+  // moment continuous at the corner): L₂ = (√3 − 1) L₁ past it and L₁ = (24 E I δ / ((2√3 − 3) w))^{1/4}
+  // before it, 1.9 cm and 1.4 cm with δ = 0.1 mm, E I = 6.2e-7 N m², w = 0.0244 N/m. So it lies
+  // on the wide floor for x <= 3.5 cm (touchdown at 4.1 cm or later) and on the narrow one from
+  // 2 cm past the step (touchdown by 6.1 + 1.4 cm).
   constexpr double kNarrow = 5e-4, kStep = 0.06, kChord = 1e-3;
   json document = coaxialScene(0.0);
   document["nodes"][0]["components"][5]["lumen_spans"] = json::array({{{"from", 0.3}, {"to", 1.0}, {"lumen_radius", kNarrow}}});
@@ -219,13 +222,41 @@ TEST(Coaxial, AWireRestsAtTheClearanceOfEachSectionOfANarrowingLumen) {
       EXPECT_NEAR(d, wide, 1e-4 * wide) << "s = " << u;
       ++on_wide;
     }
-    if (x.x() >= kStep + 0.015) {
+    if (x.x() >= kStep + 0.02) {
       EXPECT_NEAR(d, narrow, 1e-4 * narrow) << "s = " << u;
       ++on_narrow;
     }
   }
   EXPECT_GT(on_wide, 50);
   EXPECT_GT(on_narrow, 50);
+}
+
+TEST(Coaxial, LumenSpansTakeTheNarrowerSideAtTheirEndsAndTheLumenRadiusOnlyWhereNoSpanIs) {
+  // Two spans meeting at s = 0.5 and covering the whole tube, both wider than "lumen_radius": the
+  // lumen_radius holds nowhere, at the meeting point the narrower span's, at the tube's ends the
+  // end span's.
+  json document = coaxialScene(0.0);
+  document["nodes"][0]["components"][5]["lumen_radius"] = 5e-4;
+  document["nodes"][0]["components"][5]["lumen_spans"] = json::array(
+      {{{"from", 0.0}, {"to", 0.5}, {"lumen_radius", 6e-4}}, {{"from", 0.5}, {"to", 1.0}, {"lumen_radius", 5.5e-4}}});
+  auto scene = load(document);
+  const SphereCollisionModel& tube = *pipelineOf(*scene).models()[0];
+  EXPECT_EQ(tube.lumenRadiusAt(0.0), 6e-4);
+  EXPECT_EQ(tube.lumenRadiusAt(0.25), 6e-4);
+  EXPECT_EQ(tube.lumenRadiusAt(0.5), 5.5e-4);
+  EXPECT_EQ(tube.lumenRadiusAt(1.0), 5.5e-4);
+  EXPECT_EQ(tube.narrowestLumen(), 5.5e-4);
+  EXPECT_EQ(tube.lumenRadius(), 6e-4);
+  // One span in the middle: the lumen_radius on both sides, the narrower at its ends.
+  document["nodes"][0]["components"][5]["lumen_spans"] = json::array({{{"from", 0.4}, {"to", 0.6}, {"lumen_radius", 5.5e-4}}});
+  scene = load(document);
+  const SphereCollisionModel& middle = *pipelineOf(*scene).models()[0];
+  EXPECT_EQ(middle.lumenRadiusAt(0.0), 5e-4);
+  EXPECT_EQ(middle.lumenRadiusAt(0.4), 5e-4);
+  EXPECT_EQ(middle.lumenRadiusAt(0.5), 5.5e-4);
+  EXPECT_EQ(middle.lumenRadiusAt(1.0), 5e-4);
+  EXPECT_EQ(middle.narrowestLumen(), 5e-4);
+  EXPECT_EQ(middle.lumenRadius(), 5.5e-4);
 }
 
 TEST(Coaxial, RefusesLumenSpansThatDoNotFit) {
@@ -247,7 +278,7 @@ TEST(Coaxial, RefusesLumenSpansThatDoNotFit) {
   tube.erase("lumen_radius");
   tube.erase("lumen_friction");
   tube["lumen_spans"] = json::array({{{"from", 0.3}, {"to", 1.0}, {"lumen_radius", 5e-4}}});
-  refusedAt(document, "lumen_spans");  // no lumen outside the spans
+  refusedAt(document, "components/5/lumen_spans (SphereCollisionModel): expected a \"lumen_radius\" beside it");  // no lumen outside
 }
 
 /// The wire's mean axial displacement 0.5 s after the pull began (m), and its axial speed then.

@@ -111,7 +111,7 @@ TEST(Grasp, JawsCatchEachPartOfARodAtThatPartsRadius) {
   const auto shaft = caughtAt(0.05, 0.7e-3);
   ASSERT_TRUE(shaft.has_value());
   // The nearest point to the jaws' midline is the rod's point under the hinge, s = 0.25, to the
-  // golden-section search's 0.618⁴⁰ ≈ 4.2e-9 of its bracket of two samples (at most 2/63 in s).
+  // golden-section search's 0.618⁴⁰ ≈ 4.4e-9 of its bracket of two samples (at most 2/63 in s).
   EXPECT_NEAR(shaft->abscissa, 0.25, 1e-9);
   EXPECT_FALSE(caughtAt(0.15, 0.7e-3).has_value());
   const auto tip = caughtAt(0.15, 0.3e-3);

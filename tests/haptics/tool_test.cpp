@@ -91,9 +91,10 @@ TEST(InteractionTool, PushAndGrabForcesPassTheGenericForceFieldTest) {
 
 TEST(InteractionTool, ItPushesEachPartOfARodAtThatPartsRadius) {
   // A straight rod along x whose second half is a thin tip ("spans": 0.4 mm against the shaft's
-  // 1 mm), and a 1 mm tool 1.7 mm from its axis: that is inside R + r on the shaft (2 mm) and
-  // outside it on the tip (1.4 mm), so the tool pushes the shaft and leaves the tip, which one
-  // radius for the rod would push too; 1.2 mm from the tip's axis it pushes the tip.
+  // 1 mm), and a 1 mm tool 1.7 mm from its axis, right above a push sample: that is inside R + r
+  // on the shaft (2 mm) and outside it on the tip (1.4 mm), so the tool pushes the shaft and
+  // leaves the tip, which one radius for the rod would push too; 1.2 mm from the tip's axis it
+  // pushes the tip.
   Factory factory;
   mechanics::register_components(factory);
   auto probe = std::make_shared<ToolState>();
@@ -117,9 +118,13 @@ TEST(InteractionTool, ItPushesEachPartOfARodAtThatPartsRadius) {
     probe->position = x;
     return field->potentialEnergy(scene->state());
   };
-  EXPECT_GT(energyAt(Vec3(0.05, 1.7e-3, 0)), 0.0);   // the shaft
-  EXPECT_EQ(energyAt(Vec3(0.15, 1.7e-3, 0)), 0.0);   // the tip, out of reach
-  EXPECT_GT(energyAt(Vec3(0.15, 1.2e-3, 0)), 0.0);   // the tip, within 1 mm + 0.4 mm
+  // The samples: m = max(8, 4 n) at s_k = k / (m − 1), n the rod's points (tool.hpp); the tool
+  // above the ones nearest x = 5 cm and 15 cm.
+  const int m = std::max(8, 4 * scene->bodies().front()->curve()->pointCount());
+  auto sampleX = [m](double x) { return 0.2 * std::round(x / 0.2 * (m - 1)) / (m - 1); };
+  EXPECT_GT(energyAt(Vec3(sampleX(0.05), 1.7e-3, 0)), 0.0);  // the shaft
+  EXPECT_EQ(energyAt(Vec3(sampleX(0.15), 1.7e-3, 0)), 0.0);  // the tip, out of reach
+  EXPECT_GT(energyAt(Vec3(sampleX(0.15), 1.2e-3, 0)), 0.0);  // the tip, within 1 mm + 0.4 mm
 }
 
 TEST(InteractionTool, StiffnessIsCappedForTheExplicitStep) {

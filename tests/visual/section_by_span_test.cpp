@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "filum/core/curve_body.hpp"
+#include "filum/visual/convolution_surface_mesher.hpp"
 #include "filum/visual/convolution_surface_model.hpp"
 #include "filum/visual/sphere_model.hpp"
 #include "filum/visual/visual_scene.hpp"
@@ -67,6 +68,7 @@ TEST(SectionBySpan, ARadiusGivenToTheSpheresHoldsAllAlong) {
 }
 
 TEST(SectionBySpan, TheConvolutionSurfaceWrapsShaftAndTipAtTheirOwnRadii) {
+  if (!convolutionSurfaceMeshingAvailable()) GTEST_SKIP() << "built without CGAL (FILUM_WITH_CGAL=OFF)";
   // A straight rod 40 mm long, its second half a tip of 0.4 mm against the shaft's 1 mm; the
   // surface's kernel is the shaft's (s = 1/R = 1/mm), each chord weighted to its own radius.
   // (Facets of the tip's radius instead of the default half: the mesh is four times coarser, the

@@ -114,7 +114,7 @@ enum class TubePlace : char {
 TubePlace placeInTube(const AxisPoint& axis, const SphereCollisionModel& tube);
 
 /// Appends to `out` the contacts holding the spheres of `inner` that are inside `tube` in its
-/// lumen (tube.lumenRadius() > inner.radius()), with friction μ; place[k] is each sphere's
+/// lumen (tube.narrowestLumen() > inner.radius()), with friction μ; place[k] is each sphere's
 /// place (resized to inner's sphere count).
 /// `bounds`: the workspace of the tube's AxisBounds.
 void findLumenContacts(const SphereCollisionModel& inner, int model_inner, const SphereCollisionModel& tube,

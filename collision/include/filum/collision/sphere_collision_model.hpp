@@ -110,7 +110,7 @@ class SphereCollisionModel final : public CollisionModel {
   /// The narrowest section of the lumen (m); 0 for a solid body.
   double narrowestLumen() const { return narrowest_lumen_; }
   /// R_in(s) at abscissa s: the span's holding s, else "lumen_radius"; at the end of a span, the
-  /// smaller of the two sides (the narrower wall holds there).
+  /// smaller of the two sides within [0, 1] (the narrower wall holds there).
   double lumenRadiusAt(double s) const;
   /// R_in at sphere k, as of the last update.
   double lumenRadius(int k) const { return lumen_varies_ ? sphere_lumens_[k] : settings_.lumen_radius; }
@@ -132,6 +132,9 @@ class SphereCollisionModel final : public CollisionModel {
   /// sphere_radii_ and sphere_lumens_ from the body's section and the lumen's at the spheres'
   /// abscissas (while they vary).
   void updateRadii();
+  /// Abscissas at which R_in and r take every value they take along the body (both are constant
+  /// between the body's breakpoints and the lumen spans' ends).
+  std::vector<double> sectionSamples() const;
   /// SceneError unless R_in(s) < r(s) all along the tube.
   void checkLumen() const;
 

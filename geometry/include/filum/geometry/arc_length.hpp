@@ -45,6 +45,8 @@ class ArcLengthParameterization {
   /// The points P(s_k) at the equally spaced abscissas of `strand` (count × 3; the whole curve
   /// by default); the strand's end is its own end point (evaluateOnStrand).
   Points equallySpacedPoints(int count, const Strand& strand = {}) const;
+  /// The points P(s_k) at the given abscissas of `strand` (one row each; evaluateOnStrand).
+  Points pointsAt(const std::vector<double>& abscissas, const Strand& strand = {}) const;
   /// Number of accepted quadrature intervals (a measure of the work done).
   int intervalCount() const { return static_cast<int>(boundaries_.size()) - 1; }
 

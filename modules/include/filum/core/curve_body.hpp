@@ -35,8 +35,9 @@ class CurveBody : public MechanicalState {
   /// to another (a node between two spans of a rod), the larger, so that what collides or is drawn
   /// there covers both sides.
   virtual double radiusAt(double /*s*/) const { return radius(); }
-  /// Where the section is read: every breakpoint and every piece's middle, in increasing order
-  /// (radiusAt keeps one value between two breakpoints and may step only at one); just {0} where
+  /// Where the section is read: every breakpoint and every piece's middle, in non-decreasing order
+  /// (repeated where a breakpoint is; radiusAt keeps one value between two breakpoints and may
+  /// step only at one); just {0} where
   /// the radius does not vary.
   std::vector<double> sectionAbscissas() const;
   /// The thinnest and the thickest section's radius (m), read at sectionAbscissas.
