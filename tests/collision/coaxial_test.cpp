@@ -12,6 +12,8 @@
 // - the ordinary contacts between the two bodies, which would push the wire out through the wall,
 //   are not sought.
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -232,31 +234,27 @@ TEST(Coaxial, AWireRestsAtTheClearanceOfEachSectionOfANarrowingLumen) {
 }
 
 TEST(Coaxial, LumenSpansTakeTheNarrowerSideAtTheirEndsAndTheLumenRadiusOnlyWhereNoSpanIs) {
+  json document = coaxialScene(0.0);
+  document["nodes"][0]["components"][5]["lumen_radius"] = 5e-4;
+  // The tube's R_in(s) at the given abscissas, its narrowest and its widest, with these spans.
+  auto expectLumen = [&](const json& spans, const std::vector<std::pair<double, double>>& at, double narrowest,
+                         double widest) {
+    document["nodes"][0]["components"][5]["lumen_spans"] = spans;
+    auto scene = load(document);
+    const SphereCollisionModel& tube = *pipelineOf(*scene).models()[0];
+    for (const auto& [s, r] : at) EXPECT_EQ(tube.lumenRadiusAt(s), r) << "s = " << s << " with " << spans.dump();
+    EXPECT_EQ(tube.narrowestLumen(), narrowest) << spans.dump();
+    EXPECT_EQ(tube.lumenRadius(), widest) << spans.dump();
+  };
   // Two spans meeting at s = 0.5 and covering the whole tube, both wider than "lumen_radius": the
   // lumen_radius holds nowhere, at the meeting point the narrower span's, at the tube's ends the
   // end span's.
-  json document = coaxialScene(0.0);
-  document["nodes"][0]["components"][5]["lumen_radius"] = 5e-4;
-  document["nodes"][0]["components"][5]["lumen_spans"] = json::array(
-      {{{"from", 0.0}, {"to", 0.5}, {"lumen_radius", 6e-4}}, {{"from", 0.5}, {"to", 1.0}, {"lumen_radius", 5.5e-4}}});
-  auto scene = load(document);
-  const SphereCollisionModel& tube = *pipelineOf(*scene).models()[0];
-  EXPECT_EQ(tube.lumenRadiusAt(0.0), 6e-4);
-  EXPECT_EQ(tube.lumenRadiusAt(0.25), 6e-4);
-  EXPECT_EQ(tube.lumenRadiusAt(0.5), 5.5e-4);
-  EXPECT_EQ(tube.lumenRadiusAt(1.0), 5.5e-4);
-  EXPECT_EQ(tube.narrowestLumen(), 5.5e-4);
-  EXPECT_EQ(tube.lumenRadius(), 6e-4);
+  expectLumen(json::array({{{"from", 0.0}, {"to", 0.5}, {"lumen_radius", 6e-4}},
+                           {{"from", 0.5}, {"to", 1.0}, {"lumen_radius", 5.5e-4}}}),
+              {{0.0, 6e-4}, {0.25, 6e-4}, {0.5, 5.5e-4}, {1.0, 5.5e-4}}, 5.5e-4, 6e-4);
   // One span in the middle: the lumen_radius on both sides, the narrower at its ends.
-  document["nodes"][0]["components"][5]["lumen_spans"] = json::array({{{"from", 0.4}, {"to", 0.6}, {"lumen_radius", 5.5e-4}}});
-  scene = load(document);
-  const SphereCollisionModel& middle = *pipelineOf(*scene).models()[0];
-  EXPECT_EQ(middle.lumenRadiusAt(0.0), 5e-4);
-  EXPECT_EQ(middle.lumenRadiusAt(0.4), 5e-4);
-  EXPECT_EQ(middle.lumenRadiusAt(0.5), 5.5e-4);
-  EXPECT_EQ(middle.lumenRadiusAt(1.0), 5e-4);
-  EXPECT_EQ(middle.narrowestLumen(), 5e-4);
-  EXPECT_EQ(middle.lumenRadius(), 5.5e-4);
+  expectLumen(json::array({{{"from", 0.4}, {"to", 0.6}, {"lumen_radius", 5.5e-4}}}),
+              {{0.0, 5e-4}, {0.4, 5e-4}, {0.5, 5.5e-4}, {1.0, 5e-4}}, 5e-4, 5.5e-4);
 }
 
 TEST(Coaxial, RefusesLumenSpansThatDoNotFit) {
