@@ -43,6 +43,25 @@ TEST(ConvolutionSurfaceMesher, StraightTubeIsAClosedManifoldOnTheSurface) {
   EXPECT_LE(worst, 1e-3 * criteria.approximation + 1e-9);
 }
 
+TEST(ConvolutionSurfaceMesher, TheSameSurfaceGivesTheSameMeshWhateverWasMeshedBefore) {
+  // Determinism: CGAL draws the mesher's first surface points from its default random generator;
+  // a surface meshed again after another gives the same mesh, bit for bit.
+  if (!convolutionSurfaceMeshingAvailable()) GTEST_SKIP() << "built without CGAL (FILUM_WITH_CGAL=OFF)";
+  const double R = 2e-3;
+  geometry::ConvolutionSurface tube(R), other(R);
+  tube.addSegment(Vec3(0, 0, 0), Vec3(0.02, 0, 0));
+  other.addSegment(Vec3(0, 0, 0), Vec3(0, 0.01, 0));
+  SurfaceMeshingCriteria criteria;
+  criteria.facet_size = 0.5 * R;
+  criteria.approximation = 0.05 * R;
+  const TriangleMesh first = meshConvolutionSurface(tube, Vec3(0.01, 0, 0), 0.02, criteria);
+  meshConvolutionSurface(other, Vec3(0, 0.005, 0), 0.02, criteria);
+  const TriangleMesh again = meshConvolutionSurface(tube, Vec3(0.01, 0, 0), 0.02, criteria);
+  ASSERT_EQ(first.vertices.rows(), again.vertices.rows());
+  EXPECT_TRUE(first.vertices == again.vertices);
+  EXPECT_TRUE(first.triangles == again.triangles);
+}
+
 TEST(ConvolutionSurfaceModel, WrapsASplineOrIsRefusedWithTheOption) {
   const json more = json::array({{{"type", "ConvolutionSurfaceModel"}, {"radius", 3e-3}, {"facet_size", 2e-3}}});
   const json document = test::splineScene(test::helix(12), more, 1e-3);

@@ -1,6 +1,8 @@
 // The only translation unit that includes CGAL (compile time): see convolution_surface_mesher.hpp.
 #include "filum/visual/convolution_surface_mesher.hpp"
 
+#include <algorithm>
+#include <array>
 #include <functional>
 #include <map>
 #include <stdexcept>
@@ -9,6 +11,7 @@
 #include <CGAL/Complex_2_in_triangulation_3.h>
 #include <CGAL/IO/facets_in_complex_2_to_triangle_mesh.h>
 #include <CGAL/Implicit_surface_3.h>
+#include <CGAL/Random.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_default_triangulation_3.h>
 #include <CGAL/make_surface_mesh.h>
@@ -32,6 +35,22 @@ struct FunctionAdapter {
 };
 
 using Surface = CGAL::Implicit_surface_3<Kernel, FunctionAdapter>;
+
+/// The triangles in one order whatever order CGAL's complex lists them in (its facets are keyed by
+/// address, so two meshings of one surface in a process list them differently): each rotated to
+/// start at its smallest vertex, keeping its orientation, then sorted.
+void sortTriangles(Triangles& triangles) {
+  std::vector<std::array<int, 3>> rows(static_cast<std::size_t>(triangles.rows()));
+  for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
+    int first = 0;
+    for (int k = 1; k < 3; ++k)
+      if (triangles(f, k) < triangles(f, first)) first = k;
+    for (int k = 0; k < 3; ++k) rows[f][k] = triangles(f, (first + k) % 3);
+  }
+  std::sort(rows.begin(), rows.end());
+  for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+    for (int k = 0; k < 3; ++k) triangles(f, k) = rows[f][k];
+}
 
 }  // namespace
 
@@ -59,6 +78,10 @@ TriangleMesh meshImplicitSurface(const ImplicitFunction& value, const ImplicitGr
                          1e-3 * criteria.approximation / bounding_radius);
   const CGAL::Surface_mesh_default_criteria_3<Triangulation> bounds(criteria.angle_degrees, criteria.facet_size,
                                                                    criteria.approximation);
+  // The mesher's initial points on the surface are drawn from CGAL's default random generator,
+  // seeded from the clock: seeded here, so that a scene gives the same meshes on every run
+  // (determinism), whatever was meshed before.
+  CGAL::get_default_random() = CGAL::Random(0);
   CGAL::make_surface_mesh(complex, implicit, bounds, CGAL::Manifold_tag());
   CGAL::Surface_mesh<Point> output;
   CGAL::facets_in_complex_2_to_triangle_mesh(complex, output);
@@ -90,6 +113,7 @@ TriangleMesh meshImplicitSurface(const ImplicitFunction& value, const ImplicitGr
     if ((b - a).cross(c - a).dot(n) < 0.0) std::swap(mesh.triangles(f, 1), mesh.triangles(f, 2));
     ++f;
   }
+  sortTriangles(mesh.triangles);
   return mesh;
 }
 
