@@ -117,7 +117,7 @@ std::vector<std::string> physicsProblems(const Scene& scene, const nlohmann::jso
     const CurveBody* curve = body->curve();
     if (!curve) continue;
     const double length = curveLength(*curve, scene.state());
-    const double radius = curve->radius();
+    const double radius = curve->radiusRange().largest;  // its thickest section (a rod's spans)
     if (radius > 0.5 * length) {
       std::string message = body->origin();
       message += "/radius: expected a radius below half the body's length (";

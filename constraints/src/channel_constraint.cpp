@@ -48,7 +48,7 @@ void ChannelConstraint::init(const Scene& scene) {
   const int n = requested_samples_ > 0 ? requested_samples_ : std::max(1, curve.pointCount() - 1);
   samples_.assign(static_cast<std::size_t>(n), BodyPoint());
   for (int k = 1; k <= n; ++k) samples_[k - 1].attach(curve, static_cast<double>(k) / n);
-  if (capture_ == 0.0) capture_ = 4.0 * curve.radius();
+  if (capture_ == 0.0) capture_ = 4.0 * curve.radiusRange().largest;  // the thickest section's (a rod's spans)
   baumgarte_.init(scene);
 }
 

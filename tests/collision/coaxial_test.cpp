@@ -257,6 +257,24 @@ TEST(Coaxial, LumenSpansTakeTheNarrowerSideAtTheirEndsAndTheLumenRadiusOnlyWhere
               {{0.0, 5e-4}, {0.4, 5e-4}, {0.5, 5.5e-4}, {1.0, 5e-4}}, 5e-4, 5.5e-4);
 }
 
+TEST(Coaxial, AnOpeningTakesTheLumenOfItsOwnEnd) {
+  // A distal span narrows the lumen to 0.5 mm, the proximal end keeps 0.6 mm. A point 0.55 mm off
+  // the axis beyond either end is in the proximal opening and outside the distal one.
+  json document = coaxialScene(0.0);
+  document["nodes"][0]["components"][5]["lumen_spans"] = json::array({{{"from", 0.9}, {"to", 1.0}, {"lumen_radius", 5e-4}}});
+  auto scene = load(document);
+  ASSERT_TRUE(scene->step().ok);  // the spheres' centres as of a step (the clamped tube barely sags)
+  const SphereCollisionModel& tube = *pipelineOf(*scene).models()[0];
+  const AxisPoint proximal = nearestAxisPoint(tube.centers(), tube.mapping(), Vec3(-1e-3, 0, 5.5e-4), nullptr, -1);
+  const AxisPoint distal = nearestAxisPoint(tube.centers(), tube.mapping(), Vec3(0.201, 0, 5.5e-4), nullptr, -1);
+  ASSERT_EQ(proximal.chord, -1);
+  ASSERT_EQ(distal.chord, -1);
+  EXPECT_EQ(proximal.end_sphere, 0);
+  EXPECT_EQ(distal.end_sphere, tube.sphereCount() - 1);
+  EXPECT_EQ(placeInTube(proximal, tube), TubePlace::kOpening);
+  EXPECT_EQ(placeInTube(distal, tube), TubePlace::kOutside);
+}
+
 TEST(Coaxial, RefusesLumenSpansThatDoNotFit) {
   const auto refusedAt = [](const json& document, const std::string& path) {
     const std::string what = refusal(document);

@@ -37,7 +37,7 @@
 // is undefined (docs/vessels.md, "The coil pushed out of a microcatheter").
 //
 // Scene parameters: "centre_line" (m, at least 2 points, proximal to distal), "samples" (n, default
-// and at most the body's point count − 1: more would give rows that depend on each other), "capture" (m, default 4 body radii), "stabilization"
+// and at most the body's point count − 1: more would give rows that depend on each other), "capture" (m, default 4 radii of the body's thickest section), "stabilization"
 // (ω, 1/s, default 0.1/dt). The rows' count changes as points leave: rowCount() is that of the
 // last buildRows; violation() reports 2n + 2 entries (the tip's last), zero for what is not held.
 #pragma once
@@ -55,7 +55,7 @@ namespace filum::constraints {
 class ChannelConstraint final : public Constraint {
  public:
   /// path: the channel's centre line (m, ≥ 2 distinct points); samples: n ≥ 1 (0: the body's
-  /// point count − 1, at least 1); capture: m (0: 4 body radii).
+  /// point count − 1, at least 1); capture: m (0: 4 radii of the body's thickest section).
   ChannelConstraint(Points path, int samples, double capture, Baumgarte stabilization);
   static std::unique_ptr<ChannelConstraint> fromParams(const Params& p);
 
