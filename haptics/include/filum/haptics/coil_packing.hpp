@@ -4,7 +4,8 @@
 //   PD = Σ_c ∫_{inside} π r_c(s)² dℓ / V,
 // r_c(s) the radius of coil c at abscissa s (one radius for most coils, by spans for a coil with
 // a stretch-resistant or thinner section: CurveBody::radiusAt), the integral over its centre line
-// inside the aneurysm (π r_c² L_c for one radius, L_c the length inside), V the aneurysm's volume. The aneurysm is a set of branches of the vessel tree (the sac, its neck):
+// inside the aneurysm (π r_c² L_c for one radius, L_c the length inside), V the aneurysm's
+// volume. The aneurysm is a set of branches of the vessel tree (the sac, its neck):
 // the lumen's points, φ > 0, whose largest branch field is one of them (geometry/vessel_tree.hpp,
 // Sample::branch), so it ends where the parent artery's field takes over, along the parent's wall.
 //

@@ -37,8 +37,7 @@ class CurveBody : public MechanicalState {
   virtual double radiusAt(double /*s*/) const { return radius(); }
   /// Where the section is read: every breakpoint and every piece's middle, in non-decreasing order
   /// (repeated where a breakpoint is; radiusAt keeps one value between two breakpoints and may
-  /// step only at one); just {0} where
-  /// the radius does not vary.
+  /// step only at one); just {0} where the radius does not vary.
   std::vector<double> sectionAbscissas() const;
   /// The thinnest and the thickest section's radius (m), read at sectionAbscissas.
   struct RadiusRange {
