@@ -30,6 +30,17 @@ ChainElasticity::Span spanFromParams(const Params& p, ChainElasticity::Span base
   return base;
 }
 
+/// Timoshenko's shear coefficient of a circular tube, lumen over outer radius m = r_in / r
+/// (G. R. Cowper, "The shear coefficient in Timoshenko's beam theory", J. Appl. Mech. 33 (1966)
+/// 335, Table 1, hollow circle):
+///   κ = 6 (1 + ν)(1 + m²)² / ((7 + 6ν)(1 + m²)² + (20 + 12ν) m²);
+/// a disc (m = 0) has 6 (1 + ν)/(7 + 6ν): 0.9 at ν = ½, 0.886 at ν = 0.3; a thin wall tends to
+/// 2 (1 + ν)/(4 + 3ν).
+double shearCoefficient(double nu, double m) {
+  const double a = (1.0 + m * m) * (1.0 + m * m);
+  return 6.0 * (1.0 + nu) * a / ((7.0 + 6.0 * nu) * a + (20.0 + 12.0 * nu) * m * m);
+}
+
 }  // namespace
 
 std::unique_ptr<ChainElasticity> ChainElasticity::fromParams(const Params& p) {
@@ -83,10 +94,11 @@ void ChainElasticity::init(const Scene&) {
   joint_rest_.assign(segments, Vec3::Zero());
   for (int i = 0; i < segments; ++i) {
     const Span& span = spanAt(0.5 * (chain_->nodeAbscissa(i) + chain_->nodeAbscissa(i + 1)));
-    const double r = chain_->segmentRadius(i), area = std::numbers::pi * r * r, second = area * r * r / 4.0;
+    const FramedChain::Section& section = chain_->segmentSection(i);
+    const double area = section.area(), second = section.secondMoment();
     const double E = span.youngs_modulus, G = E / (2.0 * (1.0 + span.poisson_ratio));
     axial_.push_back(E * area);
-    shear_.push_back(0.9 * G * area);  // κ = 0.9: a disc's shear coefficient (about 0.89–0.9)
+    shear_.push_back(shearCoefficient(span.poisson_ratio, section.inner_radius / section.radius) * G * area);
     bending_.push_back(Vec3(E * second, E * second, G * 2.0 * second));
   }
   for (int j = 1; j < segments; ++j) {

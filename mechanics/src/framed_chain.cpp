@@ -34,6 +34,17 @@ std::unique_ptr<CurveBasis> polylineBasis(const std::vector<double>& lengths) {
 
 }  // namespace
 
+// (Each written as the disc's expression minus the lumen's, so that a solid section computes the
+// same doubles as π r r and π r r r r / 4 did before tubes.)
+double FramedChain::Section::area() const {
+  return std::numbers::pi * radius * radius - std::numbers::pi * inner_radius * inner_radius;
+}
+
+double FramedChain::Section::secondMoment() const {
+  const double disc = std::numbers::pi * radius * radius, lumen = std::numbers::pi * inner_radius * inner_radius;
+  return (disc * radius * radius - lumen * inner_radius * inner_radius) / 4.0;
+}
+
 namespace {
 
 /// Rest lengths of the segments between consecutive nodes.
@@ -41,6 +52,20 @@ std::vector<double> segmentLengths(const Points& nodes) {
   std::vector<double> lengths;
   for (Eigen::Index i = 0; i + 1 < nodes.rows(); ++i) lengths.push_back((nodes.row(i + 1) - nodes.row(i)).norm());
   return lengths;
+}
+
+/// "inner_radius" (m) of p, `fallback` when absent: in [0, radius) (a wall of non-zero thickness);
+/// `radius_name` names the radius it must stay below in the refusal.
+double innerRadiusFromParams(const Params& p, double radius, double fallback, const std::string& radius_name) {
+  const double inner = p.nonNegative({"inner_radius", "m"}, fallback);
+  if (!(inner < radius)) {
+    const std::string expected = std::string("an inner radius (the lumen) below ").append(radius_name).append(" (")
+                                     .append(std::to_string(radius)).append(" m): a wall of non-zero thickness");
+    if (p.has({"inner_radius", "m"})) p.fail("inner_radius", expected, std::to_string(inner) + " m");
+    p.fail("radius", std::string("a radius above the body's 'inner_radius' (").append(std::to_string(inner)).append(" m)"),
+           std::to_string(radius) + " m");
+  }
+  return inner;
 }
 
 double total(const std::vector<double>& values) {
@@ -68,8 +93,8 @@ FramedChain::FramedChain(Points nodes, double radius, std::vector<Section> secti
   double arc = 0.0;
   node_abscissas_.push_back(0.0);
   for (int i = 0; i + 1 < n; ++i) {
-    const double l = rest_lengths_[i], r = sections_[i].radius, area = std::numbers::pi * r * r;
-    const double segment_mass = sections_[i].density * area * l, second = area * r * r / 4.0;
+    const double l = rest_lengths_[i], segment_mass = sections_[i].density * sections_[i].area() * l;
+    const double second = sections_[i].secondMoment();
     masses_[i] += 0.5 * segment_mass;
     masses_[i + 1] += 0.5 * segment_mass;
     mass_ += segment_mass;
@@ -108,24 +133,35 @@ std::unique_ptr<FramedChain> FramedChain::fromParams(const Params& p) {
       p.fail("nodes", "distinct consecutive nodes (segments of non-zero length)", "node " + std::to_string(i) + " repeats node " + std::to_string(i - 1));
   }
   const double radius = p.positive({"radius", "m"}, 1e-3);
+  const double inner_radius = innerRadiusFromParams(p, radius, 0.0, "'radius'");
   double length = 0.0;
   for (Eigen::Index i = 1; i < nodes.rows(); ++i) length += (nodes.row(i) - nodes.row(i - 1)).norm();
   std::unique_ptr<FramedChain> chain;
-  if (!p.has("spans")) {
+  if (!p.has("spans") && inner_radius == 0.0) {
     chain = std::make_unique<FramedChain>(std::move(nodes), radius, massFromParams(p, radius, length));
+  } else if (!p.has("spans")) {
+    // A tube: its density from a total mass over the wall's area, ρ = m / (π (r² − r_in²) L).
+    const Section wall{radius, 1.0, inner_radius};
+    const double density = p.has({"mass", "kg"}) ? massFromParams(p, radius, length) / (wall.area() * length)
+                                                 : p.positive({"density", "kg/m³"});
+    const std::vector<double> lengths = segmentLengths(nodes);
+    chain = std::make_unique<FramedChain>(std::move(nodes), radius,
+                                          std::vector<Section>(lengths.size(), {radius, density, inner_radius}));
   } else {
     if (p.has({"mass", "kg"})) p.fail("mass", "a 'density' (kg/m³) with 'spans' (each span may change it), not a total mass");
     const double density = p.positive({"density", "kg/m³"});
     const std::vector<double> lengths = segmentLengths(nodes);
-    std::vector<Section> sections(lengths.size(), {radius, density});
+    std::vector<Section> sections(lengths.size(), {radius, density, inner_radius});
     for (const Params& span : p.objects("spans")) {
       const double from = span.abscissa("from"), to = span.abscissa("to");
       if (!(to > from)) span.fail("to", "an abscissa above 'from' (" + std::to_string(from) + ")", std::to_string(to));
       const double r = span.positive({"radius", "m"}, radius), rho = span.positive({"density", "kg/m³"}, density);
+      const double inner = innerRadiusFromParams(span, r, inner_radius, "the span's radius");
       span.finish();
       double arc = 0.0;
       for (std::size_t i = 0; i < lengths.size(); arc += lengths[i], ++i)
-        if (const double middle = (arc + lengths[i] / 2.0) / length; middle >= from && middle <= to) sections[i] = {r, rho};
+        if (const double middle = (arc + lengths[i] / 2.0) / length; middle >= from && middle <= to)
+          sections[i] = {r, rho, inner};
     }
     chain = std::make_unique<FramedChain>(std::move(nodes), radius, std::move(sections));
   }

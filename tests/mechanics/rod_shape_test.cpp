@@ -202,6 +202,16 @@ TEST(RodShape, RefusesShapesAndMaterialsThatDoNotFit) {
   mass_with_spans["mass"] = 1e-3;
   mass_with_spans["spans"] = {{{"from", 0.0}, {"to", 0.5}, {"radius", 5e-4}}};
   refused(mass_with_spans, base, json::array(), "density");
+  // A lumen that leaves no wall, on the body or under a span's thinner radius.
+  json no_wall = straightRod(5);
+  no_wall["inner_radius"] = no_wall["radius"];
+  refused(no_wall, base, json::array(), "/inner_radius");
+  json thin_span = straightRod(5);
+  thin_span["inner_radius"] = 0.5 * thin_span["radius"].get<double>();
+  thin_span["spans"] = {{{"from", 0.5}, {"to", 1.0}, {"radius", 0.4 * thin_span["radius"].get<double>()}}};
+  refused(thin_span, base, json::array(), "/spans/0/radius");
+  thin_span["spans"][0]["inner_radius"] = thin_span["spans"][0]["radius"];
+  refused(thin_span, base, json::array(), "/spans/0/inner_radius");
 }
 
 }  // namespace

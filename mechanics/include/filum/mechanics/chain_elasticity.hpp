@@ -3,11 +3,14 @@
 // e = x_{i+1} − x_i, tangent t = e/|e|, material axes d3 = R_i e3):
 //   stretching  E_s = ½ (E A / l_i) (|e| − l_i)²,
 //   shear       E_a = ½ κ G A l_i |d3_i − t_i|²   (the segment's frame held to its own edge: the
-//               Cosserat shear strain, 2 (1 − cos γ) ≈ γ² for a shear angle γ; κ = 0.9, a disc),
+//               Cosserat shear strain, 2 (1 − cos γ) ≈ γ² for a shear angle γ; κ(ν, r_in/r) is
+//               Cowper's shear coefficient of a disc or a tube, 0.9 for a disc at ν = ½),
 // and per interior node j (between segments j − 1 and j, Voronoi length ℓ_j = (l_{j−1} + l_j)/2):
 //   bend/twist  E_b = ½ φᵀ B φ / ℓ_j,   φ = log(R_{j−1}ᵀ R_j),   B = diag(E I, E I, G J),
 // so that a tangent turning by θ = κ ℓ at a node costs ½ E I κ² ℓ, the Kirchhoff rod's energy of
-// curvature κ over the node's length; A = π r², I = π r⁴/4, J = 2I and G = E / (2 (1 + ν)).
+// curvature κ over the node's length; A, I the section's (FramedChain::Section: a disc,
+// A = π r², I = π r⁴/4, or a tube's wall, A = π (r² − r_in²), I = π (r⁴ − r_in⁴)/4), J = 2I and
+// G = E / (2 (1 + ν)).
 // A rest shape (a J-tip, an angled tip, a coil's helix) replaces φ by φ − φ̄_j: the rest turn
 // φ̄_j = ∫ κ̄(s) ds over the node's Voronoi cell [s_j − l_{j−1}/2, s_j + l_j/2] of a rest Darboux
 // vector κ̄ = (κ1, κ2, τ) given in the material frame by abscissa spans (integrated exactly, so

@@ -21,8 +21,9 @@
 //
 // Mass, lumped: the rod's ρA shared half-half by the two nodes of each segment of rest length
 // l_i (m_i = ρ A ℓ_i, ℓ_i = (l_{i−1} + l_i)/2), and each segment's frame carries the rotary
-// inertia of its own slice, J_i = ρ l_i diag(I, I, 2I) (A = π r², I = π r⁴ / 4), with Euler's
-// gyroscopic torque −ω_i × J_i ω_i (body frame). Elasticity is a force field, ChainElasticity.
+// inertia of its own slice, J_i = ρ l_i diag(I, I, 2I), with Euler's gyroscopic torque
+// −ω_i × J_i ω_i (body frame). The section is a disc of radius r, or a tube's wall (a catheter:
+// a lumen of radius r_in < r): A = π (r² − r_in²), I = π (r⁴ − r_in⁴) / 4 (r_in = 0: a disc). Elasticity is a force field, ChainElasticity.
 // Explicit and implicit integrators: implicit steps put the frames' rotations in the step matrix
 // beside the points, interleaved (x0, R0, x1, R1, ...: a band two slots wide), and move frames
 // by R ← R exp(w) for the step's increment w. The point count is fixed (refine, coarsen and cut
@@ -53,15 +54,22 @@ class FramedChain final : public CurveBody {
   struct Section {
     double radius;
     double density;
+    double inner_radius = 0.0;  // m, the lumen of a tube (0: a solid disc), below radius
+    /// A = π (r² − r_in²) (m²).
+    double area() const;
+    /// I = π (r⁴ − r_in⁴) / 4 (m⁴), about a diameter; the polar moment is 2I.
+    double secondMoment() const;
   };
   FramedChain(Points nodes, double radius, std::vector<Section> sections);
 
   /// "nodes": {"from": [..], "to": [..], "count": n} (equally spaced) or [[x,y,z], ...];
-  /// "radius": m (default 1e-3); "mass": kg or "density": kg/m³;
+  /// "radius": m (default 1e-3); "inner_radius": m, in [0, radius) (default 0: a solid section;
+  /// a tube's lumen); "mass": kg or "density": kg/m³;
   /// "angular_velocities": [[ωx,ωy,ωz], ...] one per segment (n − 1), body frame (rad/s;
-  /// default at rest); "spans": [{"from": s0, "to": s1, "radius": m, "density": kg/m³}, ...]
-  /// (with "density", not "mass"): the cross-section of the segments whose middle lies in
-  /// [s0, s1] (later spans win), the rest keeps "radius" and "density".
+  /// default at rest); "spans": [{"from": s0, "to": s1, "radius": m, "inner_radius": m,
+  /// "density": kg/m³}, ...] (with "density", not "mass"): the cross-section of the segments whose
+  /// middle lies in [s0, s1] (later spans win), the rest keeps "radius", "inner_radius" and
+  /// "density"; a span's fields default to the body's.
   static std::unique_ptr<FramedChain> fromParams(const Params& p);
 
   std::string typeName() const override { return "FramedChain"; }
@@ -122,6 +130,8 @@ class FramedChain final : public CurveBody {
   double nodeMass(int node) const { return masses_[node]; }
   /// Segment i's cross-section radius (m).
   double segmentRadius(int segment) const { return sections_[segment].radius; }
+  /// Segment i's cross-section: radius, density, lumen (area(), secondMoment()).
+  const Section& segmentSection(int segment) const { return sections_[segment]; }
   /// Node i's abscissa s ∈ [0, 1] (its rest arc length over the rod's).
   double nodeAbscissa(int node) const { return node_abscissas_[node]; }
 
