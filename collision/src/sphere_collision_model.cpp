@@ -82,6 +82,7 @@ void SphereCollisionModel::init(const Scene& scene) {
                          " spheres along the thread (sphere_sampling_mapping.hpp: every step visits each sphere)",
                      describeJson(std::floor(spheres)) + " spheres of spacing " + describeJson(spacing) + " m on " +
                          describeJson(rest_length) + " m");
+  if (settings_.lumen_radius == 0.0 && curve_->hollow()) lumenFromWall();
   lumen_varies_ = !settings_.lumen_spans.empty();
   widest_lumen_ = narrowest_lumen_ = settings_.lumen_radius;
   if (lumen_varies_) {  // the lumen's range all along (lumen_radius only where no span covers)
@@ -93,6 +94,7 @@ void SphereCollisionModel::init(const Scene& scene) {
     }
   }
   checkLumen();
+  checkLumenInsideWall();
   if (settings_.lumen_friction && settings_.lumen_radius == 0.0)
     throw SceneError(origin() + "/lumen_friction", "a \"lumen_radius\" beside it (only a tube has a lumen)", "none");
   exclusion_ = settings_.exclusion >= 0.0 ? settings_.exclusion : 4.0 * radius_;
@@ -105,6 +107,41 @@ void SphereCollisionModel::init(const Scene& scene) {
   if (varies_) sphere_radii_.resize(capacity);
   if (lumen_varies_) sphere_lumens_.resize(capacity);
   updateRadii();
+}
+
+void SphereCollisionModel::lumenFromWall() {
+  // The body's wall is piecewise constant between its breakpoints (sectionAbscissas: breakpoint,
+  // middle, breakpoint, ...): lumen_radius is the first piece's lumen, and each run of pieces
+  // with another lumen becomes a span. At a span's end lumenRadiusAt takes the narrower side's,
+  // as the wall's innerRadiusAt does at a step.
+  const std::vector<double> at = curve_->sectionAbscissas();
+  settings_.lumen_radius = curve_->innerRadiusAt(at.size() > 1 ? at[1] : 0.0);
+  for (std::size_t k = 1; k + 1 < at.size(); k += 2) {
+    const double lumen = curve_->innerRadiusAt(at[k]);
+    if (lumen == settings_.lumen_radius) continue;
+    std::vector<Settings::LumenSpan>& spans = settings_.lumen_spans;
+    if (!spans.empty() && spans.back().to == at[k - 1] && spans.back().radius == lumen)
+      spans.back().to = at[k + 1];
+    else
+      spans.push_back({at[k - 1], at[k + 1], lumen});
+  }
+}
+
+void SphereCollisionModel::checkLumenInsideWall() const {
+  // A lumen given here on a body whose section is a tube's wall stays within the wall's own
+  // lumen wherever the body has one (an instrument inside meets the wall's inner surface).
+  if (settings_.lumen_radius == 0.0) return;
+  std::vector<double> at = sectionSamples();
+  const std::vector<double> wall = curve_->sectionAbscissas();
+  at.insert(at.end(), wall.begin(), wall.end());
+  for (const double s : at) {
+    const double inner = curve_->innerRadiusAt(s), lumen = lumenRadiusAt(s);
+    if (inner > 0.0 && lumen > inner)
+      throw SceneError(origin() + (settings_.lumen_spans.empty() ? "/lumen_radius" : "/lumen_spans"),
+                       "a lumen within the tube's wall: the body's \"inner_radius\" is " + describeJson(inner) +
+                           " m at s = " + describeJson(s) + " (or leave \"lumen_radius\" out to take the wall's)",
+                       "a lumen of radius " + describeJson(lumen) + " m there");
+  }
 }
 
 double SphereCollisionModel::lumenRadiusAt(double s) const {

@@ -102,7 +102,12 @@ FramedChain::FramedChain(Points nodes, double radius, std::vector<Section> secti
     node_abscissas_.push_back((arc += l) / length);
   }
   node_abscissas_.back() = 1.0;
-  for (const Section& section : sections_) radius_varies_ = radius_varies_ || section.radius != radius_;
+  hollow_ = !sections_.empty();
+  for (const Section& section : sections_) {
+    radius_varies_ = radius_varies_ || section.radius != radius_;
+    hollow_ = hollow_ && section.inner_radius > 0.0;
+    inner_radius_varies_ = inner_radius_varies_ || section.inner_radius != sections_.front().inner_radius;
+  }
   Vec3 previous = Vec3::UnitZ();
   Eigen::Quaterniond frame = Eigen::Quaterniond::Identity();
   for (int i = 0; i + 1 < n; ++i) {
@@ -261,6 +266,15 @@ int FramedChain::segmentAt(double s) const {
 
 double FramedChain::radiusAt(double s) const {
   if (!radius_varies_) return radius_;
+  return sectionField(s, &Section::radius, true);
+}
+
+double FramedChain::innerRadiusAt(double s) const {
+  if (!inner_radius_varies_) return sections_.empty() ? 0.0 : sections_.front().inner_radius;
+  return sectionField(s, &Section::inner_radius, false);
+}
+
+double FramedChain::sectionField(double s, double Section::*field, bool larger) const {
   // node_abscissas_[i] <= s < node_abscissas_[i + 1] on segment i. At an interior node both
   // segments meet: "at" within a few ulps (abscissas <= 1), since an abscissa placed at a node by
   // another sum (a contact sphere's, from its arc-length table) may differ from it in the last bit.
@@ -268,11 +282,12 @@ double FramedChain::radiusAt(double s) const {
   const int segments = segmentCount();
   const auto above = std::upper_bound(node_abscissas_.begin(), node_abscissas_.end(), s);
   const int segment = std::clamp(static_cast<int>(above - node_abscissas_.begin()) - 1, 0, segments - 1);
-  double r = sections_[segment].radius;
-  if (segment > 0 && std::abs(s - node_abscissas_[segment]) <= kAtNode) r = std::max(r, sections_[segment - 1].radius);
+  const auto pick = [larger](double a, double b) { return larger ? std::max(a, b) : std::min(a, b); };
+  double value = sections_[segment].*field;
+  if (segment > 0 && std::abs(s - node_abscissas_[segment]) <= kAtNode) value = pick(value, sections_[segment - 1].*field);
   if (segment + 1 < segments && std::abs(s - node_abscissas_[segment + 1]) <= kAtNode)
-    r = std::max(r, sections_[segment + 1].radius);
-  return r;
+    value = pick(value, sections_[segment + 1].*field);
+  return value;
 }
 
 void FramedChain::addTorque(const SceneState& st, double s, const Vec3& torque, VecX& B) const {

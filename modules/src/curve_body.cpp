@@ -15,7 +15,7 @@ Vec3 combine(const BasisRow& row, const Weights& w, ConstPointsMap q) {
 }  // namespace
 
 std::vector<double> CurveBody::sectionAbscissas() const {
-  if (!radiusVaries()) return {0.0};
+  if (!radiusVaries() && !innerRadiusVaries()) return {0.0};
   const std::vector<double> breaks = basis().breakpoints();
   std::vector<double> at;
   at.reserve(2 * breaks.size());

@@ -275,6 +275,47 @@ TEST(Coaxial, AnOpeningTakesTheLumenOfItsOwnEnd) {
   EXPECT_EQ(placeInTube(distal, tube), TubePlace::kOutside);
 }
 
+TEST(Coaxial, AHollowTubeHasItsWallsLumen) {
+  // The catheter's section a tube's wall: a 0.6 mm lumen, narrowing to 0.5 mm over the segments
+  // from s = 0.3 on (FramedChain "inner_radius", and a span's). Its SphereCollisionModel given no
+  // lumen takes the wall's: the narrower side's at the step, as lumen spans do. A run with it is
+  // bit for bit the run with the same lumen given as "lumen_radius" and "lumen_spans".
+  json hollow = coaxialScene(0.0);
+  json& chain = hollow["nodes"][0]["components"][0];
+  chain["inner_radius"] = kLumenRadius;
+  chain["spans"] = json::array({{{"from", 0.3}, {"to", 1.0}, {"inner_radius", 5e-4}}});
+  hollow["nodes"][0]["components"][5].erase("lumen_radius");
+  auto derived = load(hollow);
+  const CurveBody& tube_body = *derived->bodies()[0]->curve();
+  const std::vector<double> at = tube_body.sectionAbscissas();  // breakpoint, middle, breakpoint, ...
+  const double step = at[12];                                     // node 6 of 21: s = 0.3
+  const SphereCollisionModel& tube = *pipelineOf(*derived).models()[0];
+  for (const auto& [s, r] : std::vector<std::pair<double, double>>{{0.0, kLumenRadius}, {0.15, kLumenRadius}, {step, 5e-4}, {0.5, 5e-4}, {1.0, 5e-4}})
+    EXPECT_EQ(tube.lumenRadiusAt(s), r) << "s = " << s;
+  EXPECT_EQ(tube.narrowestLumen(), 5e-4);
+  EXPECT_EQ(tube.lumenRadius(), kLumenRadius);
+  json given = hollow;
+  given["nodes"][0]["components"][5]["lumen_radius"] = kLumenRadius;
+  given["nodes"][0]["components"][5]["lumen_spans"] = json::array({{{"from", step}, {"to", 1.0}, {"lumen_radius", 5e-4}}});
+  auto explicit_lumen = load(given);
+  for (int k = 0; k < 300; ++k) {
+    ASSERT_TRUE(derived->step().ok) << "step " << k;
+    ASSERT_TRUE(explicit_lumen->step().ok) << "step " << k;
+  }
+  EXPECT_EQ(derived->state().q, explicit_lumen->state().q);
+  // A lumen given wider than the wall's is refused, where it is given.
+  const auto refusedAt = [](const json& document, const std::string& path) {
+    const std::string what = refusal(document);
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+  };
+  json wide = hollow;
+  wide["nodes"][0]["components"][5]["lumen_radius"] = 5.5e-4;  // wider than the distal wall's 0.5 mm
+  refusedAt(wide, "components/5/lumen_radius: expected a lumen within the tube's wall");
+  wide["nodes"][0]["components"][5]["lumen_radius"] = 5e-4;
+  wide["nodes"][0]["components"][5]["lumen_spans"] = json::array({{{"from", 0.0}, {"to", 0.2}, {"lumen_radius", 6.5e-4}}});
+  refusedAt(wide, "components/5/lumen_spans: expected a lumen within the tube's wall");
+}
+
 TEST(Coaxial, RefusesLumenSpansThatDoNotFit) {
   const auto refusedAt = [](const json& document, const std::string& path) {
     const std::string what = refusal(document);

@@ -25,7 +25,9 @@
 // differ by up to the step |r_k − r_{k+1}|.
 //
 // Coaxial instruments (a guidewire in a catheter, a coil in a microcatheter): a tube declares the
-// radius of its lumen ("lumen_radius", R_in), and an instrument running in it names the tube's
+// radius of its lumen ("lumen_radius", R_in; a body whose section is a tube's wall all along, a
+// FramedChain with an "inner_radius", has its wall's lumen without it, spans included, and a
+// lumen given must stay within the wall's), and an instrument running in it names the tube's
 // node ("inside"). The pipeline then holds the instrument's spheres inside the lumen wherever
 // they lie along the tube (narrow_phase.hpp, findLumenContacts) and drops the ordinary contacts
 // between the two, which would push them apart.
@@ -70,7 +72,8 @@ class SphereCollisionModel final : public CollisionModel {
 
   /// "radius": r (m, default: the DynamicSpline's radius), "spacing": h (m, default r),
   /// "self_collision": bool (default true), "exclusion": m along the curve (default 4 r);
-  /// a tube: "lumen_radius": R_in (m, below the radius r), "lumen_spans": [{"from", "to",
+  /// a tube: "lumen_radius": R_in (m, below the radius r; default the wall's lumen on a hollow
+  /// body, CurveBody::innerRadiusAt), "lumen_spans": [{"from", "to",
   /// "lumen_radius"}] (abscissa ranges of another lumen radius, not overlapping), "lumen_friction":
   /// μ (default the pipeline's "friction"); an instrument in a tube: "inside": the tube's node path.
   static std::unique_ptr<SphereCollisionModel> fromParams(const Params& p);
@@ -137,6 +140,11 @@ class SphereCollisionModel final : public CollisionModel {
   std::vector<double> sectionSamples() const;
   /// SceneError unless R_in(s) < r(s) all along the tube.
   void checkLumen() const;
+  /// lumen_radius and lumen_spans from the body's wall (CurveBody::innerRadiusAt), for a hollow
+  /// body that was given no lumen.
+  void lumenFromWall();
+  /// SceneError where the lumen is wider than the body's wall's lumen (where it has one).
+  void checkLumenInsideWall() const;
 
   Settings settings_;
   const CurveBody* curve_ = nullptr;

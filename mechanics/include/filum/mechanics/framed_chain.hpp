@@ -108,6 +108,11 @@ class FramedChain final : public CurveBody {
   /// The radius of the segment holding s; at a node between two segments (within a few ulps),
   /// the larger of theirs.
   double radiusAt(double s) const override;
+  /// The lumen of the segment holding s; at a node between two segments (within a few ulps), the
+  /// narrower of theirs.
+  double innerRadiusAt(double s) const override;
+  bool hollow() const override { return hollow_; }
+  bool innerRadiusVaries() const override { return inner_radius_varies_; }
   double mass() const override { return mass_; }
   bool takesTorques() const override { return true; }
   /// On the frame of the segment holding s (body frame: Q_ω += Rᵀ τ).
@@ -136,12 +141,18 @@ class FramedChain final : public CurveBody {
   double nodeAbscissa(int node) const { return node_abscissas_[node]; }
 
  private:
+  /// A field of the section of the segment holding s; at a node between two segments (within a few
+  /// ulps), the larger (or with !larger the smaller) of theirs.
+  double sectionField(double s, double Section::*field, bool larger) const;
+
   Points nodes_;
   double radius_, mass_;
   std::unique_ptr<CurveBasis> basis_;
   std::vector<double> rest_lengths_, masses_, node_abscissas_;
   std::vector<Section> sections_;  // per segment
   bool radius_varies_ = false;     // some segment's radius is not radius_
+  bool hollow_ = false;               // every segment has a lumen
+  bool inner_radius_varies_ = false;  // the segments' lumens differ
   std::vector<Vec3> inertia_;                  // per segment
   std::vector<Eigen::Quaterniond> initial_frames_;  // per segment
   Points initial_angular_velocities_;  // (n − 1) × 3 (body frame), empty: at rest

@@ -35,9 +35,16 @@ class CurveBody : public MechanicalState {
   /// to another (a node between two spans of a rod), the larger, so that what collides or is drawn
   /// there covers both sides.
   virtual double radiusAt(double /*s*/) const { return radius(); }
+  /// A tube's wall: the radius (m) of its lumen at s (0 where the section is solid). Where the
+  /// wall steps from one lumen to another, the narrower.
+  virtual double innerRadiusAt(double /*s*/) const { return 0.0; }
+  /// Whether the body is a tube all along (innerRadiusAt > 0 everywhere).
+  virtual bool hollow() const { return false; }
+  /// Whether the lumen changes along the body (innerRadiusAt steps somewhere).
+  virtual bool innerRadiusVaries() const { return false; }
   /// Where the section is read: every breakpoint and every piece's middle, in non-decreasing order
-  /// (repeated where a breakpoint is; radiusAt keeps one value between two breakpoints and may
-  /// step only at one); just {0} where the radius does not vary.
+  /// (repeated where a breakpoint is; radiusAt and innerRadiusAt keep one value between two
+  /// breakpoints and may step only at one); just {0} where neither varies.
   std::vector<double> sectionAbscissas() const;
   /// The thinnest and the thickest section's radius (m), read at sectionAbscissas.
   struct RadiusRange {
