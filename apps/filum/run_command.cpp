@@ -233,6 +233,7 @@ int runScene(const RunOptions& options, std::ostream& log, std::ostream& progres
   auto summary = [&]() {
     TimingSummary timing = TimingSummary::fromStepTimes(step_seconds, dt, seconds(Clock::now() - start));
     if (const ConstraintSolver* solver = scene->constraintSolver()) timing.contact = solver->contactTally();
+    timing.stages = scene->stageTimes();
     return timing;
   };
   // metrics.json written, the navigation metrics logged.

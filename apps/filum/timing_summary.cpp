@@ -47,19 +47,33 @@ std::string TimingSummary::text() const {
                   static_cast<double>(contact.chord_steps) / contact.solves, contact.worst_ratio);
     text += buffer;
   }
+  if (step_wall > 0.0) {
+    // The shares of the steps' time; "rest": between the stages (state copies, end-of-step checks).
+    const double share = 100.0 / step_wall;
+    std::snprintf(buffer, sizeof buffer,
+                  "time by stage: collision detection %.3g %%, integration (forces, step matrix, its solves) %.3g %%, "
+                  "constraint and contact solve %.3g %%, missed-contact check %.3g %%, layout changes %.3g %%, "
+                  "rest %.3g %%\n",
+                  stages.detection * share, stages.integration * share, stages.constraint_solve * share,
+                  stages.missed_contact * share, stages.layout * share, std::max(0.0, step_wall - stages.total()) * share);
+    text += buffer;
+  }
   return text;
 }
 
 std::string TimingSummary::json() const {
-  char buffer[768];
+  char buffer[1024];
   std::snprintf(buffer, sizeof buffer,
                 "{\n  \"steps\": %ld,\n  \"dt_s\": %.17g,\n  \"simulated_s\": %.17g,\n  \"wall_s\": %.6f,\n"
                 "  \"step_wall_s\": %.6f,\n  \"wall_ms_per_simulated_ms\": {\"median\": %.6g, \"min\": %.6g, "
                 "\"max\": %.6g, \"mean\": %.6g},\n  \"contact_solves\": {\"solves\": %ld, \"converged\": %ld, "
-                "\"fell_back\": %ld, \"iterations\": %ld, \"chord_steps\": %ld, \"worst_residual_over_tolerance\": %.6g}\n}\n",
+                "\"fell_back\": %ld, \"iterations\": %ld, \"chord_steps\": %ld, \"worst_residual_over_tolerance\": %.6g},\n"
+                "  \"stages_s\": {\"collision_detection\": %.6f, \"integration\": %.6f, \"constraint_solve\": %.6f, "
+                "\"missed_contact_check\": %.6f, \"layout\": %.6f}\n}\n",
                 steps, dt, simulated, wall, step_wall, per_sim_ms_median, per_sim_ms_min, per_sim_ms_max,
                 per_sim_ms_mean, contact.solves, contact.converged, contact.fell_back, contact.iterations, contact.chord_steps,
-                std::isfinite(contact.worst_ratio) ? contact.worst_ratio : -1.0);
+                std::isfinite(contact.worst_ratio) ? contact.worst_ratio : -1.0, stages.detection, stages.integration,
+                stages.constraint_solve, stages.missed_contact, stages.layout);
   return buffer;
 }
 

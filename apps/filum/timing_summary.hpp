@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "filum/core/constraint_solver.hpp"
+#include "filum/core/stage_times.hpp"
 
 namespace filum::app {
 
@@ -20,6 +21,7 @@ struct TimingSummary {
   double per_sim_ms_max = 0.0;
   double per_sim_ms_mean = 0.0;
   ContactSolveTally contact;       // the constraint solver's contact solves (none: solves = 0)
+  StageTimes stages;               // s per stage of the steps (Scene::stageTimes)
 
   /// From per-step wall times (s). Sorts a copy.
   static TimingSummary fromStepTimes(const std::vector<double>& step_seconds, double dt, double wall);

@@ -304,6 +304,7 @@ void Scene::applyConstraints(const SceneState& s, const BlockInverse& inverse, V
   // constraints' rows, then the step's unilateral contacts as inequality rows, solved together
   // by the one constraint solver.
   if (!constraint_solver_) return;
+  const StageTimer timer(stage_times_.constraint_solve);
   rows_.clear();
   for (std::size_t i = 0; i < constraints_.size(); ++i) {
     const Constraint* c = constraints_[i];
@@ -375,9 +376,12 @@ StepReport Scene::step() {
 
 void Scene::beginStep() {
   fault_.clear();
-  applyScheduledLayoutChanges();
-  applyRuptures();
-  if (fault_.empty() && !layout_controllers_.empty()) applyLayoutControllers();
+  {
+    const StageTimer timer(stage_times_.layout);
+    applyScheduledLayoutChanges();
+    applyRuptures();
+    if (fault_.empty() && !layout_controllers_.empty()) applyLayoutControllers();
+  }
   // endStep needs the last good state: copied into preallocated storage (no allocation).
   last_good_ = state_;
   // Scheduled releases (cuts) take effect at the first step that starts at or after their time.
@@ -500,17 +504,30 @@ void Scene::advanceStep(double dt) {
 void Scene::advance(double h, int depth) {
   ++substeps_;
   deepest_depth_ = std::max(deepest_depth_, depth);
-  detectCollisions(h);
+  {
+    const StageTimer timer(stage_times_.detection);
+    detectCollisions(h);
+  }
   substep_start_[depth] = state_;  // preallocated: no allocation
   const long unconverged = unconvergedContactSolves();
-  integrate(h);
+  {
+    // The constraint solves inside the step count as theirs (applyConstraints): taken out here.
+    const double solves_before = stage_times_.constraint_solve;
+    const StageTimer timer(stage_times_.integration);
+    integrate(h);
+    stage_times_.integration -= stage_times_.constraint_solve - solves_before;
+  }
   if (!fault_.empty() || !collision_) return;
   // A contact solve that did not reach its tolerance (constraint_solver.hpp's tally): the step
   // is redone in halves, down to dt / 2^kMaxSolveHalvings — a shorter step moves the contacts less
   // from the state their rows were built at, and its Newton starts nearer its solution. At the
   // finest sub-step the best iterate is kept; the tally reports it.
   const bool solve_failed = unconvergedContactSolves() > unconverged && depth < kMaxSolveHalvings;
-  const CollisionPipeline::Miss miss = collision_->missedContact(state_);
+  CollisionPipeline::Miss miss = CollisionPipeline::Miss::kNone;
+  {
+    const StageTimer timer(stage_times_.missed_contact);
+    miss = collision_->missedContact(state_);
+  }
   if (miss == CollisionPipeline::Miss::kNone && !solve_failed) return;
   if (miss == CollisionPipeline::Miss::kNone) {
     ++solve_halvings_;

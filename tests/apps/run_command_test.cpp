@@ -38,6 +38,26 @@ TEST(RunCommand, TwoRunsOfTheSameSceneAreBitIdentical) {
   EXPECT_TRUE(fs::exists(a / "timing.json"));
 }
 
+TEST(RunCommand, TimingSaysWhereTheStepsTimeWent) {
+  // knot.json has contacts and constraints: every stage took time, and the stages, exclusive,
+  // add up to no more than the steps' own time (the rest: state copies and end-of-step checks).
+  const std::string scene = std::string(FILUM_SOURCE_DIR) + "/apps/scenes/knot.json";
+  const fs::path dir = freshDirectory("stage_times");
+  std::string log;
+  ASSERT_EQ(runQuietly(scene, dir, 0.05, log), kRunOk) << log;
+  const nlohmann::json timing = nlohmann::json::parse(readAll(dir / "timing.json"));
+  const nlohmann::json& stages = timing.at("stages_s");
+  double sum = 0.0;
+  for (const char* stage : {"collision_detection", "integration", "constraint_solve", "missed_contact_check"}) {
+    EXPECT_GT(stages.at(stage).get<double>(), 0.0) << stage;
+    sum += stages.at(stage).get<double>();
+  }
+  sum += stages.at("layout").get<double>();
+  // Each value is printed to 1 µs (%.6f): five of them round by 2.5 µs at most.
+  EXPECT_LE(sum, timing.at("step_wall_s").get<double>() + 5e-6);
+  EXPECT_NE(log.find("time by stage: collision detection"), std::string::npos) << log;
+}
+
 TEST(RunCommand, KnotCsvFollowsTheKnotOfKnotJsonAsItIsTightened) {
   // knot.json: a loose overhand knot in silk, its ends drawn 8 mm apart each from 0.02 to 0.19 s,
   // at rest until 0.35 s. knot.csv says trefoil at every frame, the thread the knot holds falls as

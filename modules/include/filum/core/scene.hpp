@@ -24,6 +24,7 @@
 #include "filum/core/mechanical_state.hpp"
 #include "filum/core/node.hpp"
 #include "filum/core/scene_state.hpp"
+#include "filum/core/stage_times.hpp"
 
 namespace filum {
 
@@ -176,6 +177,8 @@ class Scene {
   /// Sub-steps integrated since init, those redone in halves included (one per step when no
   /// step was ever halved).
   long substeps() const { return substeps_; }
+  /// Wall time spent in each stage of the steps since init (stage_times.hpp).
+  const StageTimes& stageTimes() const { return stage_times_; }
   int dofPointCount() const { return point_count_; }
   /// Groups of the implicit step matrix (JacobianAccumulator): the points, then the bodies'
   /// internal DOFs in triples.
@@ -291,6 +294,7 @@ class Scene {
   std::vector<SceneState> substep_start_;  // one per halving depth (sized at init)
   long contact_halvings_ = 0;
   long solve_halvings_ = 0;
+  StageTimes stage_times_;  // wall time per stage (stageTimes)
   long substeps_ = 0;       // sub-steps taken (accepted or redone), every step's included
   int deepest_depth_ = 0;   // the deepest halving depth the current step reached
   /// The (sub-)step of length h at halving depth `depth` taken again from its start, as two halves.
