@@ -49,6 +49,11 @@ std::unique_ptr<SphereCollisionModel> SphereCollisionModel::fromParams(const Par
 }
 
 void SphereCollisionModel::init(const Scene& scene) {
+  if (lumen_from_wall_) {  // bound again (a new layout): the wall's lumen is read afresh below
+    settings_.lumen_radius = 0.0;
+    settings_.lumen_spans.clear();
+    lumen_from_wall_ = false;
+  }
   MechanicalState* body = node() ? node()->mechanicalState() : nullptr;
   curve_ = body ? body->curve() : nullptr;
   if (!curve_)
@@ -114,6 +119,7 @@ void SphereCollisionModel::lumenFromWall() {
   // middle, breakpoint, ...): lumen_radius is the first piece's lumen, and each run of pieces
   // with another lumen becomes a span. At a span's end lumenRadiusAt takes the narrower side's,
   // as the wall's innerRadiusAt does at a step.
+  lumen_from_wall_ = true;
   const std::vector<double> at = curve_->sectionAbscissas();
   settings_.lumen_radius = curve_->innerRadiusAt(at.size() > 1 ? at[1] : 0.0);
   for (std::size_t k = 1; k + 1 < at.size(); k += 2) {
@@ -136,8 +142,14 @@ void SphereCollisionModel::checkLumenInsideWall() const {
   at.insert(at.end(), wall.begin(), wall.end());
   for (const double s : at) {
     const double inner = curve_->innerRadiusAt(s), lumen = lumenRadiusAt(s);
-    if (inner > 0.0 && lumen > inner)
-      throw SceneError(origin() + (settings_.lumen_spans.empty() ? "/lumen_radius" : "/lumen_spans"),
+    if (!(inner > 0.0 && lumen > inner)) continue;
+    // Named where that lumen is given: the span holding s with that radius, else lumen_radius.
+    std::string where = "/lumen_radius";
+    for (std::size_t i = 0; i < settings_.lumen_spans.size(); ++i) {
+      const Settings::LumenSpan& l = settings_.lumen_spans[i];
+      if (l.from <= s && s <= l.to && l.radius == lumen) where = "/lumen_spans/" + std::to_string(i) + "/lumen_radius";
+    }
+    throw SceneError(origin() + where,
                        "a lumen within the tube's wall: the body's \"inner_radius\" is " + describeJson(inner) +
                            " m at s = " + describeJson(s) + " (or leave \"lumen_radius\" out to take the wall's)",
                        "a lumen of radius " + describeJson(lumen) + " m there");

@@ -60,10 +60,12 @@ double innerRadiusFromParams(const Params& p, double radius, double fallback, co
   const double inner = p.nonNegative({"inner_radius", "m"}, fallback);
   if (!(inner < radius)) {
     const std::string expected = std::string("an inner radius (the lumen) below ").append(radius_name).append(" (")
-                                     .append(std::to_string(radius)).append(" m): a wall of non-zero thickness");
-    if (p.has({"inner_radius", "m"})) p.fail("inner_radius", expected, std::to_string(inner) + " m");
-    p.fail("radius", std::string("a radius above the body's 'inner_radius' (").append(std::to_string(inner)).append(" m)"),
-           std::to_string(radius) + " m");
+                                     .append(describeJson(radius)).append(" m): a wall of non-zero thickness");
+    if (p.has({"inner_radius", "m"})) p.fail("inner_radius", expected, describeJson(inner) + " m");
+    p.fail("radius",
+           std::string("a radius above the body's 'inner_radius' (").append(describeJson(inner))
+               .append(" m), or an 'inner_radius' of its own below it"),
+           describeJson(radius) + " m");
   }
   return inner;
 }
@@ -87,7 +89,8 @@ FramedChain::FramedChain(Points nodes, double radius, std::vector<Section> secti
   rest_lengths_ = segmentLengths(nodes_);
   const double length = total(rest_lengths_);
   basis_ = polylineBasis(rest_lengths_);
-  // Per segment: ρA l shared half-half by its nodes; rotary inertia ρ l diag(I, I, 2I), I = π r⁴/4.
+  // Per segment: ρA l shared half-half by its nodes; rotary inertia ρ l diag(I, I, 2I), with the
+  // section's A and I (a disc's or a tube wall's, Section).
   masses_.assign(n, 0.0);
   mass_ = 0.0;
   double arc = 0.0;
@@ -147,8 +150,9 @@ std::unique_ptr<FramedChain> FramedChain::fromParams(const Params& p) {
   } else if (!p.has("spans")) {
     // A tube: its density from a total mass over the wall's area, ρ = m / (π (r² − r_in²) L).
     const Section wall{radius, 1.0, inner_radius};
-    const double density = p.has({"mass", "kg"}) ? massFromParams(p, radius, length) / (wall.area() * length)
-                                                 : p.positive({"density", "kg/m³"});
+    const double density = p.has({"density", "kg/m³"}) && !p.has({"mass", "kg"})
+                               ? p.positive({"density", "kg/m³"})
+                               : massFromParams(p, radius, length) / (wall.area() * length);  // (its checks and refusals)
     const std::vector<double> lengths = segmentLengths(nodes);
     chain = std::make_unique<FramedChain>(std::move(nodes), radius,
                                           std::vector<Section>(lengths.size(), {radius, density, inner_radius}));

@@ -313,7 +313,10 @@ TEST(Coaxial, AHollowTubeHasItsWallsLumen) {
   refusedAt(wide, "components/5/lumen_radius: expected a lumen within the tube's wall");
   wide["nodes"][0]["components"][5]["lumen_radius"] = 5e-4;
   wide["nodes"][0]["components"][5]["lumen_spans"] = json::array({{{"from", 0.0}, {"to", 0.2}, {"lumen_radius", 6.5e-4}}});
-  refusedAt(wide, "components/5/lumen_spans: expected a lumen within the tube's wall");
+  refusedAt(wide, "components/5/lumen_spans/0/lumen_radius: expected a lumen within the tube's wall");
+  wide["nodes"][0]["components"][5]["lumen_radius"] = 6.5e-4;  // the base too wide, the span not
+  wide["nodes"][0]["components"][5]["lumen_spans"] = json::array({{{"from", step}, {"to", 1.0}, {"lumen_radius", 5e-4}}});
+  refusedAt(wide, "components/5/lumen_radius: expected a lumen within the tube's wall");
 }
 
 TEST(Coaxial, RefusesLumenSpansThatDoNotFit) {

@@ -155,6 +155,7 @@ class SphereCollisionModel final : public CollisionModel {
   bool varies_ = false;               // the spheres' radii follow the body's section (radiusAt)
   std::vector<double> sphere_radii_;  // per sphere while varies_ (capacity as centers_)
   bool lumen_varies_ = false;         // "lumen_spans" given
+  bool lumen_from_wall_ = false;      // settings_'s lumen read from the body's wall (lumenFromWall)
   double widest_lumen_ = 0.0, narrowest_lumen_ = 0.0;
   std::vector<double> sphere_lumens_;  // R_in per sphere while lumen_varies_ (capacity as centers_)
   double exclusion_ = 0.0;
