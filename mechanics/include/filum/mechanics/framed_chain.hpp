@@ -23,7 +23,8 @@
 // l_i (m_i = ρ A ℓ_i, ℓ_i = (l_{i−1} + l_i)/2), and each segment's frame carries the rotary
 // inertia of its own slice, J_i = ρ l_i diag(I, I, 2I), with Euler's gyroscopic torque
 // −ω_i × J_i ω_i (body frame). The section is a disc of radius r, or a tube's wall (a catheter:
-// a lumen of radius r_in < r): A = π (r² − r_in²), I = π (r⁴ − r_in⁴) / 4 (r_in = 0: a disc). Elasticity is a force field, ChainElasticity.
+// a lumen of radius r_in < r): A = π (r² − r_in²), I = π (r⁴ − r_in⁴) / 4 (r_in = 0: a disc).
+// Elasticity is a force field, ChainElasticity.
 // Explicit and implicit integrators: implicit steps put the frames' rotations in the step matrix
 // beside the points, interleaved (x0, R0, x1, R1, ...: a band two slots wide), and move frames
 // by R ← R exp(w) for the step's increment w. The point count is fixed (refine, coarsen and cut
