@@ -76,15 +76,7 @@ TEST(ConvolutionSurfaceMesher, TheSameSurfaceGivesTheSameMeshWhateverWasMeshedBe
 TEST(ConvolutionSurfaceModel, WrapsASplineOrIsRefusedWithTheOption) {
   const json more = json::array({{{"type", "ConvolutionSurfaceModel"}, {"radius", 3e-3}, {"facet_size", 2e-3}}});
   const json document = test::splineScene(test::helix(12), more, 1e-3);
-  if (!convolutionSurfaceMeshingAvailable()) {
-    try {
-      loadScene(document, "scene.json", test::visualFactory());
-      FAIL() << "no error";
-    } catch (const SceneError& e) {
-      EXPECT_NE(std::string(e.what()).find("FILUM_WITH_CGAL"), std::string::npos) << e.what();
-    }
-    return;
-  }
+  if (test::refusedWithoutCgal(document, "scene.json")) return;
   auto scene = loadScene(document, "scene.json", test::visualFactory());
   VisualScene visuals(*scene);
   ASSERT_EQ(visuals.models().size(), 1u);  // the surface draws the body: no default skin

@@ -10,7 +10,6 @@
 #include <stdexcept>
 
 #include "filum/core/curve_body.hpp"
-#include "filum/core/scene_error.hpp"
 #include "filum/visual/convolution_surface_mesher.hpp"
 #include "filum/visual/convolution_surface_model.hpp"
 #include "filum/visual/sphere_model.hpp"
@@ -75,15 +74,7 @@ TEST(SectionBySpan, TheConvolutionSurfaceWrapsShaftAndTipAtTheirOwnRadii) {
   // vertices as close to the surface.)
   const json more = json::array({{{"type", "ConvolutionSurfaceModel"}, {"facet_size", kTip}}});
   const json document = test::rodWithThinTip(0.04, 21, kShaft, 0.5, kTip, more);
-  if (!convolutionSurfaceMeshingAvailable()) {  // a build without CGAL refuses the skin, naming the option
-    try {
-      loadScene(document, "spans", test::visualFactory());
-      FAIL() << "a ConvolutionSurfaceModel was accepted without CGAL";
-    } catch (const SceneError& e) {
-      EXPECT_NE(std::string(e.what()).find("FILUM_WITH_CGAL"), std::string::npos) << e.what();
-    }
-    return;
-  }
+  if (test::refusedWithoutCgal(document, "spans")) return;  // a build without CGAL refuses the skin
   auto scene = loadScene(document, "spans", test::visualFactory());
   VisualScene visuals(*scene);
   visuals.update(scene->state());

@@ -12,7 +12,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "filum/core/scene_error.hpp"
 #include "filum/core/scene_loader.hpp"
+#include "filum/visual/convolution_surface_mesher.hpp"
 #include "filum/visual/display_server.hpp"
 #include "filum/visual/offscreen_renderer.hpp"
 #include "filum/visual/triangle_mesh.hpp"
@@ -21,6 +23,20 @@
 namespace filum::test {
 
 inline Factory visualFactory() { return libraryComponents(); }
+
+/// In a build without CGAL: expects loading `document` (which holds a CGAL-meshed skin) to be
+/// refused with an error naming FILUM_WITH_CGAL, and returns true — the caller's test ends there.
+/// With CGAL: false, nothing checked.
+inline bool refusedWithoutCgal(const nlohmann::json& document, const std::string& source) {
+  if (visual::convolutionSurfaceMeshingAvailable()) return false;
+  try {
+    loadScene(document, source, visualFactory());
+    ADD_FAILURE() << "a CGAL-meshed skin was accepted without CGAL";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("FILUM_WITH_CGAL"), std::string::npos) << e.what();
+  }
+  return true;
+}
 
 /// A scene with one spline through `points` (no gravity unless given), plus `more` components
 /// in the thread's node; "camera" added if not null.

@@ -134,8 +134,6 @@ class FramedChain final : public CurveBody {
   /// Segment i's frame in the initial state (parallel transported along the initial nodes).
   const Eigen::Quaterniond& initialFrame(int segment) const { return initial_frames_[segment]; }
   double nodeMass(int node) const { return masses_[node]; }
-  /// Segment i's cross-section radius (m).
-  double segmentRadius(int segment) const { return sections_[segment].radius; }
   /// Segment i's cross-section: radius, density, lumen (area(), secondMoment()).
   const Section& segmentSection(int segment) const { return sections_[segment]; }
   /// Node i's abscissa s ∈ [0, 1] (its rest arc length over the rod's).
