@@ -177,7 +177,7 @@ class Scene {
   /// Sub-steps integrated since init, those redone in halves included (one per step when no
   /// step was ever halved).
   long substeps() const { return substeps_; }
-  /// Wall time spent in each stage of the steps since init (stage_times.hpp).
+  /// Wall time spent in each stage of the steps since the scene was built (stage_times.hpp).
   const StageTimes& stageTimes() const { return stage_times_; }
   int dofPointCount() const { return point_count_; }
   /// Groups of the implicit step matrix (JacobianAccumulator): the points, then the bodies'

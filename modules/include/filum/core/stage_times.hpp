@@ -1,9 +1,10 @@
 // StageTimes: the wall time a scene's steps spent in each stage of the step pipeline
-// (DESIGN.md, "The step"), summed since init — where a scene's time goes, as MuJoCo's per-stage
-// timers (mjData.timer) say it for a model. `filum run` reports them (timing.json "stages_s",
-// and a line of shares). The stages are exclusive: their sum is the steps' time less the
-// bookkeeping between them (copying the state for rollback, the end-of-step checks).
-// A StageTimer is two reads of a monotonic clock (~20 ns each); it changes no result.
+// (DESIGN.md, "The step"), summed since the scene was built — where a scene's time goes, as
+// MuJoCo's per-stage timers (mjData.timer) say it for a model. `filum run` reports them
+// (timing.json "stages_s", and a line of shares). The stages are exclusive: their sum is the
+// steps' time less the bookkeeping between them (copying the state for rollback, the
+// end-of-step checks). A StageTimer is two reads of a monotonic clock (~30 ns each here); it
+// changes no result.
 #pragma once
 
 #include <chrono>
